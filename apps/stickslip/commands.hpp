@@ -1,0 +1,17 @@
+// One file per subcommand; each registers itself on the top-level app.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace stickslip::app {
+
+struct invocation {
+  int argc;
+  const char* const* argv;
+};
+
+void add_simulate_command(CLI::App& app, const invocation& inv);
+void add_sweep_command(CLI::App& app, const invocation& inv);
+void add_reproduce_command(CLI::App& app, const invocation& inv);
+void add_merge_command(CLI::App& app, const invocation& inv);
+
+}  // namespace stickslip::app

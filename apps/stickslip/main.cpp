@@ -1,0 +1,35 @@
+// stickslip: exact stochastic simulation of a dry-friction oscillator on a
+// telegraph-driven belt. Exceptions are caught here and only here.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "commands.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"stickslip: exact event-driven simulation and parametric statistics of a "
+               "stick-slip oscillator on a randomly switching belt"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", fmt::format("stickslip {} ({})", stickslip::version,
+                                                 stickslip::git_revision));
+  const stickslip::app::invocation inv{argc, argv};
+  stickslip::app::add_simulate_command(app, inv);
+  stickslip::app::add_sweep_command(app, inv);
+  stickslip::app::add_reproduce_command(app, inv);
+  stickslip::app::add_merge_command(app, inv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const stickslip::error& e) {
+    fmt::print(stderr, "stickslip: error: {}\n", e.what());
+    return static_cast<int>(e.code());
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "stickslip: internal error: {}\n", e.what());
+    return static_cast<int>(stickslip::exit_code::internal);
+  }
+  return 0;
+}

@@ -1,0 +1,72 @@
+// Fixed-bin histogram on [lo, hi] (the last bin is closed on the right, so
+// R = 1 and D = d_max land inside). Out-of-range samples are counted apart.
+// density(i) = count_i / (total * width): the area equals the fraction of all
+// samples that fell inside [lo, hi].
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace stickslip {
+
+class histogram {
+ public:
+  histogram() = default;
+  // Preconditions (checked at the edge): lo < hi, finite, bins >= 1.
+  histogram(double lo, double hi, std::size_t bins) : lo_(lo), hi_(hi), counts_(bins, 0) {}
+
+  void add(double x) noexcept {
+    if (!(x >= lo_)) {  // also catches NaN
+      ++underflow_;
+      return;
+    }
+    if (x > hi_) {
+      ++overflow_;
+      return;
+    }
+    auto i = static_cast<std::size_t>((x - lo_) / (hi_ - lo_) * static_cast<double>(counts_.size()));
+    if (i >= counts_.size()) i = counts_.size() - 1;
+    ++counts_[i];
+  }
+  // Precondition: same binning.
+  histogram& operator+=(const histogram& o) noexcept {
+    for (std::size_t i = 0; i < counts_.size(); ++i) counts_[i] += o.counts_[i];
+    underflow_ += o.underflow_;
+    overflow_ += o.overflow_;
+    return *this;
+  }
+  [[nodiscard]] bool same_binning(const histogram& o) const noexcept {
+    return lo_ == o.lo_ && hi_ == o.hi_ && counts_.size() == o.counts_.size();
+  }
+  [[nodiscard]] std::size_t bins() const noexcept { return counts_.size(); }
+  [[nodiscard]] double lo() const noexcept { return lo_; }
+  [[nodiscard]] double hi() const noexcept { return hi_; }
+  [[nodiscard]] double width() const noexcept { return (hi_ - lo_) / static_cast<double>(bins()); }
+  [[nodiscard]] double center(std::size_t i) const noexcept { return lo_ + (static_cast<double>(i) + 0.5) * width(); }
+  [[nodiscard]] std::uint64_t count(std::size_t i) const noexcept { return counts_[i]; }
+  [[nodiscard]] const std::vector<std::uint64_t>& counts() const noexcept { return counts_; }
+  [[nodiscard]] std::uint64_t underflow() const noexcept { return underflow_; }
+  [[nodiscard]] std::uint64_t overflow() const noexcept { return overflow_; }
+  [[nodiscard]] std::uint64_t total() const noexcept {
+    std::uint64_t t = underflow_ + overflow_;
+    for (auto c : counts_) t += c;
+    return t;
+  }
+  [[nodiscard]] double density(std::size_t i) const noexcept {
+    const auto n = total();
+    return n ? static_cast<double>(counts_[i]) / (static_cast<double>(n) * width()) : 0.0;
+  }
+  void set_raw(std::vector<std::uint64_t> counts, std::uint64_t under, std::uint64_t over) {
+    counts_ = std::move(counts);
+    underflow_ = under;
+    overflow_ = over;
+  }
+  friend bool operator==(const histogram&, const histogram&) = default;
+
+ private:
+  double lo_ = 0.0, hi_ = 1.0;
+  std::vector<std::uint64_t> counts_;
+  std::uint64_t underflow_ = 0, overflow_ = 0;
+};
+
+}  // namespace stickslip

@@ -1,0 +1,62 @@
+// Mean and variance accumulator (Welford 1962) with an exact merge
+// (Chan, Golub, LeVeque 1979): for parts A and B with n = nA + nB,
+//   delta = mean_B - mean_A
+//   mean  = mean_A + delta nB / n
+//   M2    = M2_A + M2_B + delta^2 nA nB / n
+// Merging two halves equals filling everything at once up to rounding;
+// merging in a fixed order makes the result bit-reproducible.
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+namespace stickslip {
+
+// Two-sided 95 % normal quantile, Phi^-1(0.975).
+inline constexpr double z95 = 1.959963984540054;
+
+class mean_variance {
+ public:
+  void add(double x) noexcept {
+    ++n_;
+    const double d = x - mean_;
+    mean_ += d / static_cast<double>(n_);
+    m2_ += d * (x - mean_);
+  }
+  mean_variance& operator+=(const mean_variance& o) noexcept {
+    if (o.n_ == 0) return *this;
+    if (n_ == 0) return *this = o;
+    const double na = static_cast<double>(n_), nb = static_cast<double>(o.n_);
+    const double n = na + nb, d = o.mean_ - mean_;
+    mean_ += d * nb / n;
+    m2_ += o.m2_ + d * d * na * nb / n;
+    n_ += o.n_;
+    return *this;
+  }
+  [[nodiscard]] std::uint64_t count() const noexcept { return n_; }
+  [[nodiscard]] double mean() const noexcept { return n_ ? mean_ : NAN; }
+  // Sample variance (n - 1 in the denominator); NaN below two samples.
+  [[nodiscard]] double variance() const noexcept {
+    return n_ > 1 ? m2_ / static_cast<double>(n_ - 1) : NAN;
+  }
+  [[nodiscard]] double std_dev() const noexcept { return std::sqrt(variance()); }
+  [[nodiscard]] double std_error() const noexcept {
+    return std_dev() / std::sqrt(static_cast<double>(n_));
+  }
+  // Half-width of the normal-approximation 95 % confidence interval of the mean.
+  [[nodiscard]] double ci95_half_width() const noexcept { return z95 * std_error(); }
+  [[nodiscard]] double sum_sq_dev() const noexcept { return m2_; }
+  static mean_variance from_raw(std::uint64_t n, double mean, double m2) noexcept {
+    mean_variance r;
+    r.n_ = n;
+    r.mean_ = mean;
+    r.m2_ = m2;
+    return r;
+  }
+  friend bool operator==(const mean_variance&, const mean_variance&) = default;
+
+ private:
+  std::uint64_t n_ = 0;
+  double mean_ = 0.0, m2_ = 0.0;
+};
+
+}  // namespace stickslip

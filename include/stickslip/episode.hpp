@@ -1,0 +1,69 @@
+// What the integrator reports: events (instants) and episodes (maximal stick
+// or slip intervals). Episodes tile [0, t_a]; a slip episode runs through belt
+// switches and slip reversals.
+#pragma once
+
+namespace stickslip {
+
+enum class mode : unsigned char { stick, slip };
+
+enum class event_kind : unsigned char {
+  belt_switch,    // the belt velocity flips sign (Poisson time); ends any stick
+  stick_onset,    // a slip reaches x' = v inside the band |x| <= a
+  stick_break,    // a stick reaches the band edge x = sgn(v) a
+  slip_reversal,  // a slip reaches x' = v outside the band; slip continues the other way
+};
+
+inline constexpr const char* to_string(mode m) noexcept {
+  return m == mode::stick ? "stick" : "slip";
+}
+inline constexpr const char* to_string(event_kind k) noexcept {
+  switch (k) {
+    case event_kind::belt_switch: return "belt_switch";
+    case event_kind::stick_onset: return "stick_onset";
+    case event_kind::stick_break: return "stick_break";
+    case event_kind::slip_reversal: return "slip_reversal";
+  }
+  return "?";
+}
+
+// The state at an event, taken just after the event has acted
+// (belt_velocity is the new one after a belt switch).
+struct event {
+  event_kind kind;
+  double time;
+  double position;       // x
+  double velocity;       // x'
+  double belt_velocity;  // v after the event
+};
+
+struct episode {
+  mode kind;
+  double start;
+  double end;
+  double position_at_start;  // x at `start`
+  double belt_velocity;      // v at `start`
+  bool censored;             // cut off by the end of the window t_a
+  [[nodiscard]] double duration() const noexcept { return end - start; }
+};
+
+// One closed-form piece of motion between two consecutive events.
+// Stick:  x(t) = x0 + v (t - t0),                 x'(t) = v.
+// Slip:   x(t) = c + (x0 - c) cos w(t-t0) + (x0'/w) sin w(t-t0),
+//         x'(t) = x0' cos w(t-t0) - w (x0 - c) sin w(t-t0),   c = sigma a.
+struct segment {
+  mode kind;
+  double start, end;
+  double position, velocity;  // x, x' at start
+  double belt_velocity;       // v during the segment
+  double center;              // c = sigma a while slipping (0 while sticking)
+  double omega;
+};
+
+struct phase_point {
+  double position, velocity;
+};
+
+[[nodiscard]] phase_point evaluate(const segment& s, double t) noexcept;
+
+}  // namespace stickslip

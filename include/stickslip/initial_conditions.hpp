@@ -1,0 +1,43 @@
+// Initial state of one realization, and the law it is drawn from.
+// Paper defaults: x0, x'0 independent uniform on [-1, 1]; belt direction +V or
+// -V with equal odds.
+#pragma once
+#include <cstdint>
+
+#include "stickslip/random_stream.hpp"
+
+namespace stickslip {
+
+struct initial_conditions {
+  double position = 0.0;  // x0  [m]
+  double velocity = 0.0;  // x'0 [m/s]
+  int belt_direction = 1; // +1 or -1: v(0) = belt_direction * V
+};
+
+struct initial_condition_law {
+  double position_min = -1.0, position_max = 1.0;
+  double velocity_min = -1.0, velocity_max = 1.0;
+  int belt_start = 0;  // +1, -1, or 0 for random with equal odds
+  friend bool operator==(const initial_condition_law&, const initial_condition_law&) = default;
+};
+
+// Throws stickslip::error on non-finite bounds, min > max, or belt_start not in {-1,0,1}.
+void validate(const initial_condition_law& law);
+
+// Draw from substream::initial_conditions: one Philox block gives x0, x'0 and
+// the belt direction.
+[[nodiscard]] inline initial_conditions draw_initial_conditions(
+    const initial_condition_law& law, std::uint64_t seed, std::uint64_t point,
+    std::uint64_t realization) noexcept {
+  random_stream rs(seed, point, realization, substream::initial_conditions);
+  const auto w = rs.next_block();
+  const double u0 = random_stream::open_uniform(w.v[0]);
+  const double u1 = random_stream::open_uniform(w.v[1]);
+  initial_conditions ic;
+  ic.position = law.position_min + (law.position_max - law.position_min) * u0;
+  ic.velocity = law.velocity_min + (law.velocity_max - law.velocity_min) * u1;
+  ic.belt_direction = law.belt_start != 0 ? law.belt_start : ((w.v[2] >> 63) ? 1 : -1);
+  return ic;
+}
+
+}  // namespace stickslip

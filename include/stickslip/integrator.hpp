@@ -1,0 +1,242 @@
+// Exact, event-driven integration of one realization. No time step and no
+// tolerance: between events the motion has a closed form, and every event
+// time is computed from it. Derivations: docs/model.md.
+//
+// Slip (friction direction sigma = sgn(v - x')):   x'' = -w^2 (x - sigma a)
+//   Put y = x - c (c = sigma a). Then (w y, x') rotates rigidly at rate w:
+//   x' = B cos(theta), w y = B sin(theta), theta = theta0 + w t,
+//   B^2 = (w y)^2 + x'^2 is conserved.
+//   Relative velocity zero (x' = v) at cos(theta) = v/B, i.e. theta = +-alpha,
+//   alpha = acos(v/B). It is reached iff B^2 - v^2 > 0 (B = |v| is a tangency,
+//   which only happens at the outward band edge: the grazing contact, no stick).
+//   sigma = +1 (x' < v) lives on theta in (alpha, 2pi - alpha) and meets -alpha;
+//   sigma = -1 (x' > v) lives on (-alpha, alpha) and meets +alpha.
+//   There w y = -+ sqrt(B^2 - v^2): x_root = c - sigma sqrt(B^2 - v^2)/w.
+// Stick: x = x0 + v t with |x| <= a, ending at x = sgn(v) a after (a - sgn(v) x0)/V.
+// At x' = v: |x| <= a starts a stick; otherwise the slip reverses (new sigma =
+//   sgn(x)); consecutive roots of one orbit are mirror images x -> 2c - x.
+// A stick that breaks at the band edge continues on the grazing orbit
+//   x = sa + (V/w) sin(w t), which touches x' = v once per period for zero time
+//   and never sticks again until the next belt switch (flag `grazing`).
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+#include "stickslip/episode.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/initial_conditions.hpp"
+#include "stickslip/parameters.hpp"
+
+namespace stickslip {
+
+struct event_counts {
+  std::uint64_t belt_switches = 0, stick_onsets = 0, stick_breaks = 0, slip_reversals = 0;
+  [[nodiscard]] std::uint64_t total() const noexcept {
+    return belt_switches + stick_onsets + stick_breaks + slip_reversals;
+  }
+  event_counts& operator+=(const event_counts& o) noexcept {
+    belt_switches += o.belt_switches;
+    stick_onsets += o.stick_onsets;
+    stick_breaks += o.stick_breaks;
+    slip_reversals += o.slip_reversals;
+    return *this;
+  }
+};
+
+// The default bound on events per realization. Hitting it is reported as an
+// error, never silently truncated.
+inline constexpr std::int64_t default_max_events = 100'000'000;
+
+namespace detail {
+
+inline constexpr double two_pi = 2.0 * std::numbers::pi;
+
+// Phase distance from `from` forward to `to`, reduced to [0, 2 pi).
+[[nodiscard]] inline double forward_angle(double from, double to) noexcept {
+  double d = std::fmod(to - from, two_pi);
+  return d < 0.0 ? d + two_pi : d;
+}
+
+}  // namespace detail
+
+template <class Switches, class Observer>
+event_counts simulate(const model_parameters& p, const initial_conditions& ic,
+                      Switches& switches, Observer& obs,
+                      std::int64_t max_events = default_max_events) {
+  using detail::two_pi;
+  const double a = p.band_half_width();
+  const double w = p.natural_frequency();
+  const double V = p.belt_speed;
+  const double ta = p.window;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+
+  event_counts counts;
+  double t = 0.0, x = ic.position, z = ic.velocity;
+  double v = ic.belt_direction >= 0 ? V : -V;
+  double t_switch = switches.next();
+
+  mode m;
+  double sigma = 1.0;        // friction direction while slipping
+  bool grazing = false;      // on the grazing orbit after a stick break
+  bool after_reversal = false;
+
+  // Resolve the mode at relative velocity zero (x' == v).
+  auto resolve_at_contact = [&](double from_sigma) {
+    const bool inside = from_sigma > 0 ? x >= -a : x <= a;
+    if (inside) {
+      x = std::clamp(x, -a, a);
+      m = mode::stick;
+    } else {
+      m = mode::slip;
+      sigma = -from_sigma;
+      after_reversal = true;
+    }
+  };
+
+  if (z == v && std::abs(x) <= a) {
+    m = mode::stick;
+  } else if (z == v) {
+    m = mode::slip;
+    sigma = x > 0 ? 1.0 : -1.0;
+    after_reversal = true;
+  } else {
+    m = mode::slip;
+    sigma = v > z ? 1.0 : -1.0;
+  }
+
+  episode ep{m, 0.0, 0.0, x, v, false};
+  auto close_episode = [&](double when, mode next_mode) {
+    ep.end = when;
+    obs.on_episode(ep);
+    ep = episode{next_mode, when, 0.0, x, v, false};
+  };
+
+  std::int64_t steps = 0;
+  while (true) {
+    if (++steps > max_events) throw work_bound_exceeded(steps, t, ta);
+
+    if (m == mode::stick) {
+      const double s = v > 0 ? 1.0 : -1.0;
+      const double t_edge = t + (a - s * x) / V;
+      const double t_next = std::min(t_edge, t_switch);
+      obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w});
+      if (t_next >= ta) {
+        x += v * (ta - t);
+        t = ta;
+        break;
+      }
+      if (t_switch <= t_edge) {  // belt switch ends the stick
+        x = std::clamp(x + v * (t_switch - t), -a, a);
+        z = v;
+        t = t_switch;
+        v = -v;
+        sigma = -s;  // the belt now runs away from the mass: x' = old v, v = -old v
+        m = mode::slip;
+        grazing = after_reversal = false;
+        ++counts.belt_switches;
+        obs.on_event(event{event_kind::belt_switch, t, x, z, v});
+        close_episode(t, mode::slip);
+        t_switch = switches.next();
+      } else {  // stick breaks at the band edge; exact state, then grazing orbit
+        x = s * a;
+        z = v;
+        t = t_edge;
+        sigma = s;
+        m = mode::slip;
+        grazing = true;
+        after_reversal = false;
+        ++counts.stick_breaks;
+        obs.on_event(event{event_kind::stick_break, t, x, z, v});
+        close_episode(t, mode::slip);
+      }
+      continue;
+    }
+
+    // --- slip ---
+    const double c = sigma * a;
+    const double y = x - c;
+    const double wy = w * y;
+    const double disc = wy * wy + (z - v) * (z + v);  // B^2 - v^2
+    double t_root = inf;
+    if (!grazing && disc > 0.0) {
+      const double B = std::sqrt(wy * wy + z * z);
+      const double alpha = std::acos(std::clamp(v / B, -1.0, 1.0));
+      // Arc of the current sigma region still to run before the root.
+      const double region = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+      double dtheta;
+      if (after_reversal) {
+        dtheta = region;  // we start on the region's first root
+      } else {
+        const double theta = std::atan2(wy, z);
+        dtheta = detail::forward_angle(theta, sigma > 0 ? -alpha : alpha);
+        // Rounding may put theta just outside its region: snap to the near end.
+        if (dtheta > region) dtheta = (dtheta - region < two_pi - dtheta) ? region : 0.0;
+      }
+      t_root = t + dtheta / w;
+    }
+    const double t_next = std::min(t_root, t_switch);
+    obs.on_segment(segment{mode::slip, t, std::min(t_next, ta), x, z, v, c, w});
+    if (t_next >= ta) {
+      const double dt = ta - t;
+      const double cs = std::cos(w * dt), sn = std::sin(w * dt);
+      x = c + y * cs + z / w * sn;
+      z = z * cs - wy * sn;
+      t = ta;
+      break;
+    }
+    if (t_switch <= t_root) {  // belt switch during a slip
+      const double dt = t_switch - t;
+      const double cs = std::cos(w * dt), sn = std::sin(w * dt);
+      x = c + y * cs + z / w * sn;
+      z = z * cs - wy * sn;
+      t = t_switch;
+      v = -v;
+      grazing = after_reversal = false;
+      ++counts.belt_switches;
+      obs.on_event(event{event_kind::belt_switch, t, x, z, v});
+      t_switch = switches.next();
+      if (z == v) {  // measure zero: landed exactly on relative rest
+        resolve_at_contact(x > 0 ? -1.0 : 1.0);
+        if (m == mode::stick) {
+          ++counts.stick_onsets;
+          obs.on_event(event{event_kind::stick_onset, t, x, z, v});
+          close_episode(t, mode::stick);
+        }
+      } else {
+        sigma = v > z ? 1.0 : -1.0;
+      }
+      continue;
+    }
+    // Relative velocity reaches zero: x' = v, x from the conserved B.
+    x = c - sigma * std::sqrt(disc) / w;
+    z = v;
+    t = t_root;
+    const double from_sigma = sigma;
+    after_reversal = false;
+    resolve_at_contact(from_sigma);
+    if (m == mode::stick) {
+      const double s = v > 0 ? 1.0 : -1.0;
+      if (a - s * x <= 0.0) {  // onset exactly on the outward edge: zero-length stick
+        m = mode::slip;
+        sigma = s;
+        grazing = true;
+        continue;
+      }
+      ++counts.stick_onsets;
+      obs.on_event(event{event_kind::stick_onset, t, x, z, v});
+      close_episode(t, mode::stick);
+    } else {
+      ++counts.slip_reversals;
+      obs.on_event(event{event_kind::slip_reversal, t, x, z, v});
+    }
+  }
+  ep.end = ta;
+  ep.censored = true;
+  obs.on_episode(ep);
+  return counts;
+}
+
+}  // namespace stickslip

@@ -1,0 +1,48 @@
+// Counter-based random streams (Random123 Philox4x64-10). Every draw is a pure
+// function of (seed, grid point, realization, substream, draw index):
+//   key     = { seed, point_key(parameters) }
+//   counter = { realization, substream, draw_index / 4, 0 }
+// so a realization can be replayed alone, and no result depends on threads,
+// ranks, scheduling or on which other realizations were drawn.
+#pragma once
+#include <Random123/philox.h>
+#include <Random123/uniform.hpp>
+
+#include <cmath>
+#include <cstdint>
+
+#include "stickslip/parameters.hpp"
+
+namespace stickslip {
+
+enum class substream : std::uint64_t { initial_conditions = 0, belt_switches = 1 };
+
+// A 64-bit identity of a grid point: a hash of the bit patterns of its model
+// parameters, so the same physical point gets the same streams in any sweep
+// and in `simulate`.
+[[nodiscard]] std::uint64_t point_key(const model_parameters& p) noexcept;
+
+class random_stream {
+ public:
+  using philox = r123::Philox4x64;
+  random_stream(std::uint64_t seed, std::uint64_t point, std::uint64_t realization,
+                substream s) noexcept
+      : key_{{seed, point}}, ctr_{{realization, static_cast<std::uint64_t>(s), 0, 0}} {}
+
+  // Four fresh 64-bit words; advances the block counter.
+  [[nodiscard]] philox::ctr_type next_block() noexcept {
+    auto r = philox{}(ctr_, key_);
+    ++ctr_.v[2];
+    return r;
+  }
+  // Uniform on (0, 1): never 0 or 1, safe for log (see ECOSYSTEM.md).
+  [[nodiscard]] static double open_uniform(std::uint64_t w) noexcept {
+    return r123::u01fixedpt<double>(w);
+  }
+
+ private:
+  philox::key_type key_;
+  philox::ctr_type ctr_;
+};
+
+}  // namespace stickslip

@@ -1,0 +1,131 @@
+// A parametric sweep: a grid of plain parameter values, split into work units
+// of (grid point, block of realizations). Every unit is a pure function of the
+// spec, and block statistics are merged per point in block order, so the
+// result is bit-identical for any number of threads, ranks or shards.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "stickslip/belt_switches.hpp"
+#include "stickslip/initial_conditions.hpp"
+#include "stickslip/integrator.hpp"
+#include "stickslip/statistics.hpp"
+
+namespace stickslip {
+
+struct axis {
+  std::string name;            // a parameter symbol: m k g mu V lambda ta
+  std::vector<double> values;  // in the order given
+  friend bool operator==(const axis&, const axis&) = default;
+};
+
+struct sweep_spec {
+  model_parameters base;           // values of the parameters not swept
+  initial_condition_law initial;
+  std::vector<axis> axes;          // first axis outermost (slowest)
+  std::uint64_t realizations = 2000;
+  std::uint64_t seed = 1;
+  std::uint64_t block_size = 50;   // realizations per work unit
+  histogram_spec histograms;
+  std::int64_t max_events = default_max_events;
+  bool keep_records = false;       // raw per-realization records (memory grows with N)
+  friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
+};
+
+// Throws stickslip::error naming the first problem (unknown or repeated axis,
+// empty axis, invalid point, zero realizations, absurd size).
+void validate(const sweep_spec& s);
+
+[[nodiscard]] std::size_t point_count(const sweep_spec& s) noexcept;
+[[nodiscard]] std::vector<std::size_t> point_index(const sweep_spec& s, std::size_t point);
+[[nodiscard]] model_parameters point_parameters(const sweep_spec& s, std::size_t point);
+[[nodiscard]] std::uint64_t blocks_per_point(const sweep_spec& s) noexcept;
+
+struct work_unit {
+  std::size_t point = 0;
+  std::uint64_t block = 0;
+  friend auto operator<=>(const work_unit&, const work_unit&) = default;
+};
+[[nodiscard]] std::uint64_t unit_count(const sweep_spec& s) noexcept;
+[[nodiscard]] work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept;
+
+struct block_result {
+  point_statistics stats;
+  std::vector<realization_record> records;  // filled when spec.keep_records
+};
+
+// Simulate the realizations of one unit. Pure: depends only on (spec, unit).
+[[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
+
+// Simulate one realization of one grid point (what `simulate` replays).
+template <class Observer>
+event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
+                                  std::uint64_t realization, Observer& obs);
+
+// Accepts block results in any order; merges each point's blocks in block
+// order and records a convergence point after each merge.
+class ordered_merger {
+ public:
+  explicit ordered_merger(const sweep_spec& s);
+  void add(const work_unit& u, block_result r);
+  [[nodiscard]] bool complete() const noexcept;
+  [[nodiscard]] std::uint64_t merged_units() const noexcept { return merged_; }
+  [[nodiscard]] std::vector<point_statistics>& points() noexcept { return points_; }
+  [[nodiscard]] std::vector<std::vector<realization_record>>& records() noexcept { return records_; }
+
+ private:
+  const sweep_spec* spec_;
+  std::vector<point_statistics> points_;
+  std::vector<std::vector<realization_record>> records_;
+  std::vector<std::uint64_t> next_block_;
+  std::map<work_unit, block_result> pending_;
+  std::uint64_t merged_ = 0;
+};
+
+struct point_result {
+  model_parameters parameters;
+  std::vector<std::size_t> index;  // position on each axis
+  point_statistics stats;
+};
+
+struct result_set {
+  sweep_spec spec;
+  std::vector<point_result> points;
+  std::vector<std::vector<realization_record>> records;  // per point, when kept
+  double elapsed_seconds = 0.0;
+  unsigned threads = 1;
+};
+
+[[nodiscard]] result_set make_result_set(const sweep_spec& s, ordered_merger&& m);
+
+struct sweep_hooks {
+  // Called from one thread at a time, after each unit is merged.
+  std::function<void(std::uint64_t units_done, std::uint64_t units_total)> progress;
+  // Called (serialized) with every unit computed by this process, before merging.
+  std::function<void(const work_unit&, const block_result&)> unit_done;
+  // Units to run: default all. Used by --shard and --resume.
+  std::function<bool(const work_unit&)> wanted;
+};
+
+// Run the units on `threads` threads (0 = all cores) into `merger`.
+void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
+               const sweep_hooks& hooks = {});
+
+// Convenience: run everything and return the result set.
+[[nodiscard]] result_set run_sweep(const sweep_spec& s, unsigned threads = 0,
+                                   const sweep_hooks& hooks = {});
+
+// ---- implementation of the template ----
+template <class Observer>
+event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
+                                  std::uint64_t realization, Observer& obs) {
+  const auto key = point_key(p);
+  const auto ic = draw_initial_conditions(s.initial, s.seed, key, realization);
+  poisson_switches sw(p.switch_rate, s.seed, key, realization);
+  return simulate(p, ic, sw, obs, s.max_events);
+}
+
+}  // namespace stickslip

@@ -1,0 +1,209 @@
+#include "stickslip/sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "stickslip/error.hpp"
+
+namespace stickslip {
+
+void validate(const sweep_spec& s) {
+  validate(s.base);
+  validate(s.initial);
+  std::set<std::string> seen;
+  for (const auto& ax : s.axes) {
+    const std::string sym = info_for(ax.name).symbol;  // throws on unknown names
+    if (!seen.insert(sym).second)
+      throw invalid_value("grid axis", ax.name, "each parameter swept at most once");
+    if (ax.values.empty())
+      throw invalid_value("grid axis " + ax.name, "(empty list)", "at least one value");
+    for (double v : ax.values) {
+      model_parameters p = s.base;
+      parameter_by_name(p, sym) = v;
+      if (!std::isfinite(v) || v <= 0.0) throw invalid_parameter(sym, v, "finite and > 0");
+      validate(p);
+    }
+  }
+  if (s.realizations < 1)
+    throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
+  if (s.realizations > (1ULL << 40))
+    throw invalid_parameter("realizations", static_cast<double>(s.realizations), "<= 2^40");
+  if (s.block_size < 1 || s.block_size > (1ULL << 24))
+    throw invalid_parameter("block_size", static_cast<double>(s.block_size), "1 .. 2^24");
+  if (s.histograms.bins < 1 || s.histograms.bins > 100000)
+    throw invalid_parameter("bins", static_cast<double>(s.histograms.bins), "1 .. 100000");
+  if (!(s.histograms.stick_duration_max >= 0) || !std::isfinite(s.histograms.stick_duration_max))
+    throw invalid_parameter("stick_duration_max", s.histograms.stick_duration_max,
+                            "finite and >= 0 (0 = d_max)");
+  if (!(s.histograms.slip_duration_max >= 0) || !std::isfinite(s.histograms.slip_duration_max))
+    throw invalid_parameter("slip_duration_max", s.histograms.slip_duration_max,
+                            "finite and >= 0 (0 = automatic)");
+  if (s.max_events < 1)
+    throw invalid_parameter("max_events", static_cast<double>(s.max_events), ">= 1");
+  const double points = static_cast<double>(point_count(s));
+  if (points > 1e7) throw invalid_parameter("number of grid points", points, "<= 1e7");
+  if (s.keep_records && points * static_cast<double>(s.realizations) > 5e7)
+    throw invalid_parameter("points x realizations with raw records", points * s.realizations,
+                            "<= 5e7 (records are held in memory)");
+  // Expected belt switches per realization must fit the event bound.
+  for (std::size_t i = 0; i < point_count(s); i += std::max<std::size_t>(1, point_count(s) / 64)) {
+    const auto p = point_parameters(s, i);
+    const double expected = p.switch_rate * p.window;
+    if (expected > 0.5 * static_cast<double>(s.max_events))
+      throw invalid_parameter("lambda * ta (expected belt switches per realization)", expected,
+                              "<= max_events / 2 = " + std::to_string(s.max_events / 2));
+  }
+}
+
+std::size_t point_count(const sweep_spec& s) noexcept {
+  std::size_t n = 1;
+  for (const auto& ax : s.axes) n *= ax.values.size();
+  return n;
+}
+
+std::vector<std::size_t> point_index(const sweep_spec& s, std::size_t point) {
+  std::vector<std::size_t> idx(s.axes.size());
+  for (std::size_t k = s.axes.size(); k-- > 0;) {
+    idx[k] = point % s.axes[k].values.size();
+    point /= s.axes[k].values.size();
+  }
+  return idx;
+}
+
+model_parameters point_parameters(const sweep_spec& s, std::size_t point) {
+  model_parameters p = s.base;
+  const auto idx = point_index(s, point);
+  for (std::size_t k = 0; k < s.axes.size(); ++k)
+    parameter_by_name(p, s.axes[k].name) = s.axes[k].values[idx[k]];
+  return p;
+}
+
+std::uint64_t blocks_per_point(const sweep_spec& s) noexcept {
+  return (s.realizations + s.block_size - 1) / s.block_size;
+}
+std::uint64_t unit_count(const sweep_spec& s) noexcept {
+  return point_count(s) * blocks_per_point(s);
+}
+work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
+  const auto b = blocks_per_point(s);
+  return {static_cast<std::size_t>(i / b), i % b};
+}
+
+block_result simulate_block(const sweep_spec& s, const work_unit& u) {
+  const auto p = point_parameters(s, u.point);
+  block_result out;
+  out.stats = point_statistics(p, s.histograms);
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  const auto key = point_key(p);
+  realization_observer obs(p.window);
+  for (std::uint64_t r = first; r < last; ++r) {
+    const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
+    poisson_switches sw(p.switch_rate, s.seed, key, r);
+    obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
+    const auto counts = simulate(p, ic, sw, obs, s.max_events);
+    obs.finish();
+    obs.record().events = counts;
+    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    if (s.keep_records) out.records.push_back(obs.record());
+  }
+  return out;
+}
+
+ordered_merger::ordered_merger(const sweep_spec& s)
+    : spec_(&s), records_(point_count(s)), next_block_(point_count(s), 0) {
+  points_.reserve(point_count(s));
+  for (std::size_t i = 0; i < point_count(s); ++i)
+    points_.emplace_back(point_parameters(s, i), s.histograms);
+}
+
+void ordered_merger::add(const work_unit& u, block_result r) {
+  pending_.emplace(u, std::move(r));
+  const auto nb = blocks_per_point(*spec_);
+  auto it = pending_.find(work_unit{u.point, next_block_[u.point]});
+  while (it != pending_.end()) {
+    auto& dst = points_[u.point];
+    dst += it->second.stats;
+    dst.record_convergence();
+    auto& rec = records_[u.point];
+    rec.insert(rec.end(), std::make_move_iterator(it->second.records.begin()),
+               std::make_move_iterator(it->second.records.end()));
+    pending_.erase(it);
+    ++merged_;
+    if (++next_block_[u.point] >= nb) break;
+    it = pending_.find(work_unit{u.point, next_block_[u.point]});
+  }
+}
+
+bool ordered_merger::complete() const noexcept { return merged_ == unit_count(*spec_); }
+
+result_set make_result_set(const sweep_spec& s, ordered_merger&& m) {
+  result_set rs;
+  rs.spec = s;
+  for (std::size_t i = 0; i < point_count(s); ++i)
+    rs.points.push_back({point_parameters(s, i), point_index(s, i), std::move(m.points()[i])});
+  if (s.keep_records) rs.records = std::move(m.records());
+  return rs;
+}
+
+void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
+               const sweep_hooks& hooks) {
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  const std::uint64_t total = unit_count(s);
+  std::atomic<std::uint64_t> next{0};
+  std::mutex mu;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    while (true) {
+      const std::uint64_t i = next.fetch_add(1);
+      if (i >= total) return;
+      const auto u = unit_at(s, i);
+      if (hooks.wanted && !hooks.wanted(u)) continue;
+      block_result r;
+      try {
+        r = simulate_block(s, u);
+      } catch (...) {
+        std::lock_guard lock(mu);
+        if (!failure) failure = std::current_exception();
+        next.store(total);
+        return;
+      }
+      std::lock_guard lock(mu);
+      if (failure) return;
+      try {
+        if (hooks.unit_done) hooks.unit_done(u, r);
+        merger.add(u, std::move(r));
+        if (hooks.progress) hooks.progress(merger.merged_units(), total);
+      } catch (...) {
+        failure = std::current_exception();
+        next.store(total);
+        return;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+result_set run_sweep(const sweep_spec& s, unsigned threads, const sweep_hooks& hooks) {
+  validate(s);
+  const auto t0 = std::chrono::steady_clock::now();
+  ordered_merger merger(s);
+  run_units(s, threads, merger, hooks);
+  auto rs = make_result_set(s, std::move(merger));
+  rs.elapsed_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rs.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  return rs;
+}
+
+}  // namespace stickslip

@@ -1,0 +1,40 @@
+#include <cmath>
+#include <string>
+
+#include "stickslip/belt_switches.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/initial_conditions.hpp"
+
+namespace stickslip {
+
+void validate(const initial_condition_law& law) {
+  auto finite = [](const char* name, double v) {
+    if (!std::isfinite(v)) throw invalid_parameter(name, v, "a finite number");
+  };
+  finite("x0 (initial position)", law.position_min);
+  finite("x0 (initial position)", law.position_max);
+  finite("xdot0 (initial velocity)", law.velocity_min);
+  finite("xdot0 (initial velocity)", law.velocity_max);
+  if (law.position_min > law.position_max)
+    throw invalid_parameter("x0 range minimum", law.position_min,
+                            "<= maximum " + std::to_string(law.position_max));
+  if (law.velocity_min > law.velocity_max)
+    throw invalid_parameter("xdot0 range minimum", law.velocity_min,
+                            "<= maximum " + std::to_string(law.velocity_max));
+  if (law.belt_start < -1 || law.belt_start > 1)
+    throw invalid_parameter("belt-start", law.belt_start, "+1, -1 or random");
+}
+
+void validate_switch_times(std::span<const double> times) {
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const std::string name = "switch time #" + std::to_string(i + 1);
+    if (!std::isfinite(times[i]) || times[i] < 0.0)
+      throw invalid_parameter(name, times[i], "finite and >= 0");
+    if (i > 0 && !(times[i] > times[i - 1]))
+      throw invalid_parameter(name, times[i],
+                              "strictly greater than the previous one (" +
+                                  std::to_string(times[i - 1]) + "): times must be sorted");
+  }
+}
+
+}  // namespace stickslip

@@ -1,0 +1,109 @@
+// Algebra of the accumulators (Boost.Histogram style): merging two halves
+// equals filling everything at once; shifted data keeps its variance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "stickslip/accumulators/histogram.hpp"
+#include "stickslip/accumulators/mean_variance.hpp"
+
+using stickslip::histogram;
+using stickslip::mean_variance;
+
+namespace {
+std::vector<double> sample(int n) {
+  std::vector<double> v;
+  for (int i = 0; i < n; ++i) v.push_back(std::sin(0.7 * i) + 0.01 * i);
+  return v;
+}
+}  // namespace
+
+TEST(MeanVariance, MatchesTwoPassFormulas) {
+  const auto v = sample(1000);
+  mean_variance a;
+  for (double x : v) a.add(x);
+  double m = 0;
+  for (double x : v) m += x;
+  m /= v.size();
+  double s2 = 0;
+  for (double x : v) s2 += (x - m) * (x - m);
+  s2 /= (v.size() - 1);
+  EXPECT_NEAR(a.mean(), m, 1e-14);
+  EXPECT_NEAR(a.variance(), s2, 1e-13);
+  EXPECT_EQ(a.count(), 1000u);
+}
+
+TEST(MeanVariance, MergeOfHalvesEqualsWhole) {
+  const auto v = sample(777);
+  mean_variance whole, left, right;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    whole.add(v[i]);
+    (i < 300 ? left : right).add(v[i]);
+  }
+  left += right;
+  EXPECT_EQ(left.count(), whole.count());
+  EXPECT_NEAR(left.mean(), whole.mean(), 1e-14);
+  EXPECT_NEAR(left.variance(), whole.variance(), 1e-13);
+}
+
+TEST(MeanVariance, MergeWithEmptyIsIdentity) {
+  mean_variance a, empty;
+  for (double x : sample(10)) a.add(x);
+  const auto before = a;
+  a += empty;
+  EXPECT_EQ(a, before);
+  empty += a;
+  EXPECT_EQ(empty, a);
+}
+
+TEST(MeanVariance, RobustToLargeOffset) {
+  mean_variance plain, shifted;
+  for (double x : sample(500)) {
+    plain.add(x);
+    shifted.add(x + 1e8);
+  }
+  EXPECT_NEAR(shifted.variance(), plain.variance(), 1e-6 * plain.variance());
+}
+
+TEST(MeanVariance, ConfidenceIntervalIsNormalApproximation) {
+  mean_variance a;
+  for (double x : {1.0, 2.0, 3.0, 4.0}) a.add(x);
+  // s^2 = 5/3, se = sqrt(5/3/4)
+  EXPECT_NEAR(a.ci95_half_width(), 1.959963984540054 * std::sqrt(5.0 / 12.0), 1e-15);
+}
+
+TEST(Histogram, BinsEdgesAndOutOfRange) {
+  histogram h(0.0, 1.0, 4);
+  for (double x : {0.0, 0.1, 0.25, 0.5, 0.99, 1.0, -0.1, 1.5, std::nan("")}) h.add(x);
+  EXPECT_EQ(h.count(0), 2u);  // 0, 0.1
+  EXPECT_EQ(h.count(1), 1u);  // 0.25
+  EXPECT_EQ(h.count(2), 1u);  // 0.5
+  EXPECT_EQ(h.count(3), 2u);  // 0.99, 1.0 (closed right edge)
+  EXPECT_EQ(h.underflow(), 2u);  // -0.1, NaN
+  EXPECT_EQ(h.overflow(), 1u);
+  EXPECT_EQ(h.total(), 9u);
+}
+
+TEST(Histogram, DensityIntegratesToInRangeFraction) {
+  histogram h(0.0, 2.0, 10);
+  for (double x : sample(1000)) h.add(std::abs(x));
+  double area = 0;
+  for (std::size_t i = 0; i < h.bins(); ++i) area += h.density(i) * h.width();
+  const double inside = double(h.total() - h.underflow() - h.overflow()) / h.total();
+  EXPECT_NEAR(area, inside, 1e-12);
+}
+
+TEST(Histogram, MergeEqualsFillingTwice) {
+  histogram a(0, 1, 8), b(0, 1, 8), both(0, 1, 8);
+  for (double x : sample(100)) {
+    a.add(std::abs(x) / 2);
+    both.add(std::abs(x) / 2);
+  }
+  for (double x : sample(50)) {
+    b.add(std::abs(x) / 3);
+    both.add(std::abs(x) / 3);
+  }
+  a += b;
+  EXPECT_EQ(a, both);
+}
