@@ -1,6 +1,6 @@
 // Writers of a sweep's result set. Each writes to `path` atomically: it writes
-// `path.tmp`, flushes, and renames, so a failed run leaves no partial file.
-// They throw stickslip::error (exit_code::io_failure) naming the path.
+// `path.tmp`, flushes, fsyncs, and renames, so a failed run leaves no partial
+// file. They throw stickslip::error (exit_code::io_failure) naming the path.
 #pragma once
 #include <string>
 
@@ -8,6 +8,12 @@
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::io {
+
+// File names that write_all uses inside its directory.
+inline constexpr const char* results_file = "results.nc";
+inline constexpr const char* summary_json_file = "summary.json";
+inline constexpr const char* summary_csv_file = "summary.csv";
+inline constexpr const char* records_csv_file = "records.csv";
 
 // results.nc: NetCDF-4, one dimension per swept axis (coordinate variables
 // named after the parameter symbols), statistics as variables with units and
@@ -18,14 +24,24 @@ void write_netcdf(const result_set& rs, const run_metadata& meta, const std::str
 // summary.json: {"parameters": {...}, "points": [...], "elapsed_seconds": ...}
 void write_summary_json(const result_set& rs, const run_metadata& meta, const std::string& path);
 
+// The text of summary.json, and its "points" array exactly as it appears in
+// the file. The points text depends only on the result set's statistics (no
+// timestamps, no thread count), so identical result sets give identical bytes.
+[[nodiscard]] std::string summary_json(const result_set& rs, const run_metadata& meta);
+[[nodiscard]] std::string summary_json_points(const result_set& rs);
+
 // summary.csv: one row per grid point.
 void write_summary_csv(const result_set& rs, const std::string& path);
+[[nodiscard]] std::string summary_csv(const result_set& rs);
 
-// records.csv: raw per-realization records (only when spec.keep_records).
+// records.csv: raw per-realization records (only when spec.keep_records;
+// throws stickslip::error with exit_code::invalid_input otherwise).
 void write_records_csv(const result_set& rs, const std::string& path);
 
-// All of the above into directory `dir` (created if missing). Writes every
-// file to a temporary name first and renames them only when all succeeded.
+// All of the above into directory `dir` (created if missing; records.csv
+// only when spec.keep_records). Writes every file to a temporary name first
+// and renames them only when all succeeded. On failure nothing new is left in
+// `dir` (and `dir` itself is removed again if this call created it).
 void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir);
 
 }  // namespace stickslip::io

@@ -1,0 +1,116 @@
+#include "atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <sys/stat.h>
+
+#include "stickslip/error.hpp"
+
+namespace stickslip::io::detail {
+namespace {
+
+std::string errno_text(const char* what) {
+  return fmt::format("{} failed: {}", what, std::strerror(errno));
+}
+
+// Closes the FILE* and removes the temporary unless released.
+class temporary_guard {
+ public:
+  temporary_guard(std::FILE* f, std::string tmp) : file_(f), tmp_(std::move(tmp)) {}
+  temporary_guard(const temporary_guard&) = delete;
+  temporary_guard& operator=(const temporary_guard&) = delete;
+  ~temporary_guard() {
+    if (file_) std::fclose(file_);
+    if (!released_) remove_file_quietly(tmp_);
+  }
+  // Closes the file; returns false (errno set) if close failed.
+  bool close() {
+    std::FILE* f = file_;
+    file_ = nullptr;
+    return std::fclose(f) == 0;
+  }
+  void release() { released_ = true; }
+
+ private:
+  std::FILE* file_;
+  std::string tmp_;
+  bool released_ = false;
+};
+
+std::string parent_directory(const std::string& path) {
+  auto parent = std::filesystem::path(path).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+}  // namespace
+
+std::string temporary_path(const std::string& path) { return path + ".tmp"; }
+
+void remove_file_quietly(const std::string& path) noexcept {
+  ::unlink(path.c_str());  // unlink(2) never removes a directory
+}
+
+void sync_file(const std::string& path, const std::string& report_as) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw io_error(report_as, errno_text("open for fsync"));
+  const int rc = ::fsync(fd);
+  const int saved = errno;
+  ::close(fd);
+  errno = saved;
+  if (rc != 0) throw io_error(report_as, errno_text("fsync"));
+}
+
+void commit_rename(const std::string& from, const std::string& to) {
+  if (std::rename(from.c_str(), to.c_str()) != 0)
+    throw io_error(to, errno_text(fmt::format("rename from '{}'", from).c_str()));
+  // Make the new directory entry durable. Some file systems refuse fsync on
+  // directories (EINVAL); the data itself is already synced, so that is fine.
+  const int fd = ::open(parent_directory(to).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+
+void text_sink::flush() {
+  if (!file_ || buf_.size() == 0) return;
+  if (std::fwrite(buf_.data(), 1, buf_.size(), file_) != buf_.size())
+    throw io_error(report_as_, errno_text("write"));
+  buf_.clear();
+}
+
+void write_text_temporary(const std::string& path, const std::function<void(text_sink&)>& fill) {
+  const std::string tmp = temporary_path(path);
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw io_error(path, errno_text(fmt::format("creating '{}'", tmp).c_str()));
+  temporary_guard guard(f, tmp);
+  text_sink sink(f, path);
+  try {
+    fill(sink);
+    sink.flush();
+  } catch (const stickslip::error&) {
+    throw;
+  } catch (const std::exception& e) {  // e.g. out of memory while formatting
+    throw io_error(path, e.what());
+  }
+  if (std::fflush(f) != 0) throw io_error(path, errno_text("flush"));
+  if (::fsync(::fileno(f)) != 0) throw io_error(path, errno_text("fsync"));
+  if (!guard.close()) throw io_error(path, errno_text("close"));
+  guard.release();
+}
+
+void write_text_atomically(const std::string& path, const std::function<void(text_sink&)>& fill) {
+  write_text_temporary(path, fill);
+  try {
+    commit_rename(temporary_path(path), path);
+  } catch (...) {
+    remove_file_quietly(temporary_path(path));
+    throw;
+  }
+}
+
+}  // namespace stickslip::io::detail

@@ -1,0 +1,85 @@
+// summary.csv (one row per grid point, the same table as summary.json's
+// points) and records.csv (one row per realization). Numbers are printed with
+// fmt "{}" (shortest round-trip); a statistic that does not exist (the mean
+// of D_1 without any stick, a std of one sample) is "nan".
+#include <fmt/format.h>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/writers.hpp"
+#include "writers_detail.hpp"
+
+namespace stickslip::io {
+namespace detail {
+
+void fill_summary_csv(text_sink& out, const result_set& rs) {
+  check_shape(rs);
+  const auto symbols = point_parameter_symbols(rs.spec);
+  for (const auto& sym : symbols) out.print("{},", sym);
+  out.write("realizations");
+  for (const auto& st : statistics_table())
+    out.print(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", st.short_name);
+  out.write(
+      ",stick_duration_count,first_stick_duration_count,slip_duration_count,no_stick,"
+      "first_stick_censored,belt_switches,stick_onsets,stick_breaks,slip_reversals\n");
+  for (const auto& p : rs.points) {
+    const auto& s = p.stats;
+    for (const auto& sym : symbols) out.print("{},", parameter_by_name(p.parameters, sym));
+    out.print("{}", s.realizations);
+    for (const auto& st : statistics_table()) {
+      const auto& mv = s.*st.member;
+      const double half = mv.ci95_half_width();
+      out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
+    }
+    out.print(",{},{},{},{},{},{},{},{},{}\n", s.stick_duration.count(),
+              s.first_stick_duration.count(), s.slip_duration.count(), s.no_stick,
+              s.first_stick_censored, s.events.belt_switches, s.events.stick_onsets,
+              s.events.stick_breaks, s.events.slip_reversals);
+  }
+}
+
+void fill_records_csv(text_sink& out, const result_set& rs) {
+  check_shape(rs);
+  const auto symbols = swept_symbols(rs.spec);
+  out.write("point,");
+  for (const auto& sym : symbols) out.print("{},", sym);
+  out.write(
+      "realization,x0,xdot0,belt_start,sticks,slips,stick_fraction,first_stick_start,"
+      "first_stick_duration,first_stick_censored,belt_switches,stick_onsets,stick_breaks,"
+      "slip_reversals\n");
+  for (std::size_t i = 0; i < rs.records.size(); ++i) {
+    // The point's coordinates once, reused for every one of its records.
+    std::string prefix = fmt::format("{},", i);
+    for (const auto& sym : symbols)
+      prefix += fmt::format("{},", parameter_by_name(rs.points[i].parameters, sym));
+    for (const auto& r : rs.records[i]) {
+      out.write(prefix);
+      // -1 marks "no stick" for first_stick_start/duration, as in realization_record.
+      out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
+                r.belt_start, r.sticks, r.slips, r.stick_fraction, r.first_stick_start,
+                r.first_stick_duration, r.first_stick_censored ? 1 : 0, r.events.belt_switches,
+                r.events.stick_onsets, r.events.stick_breaks, r.events.slip_reversals);
+    }
+  }
+}
+
+}  // namespace detail
+
+std::string summary_csv(const result_set& rs) {
+  detail::text_sink out;
+  detail::fill_summary_csv(out, rs);
+  return out.str();
+}
+
+void write_summary_csv(const result_set& rs, const std::string& path) {
+  detail::write_text_atomically(path,
+                                [&](detail::text_sink& out) { detail::fill_summary_csv(out, rs); });
+}
+
+void write_records_csv(const result_set& rs, const std::string& path) {
+  if (!rs.spec.keep_records)
+    throw invalid_value("records.csv", path, "only when the sweep keeps raw per-realization records (keep_records)");
+  detail::write_text_atomically(path,
+                                [&](detail::text_sink& out) { detail::fill_records_csv(out, rs); });
+}
+
+}  // namespace stickslip::io

@@ -1,0 +1,153 @@
+// summary.json: the resolved configuration, one inline object per grid point,
+// and the elapsed time. Layout (points one per line, so files diff well):
+// {
+//   "parameters": {...},
+//   "points": [
+//     {"lambda": 0.1, "mu": 5, "realizations": 200, "R": {"mean": ..., "std": ...,
+//      "ci95": [lo, hi]}, ..., "no_stick": 0, "first_stick_censored": 3, ...},
+//     ...
+//   ],
+//   "elapsed_seconds": 1.25
+// }
+#include <fmt/format.h>
+
+#include "json_emitter.hpp"
+#include "stickslip/io/writers.hpp"
+#include "writers_detail.hpp"
+
+namespace stickslip::io {
+namespace detail {
+namespace {
+
+void emit_statistic(json_emitter& j, const mean_variance& mv) {
+  const double half = mv.ci95_half_width();
+  j.begin_object();
+  j.member("mean", mv.mean());
+  j.member("std", mv.std_dev());
+  j.key("ci95");
+  j.begin_array();
+  j.value(mv.mean() - half);
+  j.value(mv.mean() + half);
+  j.end_array();
+  j.end_object();
+}
+
+void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) {
+  const auto& s = p.stats;
+  j.begin_object();
+  for (const auto& sym : point_parameter_symbols(spec))
+    j.member(sym, parameter_by_name(p.parameters, sym));
+  j.member("realizations", s.realizations);
+  for (const auto& st : statistics_table()) {
+    j.key(st.short_name);
+    emit_statistic(j, s.*st.member);
+  }
+  // Extras after the required keys.
+  j.member("no_stick", s.no_stick);
+  j.member("first_stick_censored", s.first_stick_censored);
+  j.key("samples");  // how many values entered the pooled statistics
+  j.begin_object();
+  j.member("stick_duration", s.stick_duration.count());
+  j.member("first_stick_duration", s.first_stick_duration.count());
+  j.member("slip_duration", s.slip_duration.count());
+  j.end_object();
+  j.key("events");
+  j.begin_object();
+  j.member("belt_switches", s.events.belt_switches);
+  j.member("stick_onsets", s.events.stick_onsets);
+  j.member("stick_breaks", s.events.stick_breaks);
+  j.member("slip_reversals", s.events.slip_reversals);
+  j.end_object();
+  j.end_object();
+}
+
+void emit_points(json_emitter& j, const result_set& rs) {
+  j.begin_array(layout::multi_line);
+  for (const auto& p : rs.points) emit_point(j, rs.spec, p);
+  j.end_array();
+}
+
+void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& meta) {
+  const auto& s = rs.spec;
+  j.begin_object(layout::multi_line);
+  j.key("base");
+  j.begin_object();
+  for (const char* sym : parameter_names) j.member(sym, parameter_by_name(s.base, sym));
+  j.end_object();
+  j.key("axes");
+  j.begin_array(layout::multi_line);
+  for (const auto& ax : s.axes) {
+    j.begin_object();
+    j.member("name", info_for(ax.name).symbol);
+    j.key("values");
+    j.begin_array();
+    for (double v : ax.values) j.value(v);
+    j.end_array();
+    j.end_object();
+  }
+  j.end_array();
+  j.key("initial_conditions");
+  j.begin_object();
+  j.member("position_min", s.initial.position_min);
+  j.member("position_max", s.initial.position_max);
+  j.member("velocity_min", s.initial.velocity_min);
+  j.member("velocity_max", s.initial.velocity_max);
+  j.member("belt_start", s.initial.belt_start);
+  j.end_object();
+  j.member("seed", s.seed);
+  j.member("realizations", s.realizations);
+  j.member("block_size", s.block_size);
+  j.member("max_events", static_cast<std::int64_t>(s.max_events));
+  j.member("keep_records", s.keep_records);
+  j.key("histograms");
+  j.begin_object();
+  j.member("bins", static_cast<std::uint64_t>(s.histograms.bins));
+  j.member("stick_duration_max", s.histograms.stick_duration_max);
+  j.member("slip_duration_max", s.histograms.slip_duration_max);
+  j.end_object();
+  j.member("threads", static_cast<std::uint64_t>(rs.threads));
+  j.member("version", meta.version);
+  j.member("git_revision", meta.git_revision);
+  j.member("command_line", meta.command_line);
+  j.member("created_utc", meta.created_utc);
+  j.member("config", meta.resolved_config);
+  j.end_object();
+}
+
+}  // namespace
+
+void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta) {
+  check_shape(rs);
+  json_emitter j(out);
+  j.begin_object(layout::multi_line);
+  j.key("parameters");
+  emit_parameters(j, rs, meta);
+  j.key("points");
+  emit_points(j, rs);
+  j.member("elapsed_seconds", rs.elapsed_seconds);
+  j.end_object();
+  out.put('\n');
+}
+
+}  // namespace detail
+
+std::string summary_json(const result_set& rs, const run_metadata& meta) {
+  detail::text_sink out;
+  detail::fill_summary_json(out, rs, meta);
+  return out.str();
+}
+
+std::string summary_json_points(const result_set& rs) {
+  detail::check_shape(rs);
+  detail::text_sink out;
+  detail::json_emitter j(out, 1);  // indented as inside the document
+  detail::emit_points(j, rs);
+  return out.str();
+}
+
+void write_summary_json(const result_set& rs, const run_metadata& meta, const std::string& path) {
+  detail::write_text_atomically(
+      path, [&](detail::text_sink& out) { detail::fill_summary_json(out, rs, meta); });
+}
+
+}  // namespace stickslip::io

@@ -1,0 +1,380 @@
+// results.nc: NetCDF-4 (HDF5) file, self-describing (CF-1.8 conventions).
+// Dimensions: one per swept axis, in the spec's axis order and named after
+// the parameter symbol (or `point` of length 1 when nothing is swept), then
+// `bin` (histogram bins) and `trace` (convergence trace entries).
+// Point i of the result set sits at rs.points[i].index on the grid dims,
+// which is row-major order of the dims (first axis outermost).
+#include <netcdf>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <limits>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/writers.hpp"
+#include "writers_detail.hpp"
+
+namespace stickslip::io {
+namespace detail {
+namespace {
+
+namespace nc = netCDF;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr long long no_realizations = -1;  // fill of convergence_realizations
+
+struct layout_info {
+  std::vector<nc::NcDim> grid;  // grid dims
+  nc::NcDim bin, trace;
+  std::size_t bins = 0, trace_length = 0;
+};
+
+void describe(const nc::NcVar& v, const std::string& units, const std::string& long_name,
+              const std::string& description) {
+  v.putAtt("units", units);
+  v.putAtt("long_name", long_name);
+  if (!description.empty()) v.putAtt("description", description);
+}
+
+std::vector<nc::NcDim> with(std::vector<nc::NcDim> dims, const nc::NcDim& last) {
+  dims.push_back(last);
+  return dims;
+}
+
+nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
+                     const std::string& units, const std::string& long_name,
+                     const std::string& description) {
+  auto v = f.addVar(name, nc::ncDouble, dims);
+  v.setFill(true, nan);
+  describe(v, units, long_name, description);
+  return v;
+}
+
+nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
+                    const std::string& long_name, const std::string& description) {
+  auto v = f.addVar(name, nc::ncInt64, dims);
+  describe(v, "1", long_name, description);
+  return v;
+}
+
+// One value per grid point, computed by `value(point)`.
+template <class T, class F>
+void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
+  std::vector<T> data;
+  data.reserve(rs.points.size());
+  for (const auto& p : rs.points) data.push_back(static_cast<T>(value(p)));
+  v.putVar(data.data());
+}
+
+// A row of `len` values per grid point, written one point at a time so that
+// memory stays at one row whatever the grid size.
+template <class T>
+void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
+              const std::function<void(const point_result&, std::vector<T>&)>& row) {
+  std::vector<T> buf(len);
+  for (const auto& p : rs.points) {
+    std::vector<std::size_t> start(p.index.begin(), p.index.end()), count(p.index.size(), 1);
+    if (start.empty()) {  // the `point` dimension of length 1
+      start.push_back(0);
+      count.push_back(1);
+    }
+    start.push_back(0);
+    count.push_back(len);
+    row(p, buf);
+    v.putVar(start, count, buf.data());
+  }
+}
+
+layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
+  layout_info l;
+  const auto& spec = rs.spec;
+  if (spec.axes.empty()) {
+    l.grid.push_back(f.addDim("point", 1));
+  } else {
+    for (const auto& ax : spec.axes) {
+      const auto& info = info_for(ax.name);
+      auto dim = f.addDim(info.symbol, ax.values.size());
+      l.grid.push_back(dim);
+      auto v = f.addVar(info.symbol, nc::ncDouble, dim);
+      describe(v, info.units, info.description,
+               fmt::format("swept model parameter {} ({})", info.symbol, info.long_name));
+      v.putVar(ax.values.data());
+    }
+  }
+  l.bins = std::max<std::size_t>(1, spec.histograms.bins);
+  l.bin = f.addDim("bin", l.bins);
+  for (const auto& p : rs.points) l.trace_length = std::max(l.trace_length, p.stats.convergence.size());
+  l.trace_length = std::max<std::size_t>(1, l.trace_length);
+  l.trace = f.addDim("trace", l.trace_length);
+  return l;
+}
+
+void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  for (const char* sym : parameter_names) {
+    const auto& info = info_for(sym);
+    auto v = add_double(f, parameter_variable_name(sym), l.grid, info.units, info.description,
+                        fmt::format("model parameter {} at each grid point", sym));
+    v.putAtt("symbol", sym);
+    put_grid<double>(v, rs, [&](const point_result& p) { return parameter_by_name(p.parameters, sym); });
+  }
+  auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
+                      "a = mu m g / k: the mass can stick only while |x| <= a");
+  put_grid<double>(a, rs, [](const point_result& p) { return p.parameters.band_half_width(); });
+  auto w = add_double(f, "natural_frequency", l.grid, "rad/s", "natural frequency omega",
+                      "omega = sqrt(k / m)");
+  put_grid<double>(w, rs, [](const point_result& p) { return p.parameters.natural_frequency(); });
+  auto d = add_double(f, "max_stick_duration", l.grid, "s", "longest possible stick d_max",
+                      "d_max = 2 a / V: a stick that crosses the whole band");
+  put_grid<double>(d, rs, [](const point_result& p) { return p.parameters.max_stick_duration(); });
+}
+
+void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  for (const auto& st : statistics_table()) {
+    const std::string n = st.name;
+    const auto mv = [&](const point_result& p) -> const mean_variance& { return p.stats.*st.member; };
+    auto mean = add_double(f, n + "_mean", l.grid, st.units, std::string("mean ") + st.long_name,
+                           st.description);
+    put_grid<double>(mean, rs, [&](const point_result& p) { return mv(p).mean(); });
+    auto sd = add_double(f, n + "_std", l.grid, st.units,
+                         std::string("standard deviation of ") + st.long_name,
+                         "sample standard deviation (n - 1 in the denominator)");
+    put_grid<double>(sd, rs, [&](const point_result& p) { return mv(p).std_dev(); });
+    auto lo = add_double(f, n + "_ci95_low", l.grid, st.units,
+                         std::string("95% confidence interval of the mean ") + st.long_name +
+                             ", lower end",
+                         "mean - 1.959963984540054 std / sqrt(count) (normal approximation)");
+    put_grid<double>(lo, rs, [&](const point_result& p) {
+      return mv(p).mean() - mv(p).ci95_half_width();
+    });
+    auto hi = add_double(f, n + "_ci95_high", l.grid, st.units,
+                         std::string("95% confidence interval of the mean ") + st.long_name +
+                             ", upper end",
+                         "mean + 1.959963984540054 std / sqrt(count) (normal approximation)");
+    put_grid<double>(hi, rs, [&](const point_result& p) {
+      return mv(p).mean() + mv(p).ci95_half_width();
+    });
+    auto count = add_count(f, n + "_count", l.grid,
+                           std::string("number of samples of ") + st.long_name,
+                           std::string("number of ") + st.counted);
+    put_grid<long long>(count, rs, [&](const point_result& p) { return mv(p).count(); });
+  }
+}
+
+void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  struct item {
+    const char* name;
+    const char* long_name;
+    const char* description;
+    std::uint64_t (*get)(const point_statistics&);
+  };
+  static const item items[] = {
+      {"realizations", "number of realizations", "independent realizations simulated at the point",
+       [](const point_statistics& s) { return s.realizations; }},
+      {"no_stick_count", "realizations without a stick",
+       "realizations with no stick of positive length in [0, t_a) (no D_1)",
+       [](const point_statistics& s) { return s.no_stick; }},
+      {"first_stick_censored_count", "realizations whose first stick was censored",
+       "realizations whose first stick was still going on at t_a (D_1 clipped)",
+       [](const point_statistics& s) { return s.first_stick_censored; }},
+      {"belt_switches", "belt switch events", "belt direction switches, summed over realizations",
+       [](const point_statistics& s) { return s.events.belt_switches; }},
+      {"stick_onsets", "stick onset events", "transitions slip -> stick, summed over realizations",
+       [](const point_statistics& s) { return s.events.stick_onsets; }},
+      {"stick_breaks", "stick break events", "transitions stick -> slip, summed over realizations",
+       [](const point_statistics& s) { return s.events.stick_breaks; }},
+      {"slip_reversals", "slip reversal events",
+       "reversals of the slip direction without sticking, summed over realizations",
+       [](const point_statistics& s) { return s.events.slip_reversals; }},
+  };
+  for (const auto& it : items) {
+    auto v = add_count(f, it.name, l.grid, it.long_name, it.description);
+    put_grid<long long>(v, rs, [&](const point_result& p) { return it.get(p.stats); });
+  }
+}
+
+void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto dims = with(l.grid, l.bin);
+  for (const auto& h : histograms_table()) {
+    const std::string n = h.name;
+    const auto hist = [&](const point_result& p) -> const histogram& { return p.stats.*h.member; };
+    auto density = add_double(
+        f, n + "_density", dims, h.density_units,
+        std::string("probability density of ") + h.long_name,
+        fmt::format("count / (total * bin width) on [{0}_bin_low, {0}_bin_high); total includes "
+                    "{0}_underflow and {0}_overflow, so the density integrates to the fraction "
+                    "of samples inside the binned range. The last bin is closed on the right.",
+                    n));
+    put_rows<double>(density, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
+      const auto& hh = hist(p);
+      for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < hh.bins() ? hh.density(i) : nan;
+    });
+    auto low = add_double(f, n + "_bin_low", dims, h.units,
+                          std::string("lower edge of the histogram bin of ") + h.long_name,
+                          "bin ranges differ between grid points");
+    put_rows<double>(low, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
+      const auto& hh = hist(p);
+      for (std::size_t i = 0; i < row.size(); ++i)
+        row[i] = i < hh.bins() ? hh.lo() + (hh.hi() - hh.lo()) * static_cast<double>(i) /
+                                               static_cast<double>(hh.bins())
+                               : nan;
+    });
+    auto high = add_double(f, n + "_bin_high", dims, h.units,
+                           std::string("upper edge of the histogram bin of ") + h.long_name,
+                           "bin ranges differ between grid points");
+    put_rows<double>(high, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
+      const auto& hh = hist(p);
+      for (std::size_t i = 0; i < row.size(); ++i)
+        row[i] = i < hh.bins() ? (i + 1 == hh.bins() ? hh.hi()
+                                                      : hh.lo() + (hh.hi() - hh.lo()) *
+                                                                      static_cast<double>(i + 1) /
+                                                                      static_cast<double>(hh.bins()))
+                               : nan;
+    });
+    auto counts = add_count(f, n + "_counts", dims,
+                            std::string("histogram counts of ") + h.long_name,
+                            "samples in each bin");
+    put_rows<long long>(counts, rs, l.bins, [&](const point_result& p, std::vector<long long>& row) {
+      const auto& hh = hist(p);
+      for (std::size_t i = 0; i < row.size(); ++i)
+        row[i] = i < hh.bins() ? static_cast<long long>(hh.count(i)) : 0;
+    });
+    auto under = add_count(f, n + "_underflow", l.grid,
+                           std::string("samples of ") + h.long_name + " below the first bin", "");
+    put_grid<long long>(under, rs, [&](const point_result& p) { return hist(p).underflow(); });
+    auto over = add_count(f, n + "_overflow", l.grid,
+                          std::string("samples of ") + h.long_name + " above the last bin", "");
+    put_grid<long long>(over, rs, [&](const point_result& p) { return hist(p).overflow(); });
+  }
+}
+
+void write_convergence(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto dims = with(l.grid, l.trace);
+  const std::string when = fmt::format(
+      "recorded after each block of block_size = {} realizations was merged, in block order; "
+      "entries past the point's trace length are fill values",
+      rs.spec.block_size);
+  auto n = f.addVar("convergence_realizations", nc::ncInt64, dims);
+  n.setFill(true, no_realizations);
+  describe(n, "1", "realizations merged at this trace entry", when);
+  put_rows<long long>(n, rs, l.trace_length, [](const point_result& p, std::vector<long long>& row) {
+    const auto& c = p.stats.convergence;
+    for (std::size_t i = 0; i < row.size(); ++i)
+      row[i] = i < c.size() ? static_cast<long long>(c[i].realizations) : no_realizations;
+  });
+  struct item {
+    const char* name;
+    const char* units;
+    const char* long_name;
+    double convergence_point::*member;
+  };
+  static const item items[] = {
+      {"convergence_R_mean", "1", "running mean of the stick fraction R",
+       &convergence_point::R_mean},
+      {"convergence_R_ci95_half_width", "1",
+       "running half-width of the 95% confidence interval of the mean of R",
+       &convergence_point::R_ci95_half_width},
+      {"convergence_stick_duration_mean", "s", "running mean of the stick duration D",
+       &convergence_point::stick_duration_mean},
+      {"convergence_stick_duration_ci95_half_width", "s",
+       "running half-width of the 95% confidence interval of the mean of D",
+       &convergence_point::stick_duration_ci95_half_width},
+  };
+  for (const auto& it : items) {
+    auto v = add_double(f, it.name, dims, it.units, it.long_name, when);
+    put_rows<double>(v, rs, l.trace_length, [&](const point_result& p, std::vector<double>& row) {
+      const auto& c = p.stats.convergence;
+      for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < c.size() ? c[i].*it.member : nan;
+    });
+  }
+}
+
+void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_metadata& meta) {
+  const auto& s = rs.spec;
+  f.putAtt("title",
+           "stickslip parametric sweep: statistics of a dry-friction oscillator on a belt "
+           "whose direction switches at Poisson times");
+  f.putAtt("Conventions", "CF-1.8");
+  f.putAtt("source", fmt::format("stickslip {} (git {})", meta.version, meta.git_revision));
+  f.putAtt("history", fmt::format("{}: {}", meta.created_utc, meta.command_line));
+  f.putAtt("comment",
+           "Exact event-driven simulation. Per grid point: mean, std and 95% CI of R, S_T/t_a, "
+           "S_L/t_a, D (pooled), D_1 and H; histograms (densities) over dimension bin; "
+           "convergence traces over dimension trace. Parameters that are not swept are global "
+           "attributes named by their symbol; every parameter is also a variable over the grid.");
+  f.putAtt("version", meta.version);
+  f.putAtt("git_revision", meta.git_revision);
+  f.putAtt("command_line", meta.command_line);
+  f.putAtt("created_utc", meta.created_utc);
+  f.putAtt("resolved_config", meta.resolved_config);
+  f.putAtt("seed", nc::ncUint64, static_cast<unsigned long long>(s.seed));
+  f.putAtt("realizations", nc::ncUint64, static_cast<unsigned long long>(s.realizations));
+  f.putAtt("block_size", nc::ncUint64, static_cast<unsigned long long>(s.block_size));
+  f.putAtt("max_events", nc::ncInt64, static_cast<long long>(s.max_events));
+  f.putAtt("keep_records", nc::ncInt, s.keep_records ? 1 : 0);
+  f.putAtt("histogram_bins", nc::ncUint64, static_cast<unsigned long long>(s.histograms.bins));
+  f.putAtt("histogram_stick_duration_max", nc::ncDouble, s.histograms.stick_duration_max);
+  f.putAtt("histogram_slip_duration_max", nc::ncDouble, s.histograms.slip_duration_max);
+  f.putAtt("initial_position_min", nc::ncDouble, s.initial.position_min);
+  f.putAtt("initial_position_max", nc::ncDouble, s.initial.position_max);
+  f.putAtt("initial_velocity_min", nc::ncDouble, s.initial.velocity_min);
+  f.putAtt("initial_velocity_max", nc::ncDouble, s.initial.velocity_max);
+  f.putAtt("initial_belt_start", nc::ncInt, s.initial.belt_start);
+  std::string swept;
+  for (const auto& sym : swept_symbols(s)) swept += (swept.empty() ? "" : " ") + sym;
+  f.putAtt("swept_parameters", swept);
+  const auto sw = swept_symbols(s);
+  for (const char* sym : parameter_names)
+    if (std::find(sw.begin(), sw.end(), sym) == sw.end())
+      f.putAtt(sym, nc::ncDouble, parameter_by_name(s.base, sym));
+  f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
+  f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
+}
+
+void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std::string& file) {
+  nc::NcFile f(file, nc::NcFile::replace, nc::NcFile::nc4);
+  write_global_attributes(f, rs, meta);
+  const auto l = define_dimensions(f, rs);
+  write_parameters(f, l, rs);
+  write_statistics(f, l, rs);
+  write_counts(f, l, rs);
+  write_histograms(f, l, rs);
+  write_convergence(f, l, rs);
+  f.close();
+}
+
+}  // namespace
+
+void write_netcdf_temporary(const result_set& rs, const run_metadata& meta,
+                            const std::string& path) {
+  check_shape(rs);
+  const std::string tmp = temporary_path(path);
+  try {
+    write_netcdf_file(rs, meta, tmp);
+    sync_file(tmp, path);
+  } catch (const nc::exceptions::NcException& e) {
+    remove_file_quietly(tmp);
+    throw io_error(path, fmt::format("NetCDF: {}", e.what()));
+  } catch (const stickslip::error&) {
+    remove_file_quietly(tmp);
+    throw;
+  } catch (const std::exception& e) {
+    remove_file_quietly(tmp);
+    throw io_error(path, e.what());
+  }
+}
+
+}  // namespace detail
+
+void write_netcdf(const result_set& rs, const run_metadata& meta, const std::string& path) {
+  detail::write_netcdf_temporary(rs, meta, path);
+  try {
+    detail::commit_rename(detail::temporary_path(path), path);
+  } catch (...) {
+    detail::remove_file_quietly(detail::temporary_path(path));
+    throw;
+  }
+}
+
+}  // namespace stickslip::io
