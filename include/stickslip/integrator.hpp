@@ -7,7 +7,7 @@
 //   x' = B cos(theta), w y = B sin(theta), theta = theta0 + w t,
 //   B^2 = (w y)^2 + x'^2 is conserved.
 //   Relative velocity zero (x' = v) at cos(theta) = v/B, i.e. theta = +-alpha,
-//   alpha = acos(v/B). It is reached iff B^2 - v^2 > 0 (B = |v| is a tangency,
+//   alpha = acos(v/B) (computed as one atan2: detail::root_angle). It is reached iff B^2 - v^2 > 0 (B = |v| is a tangency,
 //   which only happens at the outward band edge: the grazing contact, no stick).
 //   sigma = +1 (x' < v) lives on theta in (alpha, 2pi - alpha) and meets -alpha;
 //   sigma = -1 (x' > v) lives on (-alpha, alpha) and meets +alpha.
@@ -15,6 +15,13 @@
 // Stick: x = x0 + v t with |x| <= a, ending at x = sgn(v) a after (a - sgn(v) x0)/V.
 // At x' = v: |x| <= a starts a stick; otherwise the slip reverses (new sigma =
 //   sgn(x)); consecutive roots of one orbit are mirror images x -> 2c - x.
+// Mirror return: a belt switch that ends a stick at x leaves x' = -v (the old
+//   belt velocity). The new orbit (about c = -s a, s = sgn(old v)) is symmetric
+//   under time reversal about its turning point y' = 0, so it reaches x' = v
+//   again at the SAME x after dtheta = pi - 2 atan(w |y| / |x'|) (from
+//   theta0 = atan2(w y, x'), alpha = pi - |theta0|): a stick restarts at x.
+//   Used by both engines (see detail::mirror_return_angle); exact, and x is
+//   kept bit-for-bit instead of being recomputed from the conserved B.
 // A stick that breaks at the band edge continues on the grazing orbit
 //   x = sa + (V/w) sin(w t), which touches x' = v once per period for zero time
 //   and never sticks again until the next belt switch (flag `grazing`).
@@ -60,6 +67,30 @@ inline constexpr double two_pi = 2.0 * std::numbers::pi;
   return d < 0.0 ? d + two_pi : d;
 }
 
+// Phase run from the point (x', w y) of the slip orbit forward to its root
+// (v, r), r = -sigma sqrt(B^2 - v^2) = w (x_root - c) (header comment): one
+// atan2 of the cross and dot products of the two points, put in [0, 2 pi).
+// Precondition: the start is strictly inside the sigma region, sgn(v - x') =
+// sigma. The run is shorter than pi when the whole region is (sigma v < 0:
+// alpha >= pi/2 for sigma = +1, <= pi/2 for -1) or when the start lies on the
+// root's half of the region (w y r > 0); there a small negative atan2 can only
+// be rounding at the root itself and means 0. (It replaces acos(v/B) and
+// atan2(w y, x') with fmod, and is better conditioned near grazing, B ~ |v|.)
+[[nodiscard]] inline double root_angle(double wy, double z, double v, double sigma,
+                                       double sqrt_disc) noexcept {
+  const double r = -sigma * sqrt_disc;
+  const double raw = std::atan2(z * r - wy * v, z * v + wy * r);
+  if (raw >= 0.0) return raw;
+  if ((sigma * v <= 0.0 || wy * r > 0.0) && raw > -0.5 * std::numbers::pi) return 0.0;
+  return raw + two_pi;
+}
+
+// Phase run of the mirror return (header comment): from x' = -v back to
+// x' = v on the orbit through w y. Precondition: wy != 0, z = -v != 0.
+[[nodiscard]] inline double mirror_return_angle(double wy, double z) noexcept {
+  return std::numbers::pi - 2.0 * std::atan(std::abs(wy) / std::abs(z));
+}
+
 }  // namespace detail
 
 template <class Switches, class Observer>
@@ -82,6 +113,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   double sigma = 1.0;        // friction direction while slipping
   bool grazing = false;      // on the grazing orbit after a stick break
   bool after_reversal = false;
+  bool mirror = false;       // slip started by a belt switch that ended a stick
 
   // Resolve the mode at relative velocity zero (x' == v).
   auto resolve_at_contact = [&](double from_sigma) {
@@ -136,6 +168,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
         sigma = -s;  // the belt now runs away from the mass: x' = old v, v = -old v
         m = mode::slip;
         grazing = after_reversal = false;
+        mirror = true;
         ++counts.belt_switches;
         obs.on_event(event{event_kind::belt_switch, t, x, z, v});
         close_episode(t, mode::slip);
@@ -147,7 +180,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
         sigma = s;
         m = mode::slip;
         grazing = true;
-        after_reversal = false;
+        after_reversal = mirror = false;
         ++counts.stick_breaks;
         obs.on_event(event{event_kind::stick_break, t, x, z, v});
         close_episode(t, mode::slip);
@@ -162,18 +195,16 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     const double disc = wy * wy + (z - v) * (z + v);  // B^2 - v^2
     double t_root = inf;
     if (!grazing && disc > 0.0) {
-      const double B = std::sqrt(wy * wy + z * z);
-      const double alpha = std::acos(std::clamp(v / B, -1.0, 1.0));
       // Arc of the current sigma region still to run before the root.
-      const double region = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
       double dtheta;
-      if (after_reversal) {
-        dtheta = region;  // we start on the region's first root
+      if (mirror) {
+        dtheta = detail::mirror_return_angle(wy, z);  // z == -v exactly here
+      } else if (after_reversal) {  // we start on the region's first root: all of it
+        const double B = std::sqrt(wy * wy + z * z);
+        const double alpha = std::acos(std::clamp(v / B, -1.0, 1.0));
+        dtheta = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
       } else {
-        const double theta = std::atan2(wy, z);
-        dtheta = detail::forward_angle(theta, sigma > 0 ? -alpha : alpha);
-        // Rounding may put theta just outside its region: snap to the near end.
-        if (dtheta > region) dtheta = (dtheta - region < two_pi - dtheta) ? region : 0.0;
+        dtheta = detail::root_angle(wy, z, v, sigma, std::sqrt(disc));
       }
       t_root = t + dtheta / w;
     }
@@ -194,7 +225,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       z = z * cs - wy * sn;
       t = t_switch;
       v = -v;
-      grazing = after_reversal = false;
+      grazing = after_reversal = mirror = false;
       ++counts.belt_switches;
       obs.on_event(event{event_kind::belt_switch, t, x, z, v});
       t_switch = switches.next();
@@ -210,12 +241,13 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       }
       continue;
     }
-    // Relative velocity reaches zero: x' = v, x from the conserved B.
-    x = c - sigma * std::sqrt(disc) / w;
+    // Relative velocity reaches zero: x' = v, x from the conserved B (on a
+    // mirror return x is where the stick ended, exactly).
+    if (!mirror) x = c - sigma * std::sqrt(disc) / w;
     z = v;
     t = t_root;
     const double from_sigma = sigma;
-    after_reversal = false;
+    after_reversal = mirror = false;
     resolve_at_contact(from_sigma);
     if (m == mode::stick) {
       const double s = v > 0 ? 1.0 : -1.0;

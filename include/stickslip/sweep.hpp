@@ -22,6 +22,17 @@ struct axis {
   friend bool operator==(const axis&, const axis&) = default;
 };
 
+// Which engine simulates a work unit. Both run the same exact integrator and
+// give bit-identical statistics for a given seed (tests/unit/test_fast_path*.cpp):
+//   fast       batched switch draws, statistics streamed into the accumulators
+//              (src/core/fast_block.cpp); the default;
+//   reference  poisson_switches + realization_observer + point_statistics::add,
+//              the plain path, kept as the oracle.
+enum class sweep_engine : unsigned char { fast, reference };
+inline constexpr const char* to_string(sweep_engine e) noexcept {
+  return e == sweep_engine::fast ? "fast" : "reference";
+}
+
 struct sweep_spec {
   model_parameters base;           // values of the parameters not swept
   initial_condition_law initial;
@@ -32,6 +43,7 @@ struct sweep_spec {
   histogram_spec histograms;
   std::int64_t max_events = default_max_events;
   bool keep_records = false;       // raw per-realization records (memory grows with N)
+  sweep_engine engine = sweep_engine::fast;  // does not change results, only speed
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
 
@@ -57,8 +69,11 @@ struct block_result {
   std::vector<realization_record> records;  // filled when spec.keep_records
 };
 
-// Simulate the realizations of one unit. Pure: depends only on (spec, unit).
+// Simulate the realizations of one unit with s.engine. Pure: depends only on
+// (spec, unit), and the two engines give bit-identical results.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
+// The reference engine, whatever s.engine says.
+[[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
 
 // Simulate one realization of one grid point (what `simulate` replays).
 template <class Observer>
@@ -110,7 +125,10 @@ struct sweep_hooks {
   std::function<bool(const work_unit&)> wanted;
 };
 
-// Run the units on `threads` threads (0 = all cores) into `merger`.
+// Run the units on `threads` threads (0 = all cores) into `merger`. Units are
+// started in order of decreasing expected cost (points with more belt switches
+// first, blocks in order within a point) so the cheap ones fill the tail;
+// the merger still merges in block order, so results do not depend on it.
 void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
                const sweep_hooks& hooks = {});
 

@@ -1,0 +1,173 @@
+// The fast engine (sweep_engine::fast) against the reference engine
+// (poisson_switches + realization_observer + point_statistics::add): every
+// statistic must agree bit for bit, for any seed, grid and block size.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "stickslip/belt_switches.hpp"
+#include "stickslip/detail/fast_switches.hpp"
+#include "stickslip/integrator.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip {
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+bool same_bits(const mean_variance& a, const mean_variance& b) {
+  return a.count() == b.count() && same_bits(a.mean(), b.mean()) &&
+         same_bits(a.sum_sq_dev(), b.sum_sq_dev());
+}
+bool same_bits(const event_counts& a, const event_counts& b) {
+  return a.belt_switches == b.belt_switches && a.stick_onsets == b.stick_onsets &&
+         a.stick_breaks == b.stick_breaks && a.slip_reversals == b.slip_reversals;
+}
+bool same_bits(const point_statistics& a, const point_statistics& b) {
+  bool ok = same_bits(a.stick_fraction, b.stick_fraction) &&
+            same_bits(a.sticks_per_time, b.sticks_per_time) &&
+            same_bits(a.slips_per_time, b.slips_per_time) &&
+            same_bits(a.stick_duration, b.stick_duration) &&
+            same_bits(a.first_stick_duration, b.first_stick_duration) &&
+            same_bits(a.slip_duration, b.slip_duration) &&
+            a.stick_fraction_hist == b.stick_fraction_hist &&
+            a.stick_duration_hist == b.stick_duration_hist &&
+            a.first_stick_duration_hist == b.first_stick_duration_hist &&
+            a.slip_duration_hist == b.slip_duration_hist && a.realizations == b.realizations &&
+            a.no_stick == b.no_stick && a.first_stick_censored == b.first_stick_censored &&
+            same_bits(a.events, b.events) && a.convergence.size() == b.convergence.size();
+  for (std::size_t i = 0; ok && i < a.convergence.size(); ++i) {
+    const auto &x = a.convergence[i], &y = b.convergence[i];
+    ok = x.realizations == y.realizations && same_bits(x.R_mean, y.R_mean) &&
+         same_bits(x.R_ci95_half_width, y.R_ci95_half_width) &&
+         same_bits(x.stick_duration_mean, y.stick_duration_mean) &&
+         same_bits(x.stick_duration_ci95_half_width, y.stick_duration_ci95_half_width);
+  }
+  return ok;
+}
+bool same_bits(const realization_record& a, const realization_record& b) {
+  return a.realization == b.realization && same_bits(a.x0, b.x0) && same_bits(a.xdot0, b.xdot0) &&
+         a.belt_start == b.belt_start && a.sticks == b.sticks && a.slips == b.slips &&
+         same_bits(a.stick_fraction, b.stick_fraction) &&
+         same_bits(a.first_stick_start, b.first_stick_start) &&
+         same_bits(a.first_stick_duration, b.first_stick_duration) &&
+         a.first_stick_censored == b.first_stick_censored && same_bits(a.events, b.events);
+}
+
+sweep_spec small_study(double stiffness) {
+  sweep_spec s;
+  s.base.stiffness = stiffness;
+  s.base.window = 20.0;
+  s.realizations = 60;
+  s.block_size = 16;  // last block is partial
+  s.seed = 12345;
+  s.axes = {{"lambda", {0.1, 0.7, 3.8, 12.0, 30.0}}, {"mu", {0.5, 3.0, 7.0}}};
+  return s;
+}
+
+void expect_engines_agree(sweep_spec s, unsigned threads) {
+  s.engine = sweep_engine::reference;
+  const auto ref = run_sweep(s, 1);
+  s.engine = sweep_engine::fast;
+  const auto fast = run_sweep(s, threads);
+  ASSERT_EQ(ref.points.size(), fast.points.size());
+  for (std::size_t i = 0; i < ref.points.size(); ++i)
+    EXPECT_TRUE(same_bits(ref.points[i].stats, fast.points[i].stats)) << "point " << i;
+  ASSERT_EQ(ref.records.size(), fast.records.size());
+  for (std::size_t i = 0; i < ref.records.size(); ++i) {
+    ASSERT_EQ(ref.records[i].size(), fast.records[i].size());
+    for (std::size_t j = 0; j < ref.records[i].size(); ++j)
+      EXPECT_TRUE(same_bits(ref.records[i][j], fast.records[i][j])) << i << "/" << j;
+  }
+}
+
+TEST(FastPath, DefaultEngineIsFast) { EXPECT_EQ(sweep_spec{}.engine, sweep_engine::fast); }
+
+TEST(FastPath, BitwiseEqualToReferencePrintedStiffness) { expect_engines_agree(small_study(4.0), 2); }
+
+TEST(FastPath, BitwiseEqualToReferenceStiffSpring) { expect_engines_agree(small_study(40.0), 2); }
+
+TEST(FastPath, BitwiseEqualWithRecordsAndOtherSeed) {
+  auto s = small_study(4.0);
+  s.seed = 7;
+  s.keep_records = true;
+  s.block_size = 7;
+  s.initial.belt_start = -1;
+  expect_engines_agree(s, 3);
+}
+
+TEST(FastPath, SimulateBlockDispatchesOnEngine) {
+  auto s = small_study(4.0);
+  const work_unit u{7, 1};
+  s.engine = sweep_engine::reference;
+  const auto a = simulate_block(s, u);
+  s.engine = sweep_engine::fast;
+  const auto b = simulate_block(s, u);
+  const auto c = simulate_block_reference(s, u);
+  EXPECT_TRUE(same_bits(a.stats, b.stats));
+  EXPECT_TRUE(same_bits(a.stats, c.stats));
+  EXPECT_GT(a.stats.events.belt_switches, 0u);
+}
+
+TEST(FastPath, BatchedSwitchesEqualPoissonSwitches) {
+  for (double rate : {0.1, 3.8, 30.0}) {
+    poisson_switches ref(rate, 99, 1234, 5);
+    detail::batched_poisson_switches fast(rate, 99, 1234, 5);
+    for (int i = 0; i < 1000; ++i) ASSERT_TRUE(same_bits(ref.next(), fast.next())) << rate << " " << i;
+  }
+}
+
+// The mirror return (integrator.hpp header): after a belt switch that ends a
+// stick at x, the next stick starts at the same x after
+// tau = (pi - 2 atan(w |x + s a| / V)) / w.
+struct stick_log : observer_base {
+  std::vector<episode> episodes;
+  void on_episode(const episode& e) { episodes.push_back(e); }
+};
+
+TEST(FastPath, MirrorReturnRestartsTheStickAtTheSamePosition) {
+  model_parameters p;  // a = 12.2625, w = 2
+  const double a = p.band_half_width(), w = p.natural_frequency(), V = p.belt_speed;
+  const initial_conditions ic{0.3, V, 1};  // sticking at x = 0.3, v = +V
+  const double switches[] = {0.5, 100.0};
+  given_switches sw(switches);
+  stick_log log;
+  simulate(p, ic, sw, log);
+  ASSERT_GE(log.episodes.size(), 3u);
+  const double x_switch = 0.3 + V * 0.5;
+  const double tau = (std::numbers::pi - 2.0 * std::atan(w * (x_switch + a) / V)) / w;
+  EXPECT_EQ(log.episodes[1].kind, mode::slip);
+  EXPECT_EQ(log.episodes[2].kind, mode::stick);
+  EXPECT_DOUBLE_EQ(log.episodes[2].start, 0.5 + tau);
+  EXPECT_DOUBLE_EQ(log.episodes[2].position_at_start, x_switch);
+}
+
+// root_angle against the textbook form forward(atan2(w y, x'), -+acos(v/B)).
+TEST(FastPath, RootAngleMatchesTextbookForm) {
+  const double two_pi = 2.0 * std::numbers::pi;
+  int checked = 0;
+  for (double v : {1.0, -1.0})
+    for (double wy = -7.0; wy <= 7.0; wy += 0.37)
+      for (double z = -5.0; z <= 5.0; z += 0.29) {
+        if (z == v) continue;
+        const double sigma = v > z ? 1.0 : -1.0;
+        const double disc = wy * wy + (z - v) * (z + v);
+        if (!(disc > 0.0)) continue;
+        const double B = std::sqrt(wy * wy + z * z);
+        const double alpha = std::acos(v / B);
+        double expected = detail::forward_angle(std::atan2(wy, z), sigma > 0 ? -alpha : alpha);
+        const double region = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+        if (expected > region) expected = 0.0;
+        EXPECT_NEAR(detail::root_angle(wy, z, v, sigma, std::sqrt(disc)), expected, 1e-12)
+            << "wy=" << wy << " z=" << z << " v=" << v;
+        ++checked;
+      }
+  EXPECT_GT(checked, 1000);
+}
+
+}  // namespace
+}  // namespace stickslip
