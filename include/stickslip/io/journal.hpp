@@ -1,0 +1,100 @@
+// Checkpoint journal of a sweep: every finished work unit is kept on disk so
+// that a killed run (crash, kill -9, job time limit) can be resumed, and so
+// that shards of a job array can be merged. Layout inside the output
+// directory DIR (docs/scaling.md):
+//
+//   DIR/.journal/config.toml     the resolved configuration, for people
+//   DIR/.journal/header.bin      format version, the exact sweep spec, the
+//                                first run's metadata; CRC-32
+//   DIR/.journal/seg-<run>-<n>.bin  a segment: the spec's fingerprint, the
+//                                run's elapsed time, then records
+//                                [length u32][crc32 u32][serialized unit+block]
+//
+// Every file is written to a unique temporary name, fsynced, and renamed
+// (then the directory is fsynced), so a completed segment is never lost or
+// half-visible; a kill leaves at most a stray temporary, which is ignored and
+// removed. Readers still check everything: a truncated or corrupt segment, or
+// a record whose CRC, shape or fingerprint does not fit, is reported and its
+// units are recomputed; the valid records before it are kept.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stickslip/io/metadata.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::io {
+
+inline constexpr const char* journal_directory = ".journal";
+
+// DIR/.journal
+[[nodiscard]] std::string journal_path(const std::string& dir);
+// True when DIR holds a journal (its header or any segment).
+[[nodiscard]] bool journal_exists(const std::string& dir);
+
+// What a journal holds after reading and checking it.
+struct journal_contents {
+  std::optional<sweep_spec> spec;             // from the header (absent if unreadable)
+  std::optional<run_metadata> metadata;       // the first run's metadata
+  std::map<work_unit, block_result> units;    // every valid journaled unit, once
+  double elapsed_seconds = 0.0;  // sum over earlier runs of their last journaled time
+  std::size_t segments = 0;      // segment files read
+  std::size_t damaged = 0;       // files or records skipped as truncated/corrupt/foreign
+};
+
+// Problems found while reading are passed to `report` (one line each; the
+// command line prints them on stderr). Default: ignore.
+using journal_report = std::function<void(const std::string&)>;
+
+// Reads DIR/.journal. If `expected` is given, the journal must have been made
+// with exactly that spec: otherwise throws stickslip::error with
+// exit_code::resume_mismatch naming the first difference. Records are
+// checked (CRC, decoding, fingerprint, shape) against the header's spec, or
+// `expected` when the header is unreadable; anything that fails is reported
+// and skipped. Throws io_failure only if the directory cannot be listed.
+[[nodiscard]] journal_contents read_journal(const std::string& dir,
+                                            const sweep_spec* expected,
+                                            const journal_report& report = {});
+
+// Appends finished units to DIR/.journal in segments. Not thread-safe: call
+// from one thread at a time (run_units' unit_done hook is serialized).
+class journal_writer {
+ public:
+  // Creates DIR and DIR/.journal if needed and writes the header unless one
+  // that matches `spec` is there already. `run_tag` becomes part of segment
+  // names (e.g. "shard-3-of-8"); a unique suffix is added per process.
+  // A segment is committed when `flush_interval` has passed since the last
+  // one (zero: after every unit), at flush(), and by the destructor.
+  journal_writer(const std::string& dir, const sweep_spec& spec, const run_metadata& meta,
+                 const std::string& run_tag,
+                 std::chrono::duration<double> flush_interval = std::chrono::seconds(2));
+  journal_writer(const journal_writer&) = delete;
+  journal_writer& operator=(const journal_writer&) = delete;
+  ~journal_writer();  // commits what is buffered (errors are swallowed)
+
+  void add(const work_unit& u, const block_result& r);
+  void flush();  // commits the buffered units as one segment; throws io_failure
+  [[nodiscard]] std::uint64_t units_written() const noexcept { return written_; }
+  [[nodiscard]] std::size_t segments_written() const noexcept { return segment_seq_; }
+
+ private:
+  std::string journal_dir_;
+  std::uint64_t fingerprint_;
+  std::string run_id_;
+  std::chrono::duration<double> interval_;
+  std::chrono::steady_clock::time_point started_, last_flush_;
+  std::string buffer_;  // encoded records not yet committed
+  std::size_t buffered_ = 0;
+  std::size_t segment_seq_ = 0;
+  std::uint64_t written_ = 0;
+};
+
+// Removes DIR/.journal and everything in it (after a successful run).
+void remove_journal(const std::string& dir);
+
+}  // namespace stickslip::io

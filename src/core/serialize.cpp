@@ -1,0 +1,382 @@
+#include "stickslip/serialize.hpp"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fmt/format.h>
+
+#include "stickslip/error.hpp"
+
+namespace stickslip {
+
+error detail::corrupt(std::string_view what) {
+  return error(exit_code::io_failure, fmt::format("corrupt serialized data: {}", what));
+}
+
+namespace {
+
+constexpr std::string_view spec_tag = "SSPC", unit_tag = "SSWU", result_tag = "SSBR";
+
+using detail::corrupt;
+using writer = detail::byte_writer;
+using reader = detail::byte_reader;
+
+// ---- pieces ----
+void put(writer& w, const model_parameters& p) {
+  for (double v : {p.mass, p.stiffness, p.gravity, p.friction_coefficient, p.belt_speed,
+                   p.switch_rate, p.window})
+    w.f64(v);
+}
+model_parameters get_parameters(reader& r) {
+  model_parameters p;
+  for (double* v : {&p.mass, &p.stiffness, &p.gravity, &p.friction_coefficient, &p.belt_speed,
+                    &p.switch_rate, &p.window})
+    *v = r.f64("model parameter");
+  return p;
+}
+
+void put(writer& w, const event_counts& e) {
+  w.u64(e.belt_switches);
+  w.u64(e.stick_onsets);
+  w.u64(e.stick_breaks);
+  w.u64(e.slip_reversals);
+}
+event_counts get_counts(reader& r) {
+  event_counts e;
+  e.belt_switches = r.u64("event counts");
+  e.stick_onsets = r.u64("event counts");
+  e.stick_breaks = r.u64("event counts");
+  e.slip_reversals = r.u64("event counts");
+  return e;
+}
+
+void put(writer& w, const mean_variance& m) {
+  w.u64(m.count());
+  w.f64(m.count() ? m.mean() : 0.0);  // mean() is NaN when empty; the stored mean is 0
+  w.f64(m.sum_sq_dev());
+}
+mean_variance get_mean_variance(reader& r) {
+  const auto n = r.u64("accumulator count");
+  const double mean = r.f64("accumulator mean");
+  const double m2 = r.f64("accumulator M2");
+  return mean_variance::from_raw(n, mean, m2);
+}
+
+void put(writer& w, const histogram& h) {
+  w.f64(h.lo());
+  w.f64(h.hi());
+  w.u64(h.bins());
+  for (auto c : h.counts()) w.u64(c);
+  w.u64(h.underflow());
+  w.u64(h.overflow());
+}
+histogram get_histogram(reader& r) {
+  const double lo = r.f64("histogram lower edge");
+  const double hi = r.f64("histogram upper edge");
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
+    throw corrupt(fmt::format("histogram range [{}, {}] is not a finite interval", lo, hi));
+  const auto bins = r.count("histogram bins", 8);
+  if (bins < 1) throw corrupt("histogram with zero bins");
+  std::vector<std::uint64_t> counts(bins);
+  for (auto& c : counts) c = r.u64("histogram count");
+  const auto under = r.u64("histogram underflow");
+  const auto over = r.u64("histogram overflow");
+  histogram h(lo, hi, bins);
+  h.set_raw(std::move(counts), under, over);
+  return h;
+}
+
+void put(writer& w, const point_statistics& s) {
+  for (const auto* m : {&s.stick_fraction, &s.sticks_per_time, &s.slips_per_time,
+                        &s.stick_duration, &s.first_stick_duration, &s.slip_duration})
+    put(w, *m);
+  for (const auto* h : {&s.stick_fraction_hist, &s.stick_duration_hist,
+                        &s.first_stick_duration_hist, &s.slip_duration_hist})
+    put(w, *h);
+  w.u64(s.realizations);
+  w.u64(s.no_stick);
+  w.u64(s.first_stick_censored);
+  put(w, s.events);
+  w.u64(s.convergence.size());
+  for (const auto& c : s.convergence) {
+    w.u64(c.realizations);
+    w.f64(c.R_mean);
+    w.f64(c.R_ci95_half_width);
+    w.f64(c.stick_duration_mean);
+    w.f64(c.stick_duration_ci95_half_width);
+  }
+}
+point_statistics get_statistics(reader& r) {
+  point_statistics s;
+  for (auto* m : {&s.stick_fraction, &s.sticks_per_time, &s.slips_per_time, &s.stick_duration,
+                  &s.first_stick_duration, &s.slip_duration})
+    *m = get_mean_variance(r);
+  for (auto* h : {&s.stick_fraction_hist, &s.stick_duration_hist, &s.first_stick_duration_hist,
+                  &s.slip_duration_hist})
+    *h = get_histogram(r);
+  s.realizations = r.u64("realizations");
+  s.no_stick = r.u64("no-stick count");
+  s.first_stick_censored = r.u64("censored count");
+  s.events = get_counts(r);
+  const auto n = r.count("convergence trace", 40);
+  s.convergence.resize(n);
+  for (auto& c : s.convergence) {
+    c.realizations = r.u64("convergence point");
+    c.R_mean = r.f64("convergence point");
+    c.R_ci95_half_width = r.f64("convergence point");
+    c.stick_duration_mean = r.f64("convergence point");
+    c.stick_duration_ci95_half_width = r.f64("convergence point");
+  }
+  return s;
+}
+
+constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 32;
+
+void put(writer& w, const realization_record& x) {
+  w.u64(x.realization);
+  w.f64(x.x0);
+  w.f64(x.xdot0);
+  w.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(x.belt_start)));
+  w.u32(x.sticks);
+  w.u32(x.slips);
+  w.f64(x.stick_fraction);
+  w.f64(x.first_stick_start);
+  w.f64(x.first_stick_duration);
+  w.u8(x.first_stick_censored ? 1 : 0);
+  put(w, x.events);
+}
+realization_record get_record(reader& r) {
+  realization_record x;
+  x.realization = r.u64("record");
+  x.x0 = r.f64("record");
+  x.xdot0 = r.f64("record");
+  x.belt_start = static_cast<std::int8_t>(r.u8("record"));
+  if (x.belt_start != 1 && x.belt_start != -1)
+    throw corrupt(fmt::format("record belt direction {} is not +1 or -1", x.belt_start));
+  x.sticks = r.u32("record");
+  x.slips = r.u32("record");
+  x.stick_fraction = r.f64("record");
+  x.first_stick_start = r.f64("record");
+  x.first_stick_duration = r.f64("record");
+  x.first_stick_censored = r.boolean("record censoring flag");
+  x.events = get_counts(r);
+  return x;
+}
+
+void put(writer& w, const work_unit& u) {
+  w.u64(u.point);
+  w.u64(u.block);
+}
+work_unit get_unit(reader& r) {
+  work_unit u;
+  u.point = static_cast<std::size_t>(r.u64("unit point"));
+  u.block = r.u64("unit block");
+  return u;
+}
+
+}  // namespace
+
+// ---- sweep spec ----
+bytes serialize(const sweep_spec& s) {
+  writer w;
+  w.header(spec_tag);
+  put(w, s.base);
+  w.f64(s.initial.position_min);
+  w.f64(s.initial.position_max);
+  w.f64(s.initial.velocity_min);
+  w.f64(s.initial.velocity_max);
+  w.i64(s.initial.belt_start);
+  w.u64(s.axes.size());
+  for (const auto& ax : s.axes) {
+    w.str(ax.name);
+    w.u64(ax.values.size());
+    for (double v : ax.values) w.f64(v);
+  }
+  w.u64(s.realizations);
+  w.u64(s.seed);
+  w.u64(s.block_size);
+  w.u64(s.histograms.bins);
+  w.f64(s.histograms.stick_duration_max);
+  w.f64(s.histograms.slip_duration_max);
+  w.i64(s.max_events);
+  w.u8(s.keep_records ? 1 : 0);
+  w.u8(static_cast<std::uint8_t>(s.engine));
+  return w.take();
+}
+
+sweep_spec deserialize_sweep_spec(std::string_view in) {
+  reader r(in);
+  r.header(spec_tag);
+  sweep_spec s;
+  s.base = get_parameters(r);
+  s.initial.position_min = r.f64("initial law");
+  s.initial.position_max = r.f64("initial law");
+  s.initial.velocity_min = r.f64("initial law");
+  s.initial.velocity_max = r.f64("initial law");
+  const auto belt = r.i64("initial belt direction");
+  if (belt < -1 || belt > 1) throw corrupt(fmt::format("initial belt direction {}", belt));
+  s.initial.belt_start = static_cast<int>(belt);
+  s.axes.resize(r.count("grid axes", 16));
+  for (auto& ax : s.axes) {
+    ax.name = r.str("axis name");
+    ax.values.resize(r.count("axis values", 8));
+    for (double& v : ax.values) v = r.f64("axis value");
+  }
+  s.realizations = r.u64("realizations");
+  s.seed = r.u64("seed");
+  s.block_size = r.u64("block size");
+  s.histograms.bins = static_cast<std::size_t>(r.u64("bins"));
+  s.histograms.stick_duration_max = r.f64("stick_duration_max");
+  s.histograms.slip_duration_max = r.f64("slip_duration_max");
+  s.max_events = r.i64("max_events");
+  s.keep_records = r.boolean("keep_records");
+  const auto engine = r.u8("engine");
+  if (engine > static_cast<std::uint8_t>(sweep_engine::reference))
+    throw corrupt(fmt::format("unknown engine {}", engine));
+  s.engine = static_cast<sweep_engine>(engine);
+  r.finish("sweep spec");
+  return s;
+}
+
+// ---- work unit ----
+bytes serialize(const work_unit& u) {
+  writer w;
+  w.header(unit_tag);
+  put(w, u);
+  return w.take();
+}
+
+work_unit deserialize_work_unit(std::string_view in) {
+  reader r(in);
+  r.header(unit_tag);
+  auto u = get_unit(r);
+  r.finish("work unit");
+  return u;
+}
+
+// ---- block result ----
+bytes serialize(const work_unit& u, const block_result& b) {
+  writer w;
+  w.header(result_tag);
+  put(w, u);
+  put(w, b.stats);
+  w.u64(b.records.size());
+  for (const auto& x : b.records) put(w, x);
+  return w.take();
+}
+
+std::pair<work_unit, block_result> deserialize_unit_result(std::string_view in) {
+  reader r(in);
+  r.header(result_tag);
+  std::pair<work_unit, block_result> out;
+  out.first = get_unit(r);
+  out.second.stats = get_statistics(r);
+  out.second.records.resize(r.count("records", record_bytes));
+  for (auto& x : out.second.records) x = get_record(r);
+  r.finish("block result");
+  return out;
+}
+
+void check_block_shape(const sweep_spec& s, const work_unit& u, const block_result& b) {
+  auto bad = [&](const std::string& what) {
+    return error(exit_code::io_failure,
+                 fmt::format("block result for point {} block {} does not fit this sweep: {}",
+                             u.point, u.block, what));
+  };
+  if (u.point >= point_count(s)) throw bad(fmt::format("only {} grid points", point_count(s)));
+  if (u.block >= blocks_per_point(s))
+    throw bad(fmt::format("only {} blocks per point", blocks_per_point(s)));
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t expected = std::min(s.realizations, first + s.block_size) - first;
+  if (b.stats.realizations != expected)
+    throw bad(fmt::format("{} realizations, expected {}", b.stats.realizations, expected));
+  const point_statistics fresh(point_parameters(s, u.point), s.histograms);
+  const std::pair<const histogram*, const histogram*> hists[] = {
+      {&b.stats.stick_fraction_hist, &fresh.stick_fraction_hist},
+      {&b.stats.stick_duration_hist, &fresh.stick_duration_hist},
+      {&b.stats.first_stick_duration_hist, &fresh.first_stick_duration_hist},
+      {&b.stats.slip_duration_hist, &fresh.slip_duration_hist}};
+  for (const auto& [got, want] : hists)
+    if (!got->same_binning(*want)) throw bad("histogram binning differs");
+  if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
+  if (b.records.size() != (s.keep_records ? expected : 0))
+    throw bad(fmt::format("{} raw records", b.records.size()));
+  for (std::size_t i = 0; i < b.records.size(); ++i)
+    if (b.records[i].realization != first + i) throw bad("raw records out of order");
+}
+
+// ---- checksums ----
+std::uint32_t crc32(std::string_view data, std::uint32_t crc) noexcept {
+  static constexpr auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  crc = ~crc;
+  for (char ch : data) crc = table[(crc ^ static_cast<std::uint8_t>(ch)) & 0xFFu] ^ (crc >> 8);
+  return ~crc;
+}
+
+namespace {
+// The spec with the fields that cannot change results reset: the engine.
+sweep_spec results_relevant(sweep_spec s) {
+  s.engine = sweep_engine{};
+  return s;
+}
+}  // namespace
+
+bool same_results(const sweep_spec& a, const sweep_spec& b) {
+  return serialize(results_relevant(a)) == serialize(results_relevant(b));
+}
+
+std::uint64_t fingerprint(const sweep_spec& s) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
+  for (char c : serialize(results_relevant(s))) {
+    h ^= static_cast<std::uint8_t>(c);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
+  auto num = [](double x) { return fmt::format("{}", x); };
+  for (const char* name : parameter_names) {
+    const double x = parameter_by_name(a.base, name), y = parameter_by_name(b.base, name);
+    if (std::bit_cast<std::uint64_t>(x) != std::bit_cast<std::uint64_t>(y))
+      return fmt::format("parameter {}: {} vs {}", name, num(x), num(y));
+  }
+  if (!(a.initial == b.initial)) return "initial-condition law (x0, xdot0 ranges or belt start)";
+  if (a.axes.size() != b.axes.size())
+    return fmt::format("number of grid axes: {} vs {}", a.axes.size(), b.axes.size());
+  for (std::size_t i = 0; i < a.axes.size(); ++i) {
+    if (a.axes[i].name != b.axes[i].name)
+      return fmt::format("grid axis #{}: {} vs {}", i + 1, a.axes[i].name, b.axes[i].name);
+    if (a.axes[i].values.size() != b.axes[i].values.size())
+      return fmt::format("grid axis {}: {} values vs {}", a.axes[i].name,
+                         a.axes[i].values.size(), b.axes[i].values.size());
+    for (std::size_t k = 0; k < a.axes[i].values.size(); ++k)
+      if (std::bit_cast<std::uint64_t>(a.axes[i].values[k]) !=
+          std::bit_cast<std::uint64_t>(b.axes[i].values[k]))
+        return fmt::format("grid axis {} value #{}: {} vs {}", a.axes[i].name, k + 1,
+                           num(a.axes[i].values[k]), num(b.axes[i].values[k]));
+  }
+  if (a.realizations != b.realizations)
+    return fmt::format("realizations: {} vs {}", a.realizations, b.realizations);
+  if (a.seed != b.seed) return fmt::format("seed: {} vs {}", a.seed, b.seed);
+  if (a.block_size != b.block_size)
+    return fmt::format("block size: {} vs {}", a.block_size, b.block_size);
+  if (!(a.histograms == b.histograms)) return "histogram bins or ranges";
+  if (a.max_events != b.max_events)
+    return fmt::format("max events: {} vs {}", a.max_events, b.max_events);
+  if (a.keep_records != b.keep_records)
+    return fmt::format("keep records: {} vs {}", a.keep_records, b.keep_records);
+  if (!same_results(a, b)) return "bit patterns of some value";
+  return {};
+}
+
+}  // namespace stickslip

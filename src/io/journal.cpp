@@ -1,0 +1,193 @@
+// Checkpoint journal: writing. Layout and guarantees: include/stickslip/io/journal.hpp.
+#include "stickslip/io/journal.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "atomic_file.hpp"
+#include "journal_detail.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
+#include "stickslip/serialize.hpp"
+
+namespace stickslip::io {
+namespace fs = std::filesystem;
+
+std::string journal_path(const std::string& dir) {
+  return (fs::path(dir) / journal_directory).string();
+}
+
+bool journal_exists(const std::string& dir) {
+  std::error_code ec;
+  return fs::is_directory(journal_path(dir), ec);
+}
+
+void remove_journal(const std::string& dir) {
+  std::error_code ec;
+  fs::remove_all(journal_path(dir), ec);
+  if (ec) throw io_error(journal_path(dir), "could not remove the journal: " + ec.message());
+}
+
+namespace detail {
+
+bytes encode_header(const sweep_spec& spec, const run_metadata& meta) {
+  byte_writer body;
+  body.str(serialize(spec));
+  for (const auto* f : {&meta.command_line, &meta.resolved_config, &meta.version,
+                        &meta.git_revision, &meta.created_utc})
+    body.str(*f);
+  const bytes payload = body.take();
+  byte_writer w;
+  w.raw(header_magic);
+  w.u32(serial_format_version);
+  w.u64(payload.size());
+  w.u32(crc32(payload));
+  w.raw(payload);
+  return w.take();
+}
+
+bytes encode_segment_header(std::uint64_t fingerprint, double elapsed, const std::string& run_id,
+                            std::uint64_t records) {
+  byte_writer body;
+  body.u64(fingerprint);
+  body.f64(elapsed);
+  body.str(run_id);
+  body.u64(records);
+  const bytes b = body.take();
+  byte_writer w;
+  w.raw(segment_magic);
+  w.u32(serial_format_version);
+  w.u64(b.size());
+  w.u32(crc32(b));
+  w.raw(b);
+  return w.take();
+}
+
+// write(2) all of `data` to a fresh file `tmp`, fsync, close, rename to
+// `final_path`, fsync the directory. On failure removes `tmp` and throws
+// io_error(final_path, reason) (ENOSPC, EFBIG under `ulimit -f`, EIO, ...).
+void write_file_durably(const std::string& tmp, const std::string& final_path,
+                        std::string_view data) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) throw io_error(final_path, fmt::format("cannot create '{}': {}", tmp, std::strerror(errno)));
+  auto fail = [&](const char* what) {
+    const int saved = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    return io_error(final_path, fmt::format("{} failed: {}", what, std::strerror(saved)));
+  };
+  std::size_t done = 0;
+  while (done < data.size()) {
+    const auto n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = ENOSPC;
+      throw fail("write");
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) throw fail("fsync");
+  if (::close(fd) != 0) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    throw io_error(final_path, fmt::format("close failed: {}", std::strerror(saved)));
+  }
+  try {
+    io::detail::commit_rename(tmp, final_path);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+}
+
+std::string unique_suffix() {
+  static unsigned counter = 0;
+  return fmt::format("{}-{}", static_cast<long>(::getpid()), counter++);
+}
+
+}  // namespace detail
+
+namespace {
+
+// Run ids sort by start time, so segments are read back in the order written.
+std::string make_run_id(const std::string& tag) {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%S", std::gmtime(&now));
+  std::string clean;
+  for (char c : tag) clean.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '-');
+  return fmt::format("{}-{}-{}", clean.empty() ? "run" : clean, stamp,
+                     static_cast<long>(::getpid()));
+}
+
+}  // namespace
+
+journal_writer::journal_writer(const std::string& dir, const sweep_spec& spec,
+                               const run_metadata& meta, const std::string& run_tag,
+                               std::chrono::duration<double> flush_interval)
+    : journal_dir_(journal_path(dir)),
+      fingerprint_(fingerprint(spec)),
+      run_id_(make_run_id(run_tag)),
+      interval_(flush_interval),
+      started_(std::chrono::steady_clock::now()),
+      last_flush_(started_) {
+  std::error_code ec;
+  fs::create_directories(journal_dir_, ec);
+  if (ec) throw io_error(journal_dir_, "cannot create the journal directory: " + ec.message());
+
+  const std::string header = (fs::path(journal_dir_) / detail::header_file).string();
+  if (auto existing = detail::read_header_file(header)) {
+    if (!same_results(existing->spec, spec))
+      throw error(exit_code::resume_mismatch,
+                  fmt::format("{} was written for another configuration ({})", header,
+                              first_difference(existing->spec, spec)));
+    return;  // keep the first run's header and metadata
+  }
+  const std::string suffix = detail::unique_suffix();
+  const std::string cfg = (fs::path(journal_dir_) / detail::config_file).string();
+  detail::write_file_durably(cfg + ".tmp-" + suffix, cfg, to_toml(spec));
+  detail::write_file_durably(header + ".tmp-" + suffix, header, detail::encode_header(spec, meta));
+}
+
+journal_writer::~journal_writer() {
+  try {
+    flush();
+  } catch (...) {  // reported by the flush that failed first; nothing more to do here
+  }
+}
+
+void journal_writer::add(const work_unit& u, const block_result& r) {
+  const bytes rec = serialize(u, r);
+  detail::byte_writer w;
+  w.u32(static_cast<std::uint32_t>(rec.size()));
+  w.u32(crc32(rec));
+  buffer_ += w.take();
+  buffer_ += rec;
+  ++buffered_;
+  if (std::chrono::steady_clock::now() - last_flush_ >= interval_) flush();
+}
+
+void journal_writer::flush() {
+  if (buffered_ == 0) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(now - started_).count();
+  const std::string name = fmt::format("seg-{}-{:06}.bin", run_id_, segment_seq_);
+  const std::string path = (fs::path(journal_dir_) / name).string();
+  bytes data = detail::encode_segment_header(fingerprint_, elapsed, run_id_, buffered_);
+  data += buffer_;
+  detail::write_file_durably((fs::path(journal_dir_) / (".tmp-" + name)).string(), path, data);
+  written_ += buffered_;
+  buffer_.clear();
+  buffered_ = 0;
+  ++segment_seq_;
+  last_flush_ = now;
+}
+
+}  // namespace stickslip::io
