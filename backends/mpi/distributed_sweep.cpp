@@ -1,0 +1,354 @@
+#include "stickslip/mpi/distributed_sweep.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <condition_variable>
+#include <cstdlib>
+#include <deque>
+#include <exception>
+#include <fmt/format.h>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "stickslip/error.hpp"
+#include "stickslip/serialize.hpp"
+
+namespace stickslip::mpi {
+namespace {
+
+enum tag : int { request_tag = 1, work_tag = 2, result_tag = 3, failure_tag = 4 };
+constexpr auto poll_pause = std::chrono::microseconds(200);
+
+unsigned resolve_threads(unsigned threads) {
+  return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+}
+
+void check(int rc, const char* what) {
+  if (rc != MPI_SUCCESS) throw error(exit_code::internal, fmt::format("MPI: {} failed ({})", what, rc));
+}
+
+int checked_size(std::size_t n) {
+  if (n > static_cast<std::size_t>(INT_MAX))
+    throw error(exit_code::internal, fmt::format("MPI message of {} bytes is too large", n));
+  return static_cast<int>(n);
+}
+
+void send_bytes(const std::string& data, int dest, int t) {
+  check(MPI_Send(data.data(), checked_size(data.size()), MPI_BYTE, dest, t, MPI_COMM_WORLD),
+        "MPI_Send");
+}
+
+// Receives the message that MPI_Probe/Iprobe reported in `st`.
+std::string receive_bytes(const MPI_Status& st) {
+  int n = 0;
+  check(MPI_Get_count(&st, MPI_BYTE, &n), "MPI_Get_count");
+  std::string data(static_cast<std::size_t>(n), '\0');
+  check(MPI_Recv(data.data(), n, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE),
+        "MPI_Recv");
+  return data;
+}
+
+std::string encode_indices(const std::vector<std::uint64_t>& v) {
+  detail::byte_writer w;
+  for (auto i : v) w.u64(i);
+  return w.take();
+}
+std::vector<std::uint64_t> decode_indices(const std::string& data) {
+  if (data.size() % 8) throw detail::corrupt("work list length is not a multiple of 8");
+  detail::byte_reader r(data);
+  std::vector<std::uint64_t> v(data.size() / 8);
+  for (auto& i : v) i = r.u64("unit index");
+  return v;
+}
+
+// The units hooks.wanted selects, costliest points first (the same
+// heuristic as run_units: expected events ~ t_a (lambda + omega/pi + 1)),
+// blocks in order within a point, so cheap units fill the tail.
+std::vector<std::uint64_t> units_to_run(const sweep_spec& s, const sweep_hooks& hooks) {
+  const std::size_t n = point_count(s);
+  const auto nb = blocks_per_point(s);
+  std::vector<double> cost(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto p = point_parameters(s, i);
+    cost[i] = p.window * (p.switch_rate + p.natural_frequency() / std::numbers::pi + 1.0);
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
+  std::vector<std::uint64_t> out;
+  for (auto point : order)
+    for (std::uint64_t b = 0; b < nb; ++b)
+      if (!hooks.wanted || hooks.wanted(work_unit{point, b})) out.push_back(point * nb + b);
+  return out;
+}
+
+// First error wins; stored as code + message so it can cross ranks.
+struct failure_slot {
+  std::optional<error> first;
+  void set(const std::exception_ptr& e) {
+    if (first) return;
+    try {
+      std::rethrow_exception(e);
+    } catch (const error& x) {
+      first = x;
+    } catch (const std::exception& x) {
+      first = error(exit_code::internal, x.what());
+    } catch (...) {
+      first = error(exit_code::internal, "unknown exception");
+    }
+  }
+};
+
+}  // namespace
+
+bool launched_by_mpi() noexcept {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK",
+                        "MPI_LOCALNRANKS", "HYDRA_CONTROL_FD"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+session::session() {
+  int provided = 0;
+  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+session::~session() { MPI_Finalize(); }
+
+void cancel(const session&) {
+  std::uint64_t len = 0;
+  MPI_Bcast(&len, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+}
+
+// ---------------------------------------------------------------- rank 0
+void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
+                ordered_merger& merger, const sweep_hooks& hooks) {
+  {
+    std::string spec = serialize(s);
+    std::uint64_t len = spec.size();
+    check(MPI_Bcast(&len, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
+    check(MPI_Bcast(spec.data(), checked_size(spec.size()), MPI_BYTE, 0, MPI_COMM_WORLD),
+          "MPI_Bcast");
+  }
+  const std::vector<std::uint64_t> todo = units_to_run(s, hooks);
+  const std::uint64_t total = unit_count(s);
+  std::mutex mu;  // guards next, failure, merger and the hooks
+  std::size_t next = 0;
+  failure_slot failure;
+
+  auto take = [&](std::size_t n) {  // call with mu held
+    std::vector<std::uint64_t> out;
+    while (!failure.first && out.size() < n && next < todo.size()) out.push_back(todo[next++]);
+    return out;
+  };
+  auto merge = [&](const work_unit& u, block_result&& r) {  // call with mu held
+    if (failure.first) return;
+    try {
+      if (hooks.unit_done) hooks.unit_done(u, r);
+      merger.add(u, std::move(r));
+      if (hooks.progress) hooks.progress(merger.merged_units(), total);
+    } catch (...) {
+      failure.set(std::current_exception());
+    }
+  };
+
+  // Local compute threads draw from the same list as the workers.
+  auto local = [&] {
+    while (true) {
+      std::uint64_t i;
+      {
+        std::lock_guard lock(mu);
+        auto one = take(1);
+        if (one.empty()) return;
+        i = one[0];
+      }
+      const auto u = unit_at(s, i);
+      try {
+        auto r = simulate_block(s, u);
+        std::lock_guard lock(mu);
+        merge(u, std::move(r));
+      } catch (...) {
+        std::lock_guard lock(mu);
+        failure.set(std::current_exception());
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < resolve_threads(threads); ++t) pool.emplace_back(local);
+
+  // Serve the workers until each one is finished: told to stop with all of
+  // its units returned, or failed (a failed worker sends nothing after that).
+  struct worker_state {
+    std::uint64_t outstanding = 0;  // units handed out, result not yet received
+    bool told_stop = false, failed = false;
+    [[nodiscard]] bool finished() const { return failed || (told_stop && outstanding == 0); }
+  };
+  std::vector<worker_state> workers(static_cast<std::size_t>(ses.size()));
+  auto all_finished = [&] {
+    for (std::size_t w = 1; w < workers.size(); ++w)
+      if (!workers[w].finished()) return false;
+    return true;
+  };
+  try {
+    while (!all_finished()) {
+      int flag = 0;
+      MPI_Status st;
+      check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st), "MPI_Iprobe");
+      if (!flag) {
+        std::this_thread::sleep_for(poll_pause);
+        continue;
+      }
+      const std::string msg = receive_bytes(st);
+      auto& w = workers.at(static_cast<std::size_t>(st.MPI_SOURCE));
+      if (st.MPI_TAG == request_tag) {
+        detail::byte_reader r(msg);
+        const auto n = r.u32("request size");
+        std::vector<std::uint64_t> units;
+        {
+          std::lock_guard lock(mu);
+          units = take(std::max<std::uint32_t>(1, n));
+        }
+        send_bytes(encode_indices(units), st.MPI_SOURCE, work_tag);
+        w.outstanding += units.size();
+        if (units.empty()) w.told_stop = true;
+      } else if (st.MPI_TAG == result_tag) {
+        if (w.outstanding > 0) --w.outstanding;
+        std::lock_guard lock(mu);
+        try {
+          auto [u, r] = deserialize_unit_result(msg);
+          check_block_shape(s, u, r);
+          merge(u, std::move(r));
+        } catch (...) {
+          failure.set(std::current_exception());
+        }
+      } else if (st.MPI_TAG == failure_tag) {
+        w.failed = true;
+        detail::byte_reader r(msg);
+        const auto code = static_cast<exit_code>(r.u32("exit code"));
+        const auto text = r.str("message");
+        std::lock_guard lock(mu);
+        failure.set(std::make_exception_ptr(
+            error(code, fmt::format("{} (on MPI rank {})", text, st.MPI_SOURCE))));
+      }
+    }
+  } catch (...) {
+    // MPI itself failed: the other ranks cannot be stopped cleanly.
+    {
+      std::lock_guard lock(mu);
+      failure.set(std::current_exception());
+    }
+    for (auto& th : pool) th.join();
+    MPI_Abort(MPI_COMM_WORLD, static_cast<int>(failure.first->code()));
+  }
+  for (auto& th : pool) th.join();
+  if (failure.first) throw *failure.first;
+}
+
+// ---------------------------------------------------------------- workers
+void serve(const session&, unsigned threads) {
+  std::uint64_t len = 0;
+  check(MPI_Bcast(&len, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  if (len == 0) return;  // rank 0 gave up before starting
+  std::string spec_bytes(len, '\0');
+  check(MPI_Bcast(spec_bytes.data(), checked_size(len), MPI_BYTE, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  const sweep_spec s = deserialize_sweep_spec(spec_bytes);
+  const unsigned n_threads = resolve_threads(threads);
+
+  std::mutex mu;
+  std::condition_variable work_cv, main_cv;
+  std::deque<std::uint64_t> queue;
+  std::deque<std::string> outbox;
+  unsigned busy = 0;
+  bool shutdown = false;
+  failure_slot failure;
+
+  auto compute = [&] {
+    std::unique_lock lock(mu);
+    while (true) {
+      work_cv.wait(lock, [&] { return shutdown || !queue.empty(); });
+      if (queue.empty()) return;
+      const auto i = queue.front();
+      queue.pop_front();
+      ++busy;
+      lock.unlock();
+      std::string out;
+      std::exception_ptr err;
+      try {
+        const auto u = unit_at(s, i);
+        out = serialize(u, simulate_block(s, u));
+      } catch (...) {
+        err = std::current_exception();
+      }
+      lock.lock();
+      --busy;
+      if (err) {
+        failure.set(err);
+        queue.clear();
+      } else {
+        outbox.push_back(std::move(out));
+      }
+      main_cv.notify_one();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < n_threads; ++t) pool.emplace_back(compute);
+
+  // The main thread does all MPI calls (MPI_THREAD_FUNNELED).
+  bool stopped = false;    // rank 0 said stop, or we failed
+  bool fail_sent = false;  // after a failure nothing else is sent
+  std::unique_lock lock(mu);
+  while (true) {
+    if (failure.first) outbox.clear();
+    while (!outbox.empty()) {
+      const std::string msg = std::move(outbox.front());
+      outbox.pop_front();
+      lock.unlock();
+      send_bytes(msg, 0, result_tag);
+      lock.lock();
+    }
+    if (failure.first && !fail_sent) {
+      detail::byte_writer w;
+      w.u32(static_cast<std::uint32_t>(failure.first->code()));
+      w.str(failure.first->what());
+      lock.unlock();
+      send_bytes(w.take(), 0, failure_tag);
+      lock.lock();
+      stopped = fail_sent = true;
+    }
+    // Keep every thread busy plus one unit queued, so no thread waits for
+    // a round trip; not more, so the tail stays balanced.
+    const std::size_t outstanding = queue.size() + busy;
+    if (!stopped && outstanding < n_threads + 1) {
+      detail::byte_writer w;
+      w.u32(static_cast<std::uint32_t>(n_threads + 1 - outstanding));
+      lock.unlock();
+      send_bytes(w.take(), 0, request_tag);
+      MPI_Status st;
+      check(MPI_Probe(0, work_tag, MPI_COMM_WORLD, &st), "MPI_Probe");
+      const auto units = decode_indices(receive_bytes(st));
+      lock.lock();
+      if (units.empty()) stopped = true;
+      for (auto i : units) queue.push_back(i);
+      work_cv.notify_all();
+      continue;
+    }
+    if (stopped && queue.empty() && busy == 0 && (outbox.empty() || fail_sent)) break;
+    main_cv.wait_for(lock, std::chrono::milliseconds(5));
+  }
+  shutdown = true;
+  work_cv.notify_all();
+  lock.unlock();
+  for (auto& th : pool) th.join();
+}
+
+}  // namespace stickslip::mpi
