@@ -43,11 +43,14 @@ std::vector<nc::NcDim> with(std::vector<nc::NcDim> dims, const nc::NcDim& last) 
   return dims;
 }
 
+// `fill`: NaN marks values that do not exist (a mean without samples, a
+// convergence entry past the trace's end); variables that always exist
+// (parameters) carry no _FillValue.
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                      const std::string& units, const std::string& long_name,
-                     const std::string& description) {
+                     const std::string& description, bool fill = true) {
   auto v = f.addVar(name, nc::ncDouble, dims);
-  v.setFill(true, nan);
+  if (fill) v.setFill(true, nan);
   describe(v, units, long_name, description);
   return v;
 }
@@ -68,21 +71,45 @@ void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
   v.putVar(data.data());
 }
 
-// A row of `len` values per grid point, written one point at a time so that
-// memory stays at one row whatever the grid size.
+// A row of `len` values per grid point (the last dimension is bin or trace).
+// Written in as few calls as memory allows: everything at once, else one slab
+// per index of the first axis, else one point at a time, so memory stays
+// bounded whatever the grid size. Relies on rs.points being in row-major grid
+// order (check_shape verifies it).
 template <class T>
 void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
               const std::function<void(const point_result&, std::vector<T>&)>& row) {
-  std::vector<T> buf(len);
-  for (const auto& p : rs.points) {
-    std::vector<std::size_t> start(p.index.begin(), p.index.end()), count(p.index.size(), 1);
-    if (start.empty()) {  // the `point` dimension of length 1
-      start.push_back(0);
-      count.push_back(1);
+  constexpr std::size_t max_buffer = std::size_t{1} << 22;  // values (32 MiB of doubles)
+  const auto dims = v.getDims();
+  const std::size_t rank = dims.size();
+  const std::size_t points = rs.points.size();
+  const std::size_t first = dims.front().getSize();  // first grid dim (or `point`)
+  const std::size_t per_slab = points / first;
+  std::size_t batch = 1;  // points per write
+  if (points * len <= max_buffer)
+    batch = points;
+  else if (per_slab * len <= max_buffer)
+    batch = per_slab;
+  std::vector<T> buf(batch * len), one(len);
+  for (std::size_t b = 0; b < points; b += batch) {
+    for (std::size_t i = 0; i < batch; ++i) {
+      row(rs.points[b + i], one);
+      std::copy(one.begin(), one.end(), buf.begin() + static_cast<std::ptrdiff_t>(i * len));
     }
-    start.push_back(0);
-    count.push_back(len);
-    row(p, buf);
+    std::vector<std::size_t> start(rank, 0), count(rank);
+    for (std::size_t d = 0; d < rank; ++d) count[d] = dims[d].getSize();
+    if (batch == points) {
+      // the whole variable
+    } else if (batch == per_slab) {
+      start[0] = b / per_slab;
+      count[0] = 1;
+    } else {
+      const auto& idx = rs.points[b].index;
+      for (std::size_t d = 0; d < idx.size(); ++d) {
+        start[d] = idx[d];
+        count[d] = 1;
+      }
+    }
     v.putVar(start, count, buf.data());
   }
 }
@@ -115,18 +142,18 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
   for (const char* sym : parameter_names) {
     const auto& info = info_for(sym);
     auto v = add_double(f, parameter_variable_name(sym), l.grid, info.units, info.description,
-                        fmt::format("model parameter {} at each grid point", sym));
+                        fmt::format("model parameter {} at each grid point", sym), false);
     v.putAtt("symbol", sym);
     put_grid<double>(v, rs, [&](const point_result& p) { return parameter_by_name(p.parameters, sym); });
   }
   auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
-                      "a = mu m g / k: the mass can stick only while |x| <= a");
+                      "a = mu m g / k: the mass can stick only while |x| <= a", false);
   put_grid<double>(a, rs, [](const point_result& p) { return p.parameters.band_half_width(); });
   auto w = add_double(f, "natural_frequency", l.grid, "rad/s", "natural frequency omega",
-                      "omega = sqrt(k / m)");
+                      "omega = sqrt(k / m)", false);
   put_grid<double>(w, rs, [](const point_result& p) { return p.parameters.natural_frequency(); });
   auto d = add_double(f, "max_stick_duration", l.grid, "s", "longest possible stick d_max",
-                      "d_max = 2 a / V: a stick that crosses the whole band");
+                      "d_max = 2 a / V: a stick that crosses the whole band", false);
   put_grid<double>(d, rs, [](const point_result& p) { return p.parameters.max_stick_duration(); });
 }
 

@@ -76,6 +76,11 @@ void check_shape(const result_set& rs) {
   if (rs.points.size() != n)
     throw error(exit_code::internal,
                 fmt::format("result set holds {} points but its grid has {}", rs.points.size(), n));
+  // Writers lay points out in this order (row-major over the axes).
+  for (std::size_t i = 0; i < n; ++i)
+    if (rs.points[i].index != point_index(rs.spec, i))
+      throw error(exit_code::internal,
+                  fmt::format("result set point {} is not at its grid position", i));
   if (rs.spec.keep_records && !rs.records.empty() && rs.records.size() != n)
     throw error(exit_code::internal,
                 fmt::format("result set holds records of {} points but its grid has {}",
