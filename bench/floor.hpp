@@ -1,0 +1,23 @@
+// The floor of the full study (issue 6): the time to draw every belt switch
+// time of the same study and nothing else. Per realization: Philox4x64 blocks
+// from substream::belt_switches (the same counters the engines use), the
+// 64-bit words to (0,1) by u01fixedpt, the exponential transform
+// -log(u)/lambda with Highway's vector Log (4 doubles per Philox block = one
+// AVX2 vector), and the running sum up to t_a. Same threads, same work units
+// ordering (most expensive points first) as run_units.
+#pragma once
+#include <cstdint>
+
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::bench {
+
+struct floor_result {
+  double seconds = 0;
+  std::uint64_t switch_times = 0;  // drawn and below t_a: the study's belt switches
+  double checksum = 0;             // keeps the work observable
+};
+
+[[nodiscard]] floor_result draw_all_switch_times(const sweep_spec& s, unsigned threads);
+
+}  // namespace stickslip::bench
