@@ -128,8 +128,13 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     }
   };
 
-  if (z == v && std::abs(x) <= a) {
+  const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
+  if (z == v && std::abs(x) <= a && !on_outward_edge) {
     m = mode::stick;
+  } else if (z == v && std::abs(x) <= a) {  // the grazing contact: a zero-length stick
+    m = mode::slip;
+    sigma = v > 0 ? 1.0 : -1.0;
+    grazing = true;
   } else if (z == v) {
     m = mode::slip;
     sigma = x > 0 ? 1.0 : -1.0;
@@ -140,9 +145,11 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   }
 
   episode ep{m, 0.0, 0.0, x, v, false};
+  // Zero-length episodes (only possible at t = 0: a belt switch at t = 0) are
+  // no interval of either mode and are not reported.
   auto close_episode = [&](double when, mode next_mode) {
     ep.end = when;
-    obs.on_episode(ep);
+    if (ep.end > ep.start) obs.on_episode(ep);
     ep = episode{next_mode, when, 0.0, x, v, false};
   };
 
@@ -231,7 +238,11 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       t_switch = switches.next();
       if (z == v) {  // measure zero: landed exactly on relative rest
         resolve_at_contact(x > 0 ? -1.0 : 1.0);
-        if (m == mode::stick) {
+        if (m == mode::stick && a - (v > 0 ? x : -x) <= 0.0) {  // outward edge: grazing
+          m = mode::slip;
+          sigma = v > 0 ? 1.0 : -1.0;
+          grazing = true;
+        } else if (m == mode::stick) {
           ++counts.stick_onsets;
           obs.on_event(event{event_kind::stick_onset, t, x, z, v});
           close_episode(t, mode::stick);
