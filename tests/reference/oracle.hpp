@@ -25,7 +25,11 @@
 // least `stick_resolution` (default 1e-6 natural periods); shorter ones are
 // merged into the surrounding slip and listed in `dropped_stick_durations`.
 // A genuine stick that short is a near-degenerate scenario the oracle cannot
-// resolve; the tests detect and regenerate those explicitly.
+// resolve; the tests detect and regenerate those explicitly. (RK4's amplitude
+// error on the harmonic slip is dissipative, |R(i w h)| < 1, so the numerical
+// grazing orbit mostly stays just short of u = 0 and the touch is not even
+// seen; a start exactly on the outward edge at belt velocity exercises the
+// dropped-contact path.)
 //
 // Error: RK4 on the harmonic slip has phase error (w h)^5 / 120 per step, so
 // event times carry a global error of about t_a (2 pi / N)^4 / 120 for N steps

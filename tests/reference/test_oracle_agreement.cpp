@@ -142,7 +142,7 @@ std::optional<difference> compare(const std::vector<episode>& exact,
 TEST(OracleAgreement, RandomScenariosHaveIdenticalEpisodeSequences) {
   std::mt19937_64 rng(scenario_seed);
   const auto t0 = std::chrono::steady_clock::now();
-  int accepted = 0, regenerated = 0, sticks = 0, with_stick = 0;
+  int accepted = 0, regenerated = 0, sticks = 0, with_stick = 0, dropped = 0;
   double max_time_error = 0, max_error_ratio = 0, max_position_error = 0;
   double lambda_min = 1e9, lambda_max = 0, mu_min = 1e9, mu_max = 0, k_min = 1e9, k_max = 0;
   while (accepted < scenario_count) {
@@ -157,6 +157,7 @@ TEST(OracleAgreement, RandomScenariosHaveIdenticalEpisodeSequences) {
       continue;
     }
     ++accepted;
+    dropped += static_cast<int>(oracle.dropped_stick_durations.size());
     const auto d = compare(exact.episodes, oracle.episodes);
     ASSERT_TRUE(d.has_value()) << "episode sequences differ for " << describe(s) << "\nexact:\n"
                                << episodes_text(exact.episodes) << "oracle:\n"
@@ -182,9 +183,9 @@ TEST(OracleAgreement, RandomScenariosHaveIdenticalEpisodeSequences) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf(
       "oracle agreement: %d scenarios (%d regenerated as near-degenerate), %d sticks, %d "
-      "scenarios with a stick; max boundary error %.3g s (%.3g of tolerance), max x_start error "
+      "scenarios with a stick, %d zero-time contacts dropped; max boundary error %.3g s (%.3g of tolerance), max x_start error "
       "%.3g; lambda [%.3g, %.3g] mu [%.3g, %.3g] k [%.3g, %.3g]; %.2f s\n",
-      accepted, regenerated, sticks, with_stick, max_time_error, max_error_ratio,
+      accepted, regenerated, sticks, with_stick, dropped, max_time_error, max_error_ratio,
       max_position_error, lambda_min, lambda_max, mu_min, mu_max, k_min, k_max, seconds);
   // The ranges must really be spanned, and regeneration must stay the exception.
   EXPECT_LT(lambda_min, 0.02);
@@ -195,6 +196,39 @@ TEST(OracleAgreement, RandomScenariosHaveIdenticalEpisodeSequences) {
   EXPECT_GT(k_max, 50.0);
   EXPECT_LE(regenerated, scenario_count / 20);
   EXPECT_GT(with_stick, scenario_count / 2);
+}
+
+// Hand-picked starts on the edges of the cases: on the outward band edge at
+// belt velocity (the grazing contact: no stick), on the inward edge (a stick
+// of the full band), outside the band at belt velocity (an immediate slip
+// reversal), and belt switches at t = 0. With a = 1 exactly (g = 8, mu = 0.5,
+// m = 1, k = 4) the edges are exact. No degeneracy filter here: each case
+// has one right answer and both integrators must give it.
+TEST(OracleAgreement, EdgeStartsAndSwitchesAtZero) {
+  model_parameters p;
+  p.gravity = 8.0;
+  p.friction_coefficient = 0.5;
+  p.stiffness = 4.0;
+  p.window = 8.0;
+  const scenario cases[] = {
+      {p, {1.0, 1.0, +1}, {}},          {p, {-1.0, -1.0, -1}, {}},
+      {p, {-1.0, 1.0, +1}, {}},         {p, {1.0, -1.0, -1}, {2.5}},
+      {p, {5.0, 1.0, +1}, {}},          {p, {-3.0, -1.0, -1}, {4.0}},
+      {p, {0.0, 1.0, +1}, {0.0, 3.0}},  {p, {0.3, -1.0, +1}, {0.0}},
+      {p, {1.0, 1.0, +1}, {0.0, 1.0}},  {p, {0.2, 0.7, -1}, {0.0, 0.1, 0.2}},
+  };
+  for (const scenario& s : cases) {
+    const exact_run exact = run_exact(s.params, s.ic, s.switch_times);
+    const oracle_result oracle =
+        integrate_reference(s.params, s.ic, s.switch_times, {.steps_per_period = steps_per_period});
+    const tolerance tol = tolerance_for(s, exact, steps_per_period);
+    const auto d = compare(exact.episodes, oracle.episodes);
+    ASSERT_TRUE(d.has_value()) << describe(s) << "\nexact:\n"
+                               << episodes_text(exact.episodes) << "oracle:\n"
+                               << episodes_text(oracle.episodes);
+    EXPECT_LE(d->time, tol.time) << describe(s);
+    EXPECT_LE(d->position, tol.position) << describe(s);
+  }
 }
 
 // Halving the step must divide the boundary error by about 2^4 = 16, and the
