@@ -79,7 +79,7 @@ void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
 template <class T>
 void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
               const std::function<void(const point_result&, std::vector<T>&)>& row) {
-  constexpr std::size_t max_buffer = std::size_t{1} << 22;  // values (32 MiB of doubles)
+  const std::size_t max_buffer = netcdf_buffer_values;
   const auto dims = v.getDims();
   const std::size_t rank = dims.size();
   const std::size_t points = rs.points.size();

@@ -40,6 +40,11 @@ struct histogram_info {
 // A parameter's NetCDF variable name: its long alias with '_' ("switch_rate").
 [[nodiscard]] std::string parameter_variable_name(const std::string& symbol);
 
+// How many values results.nc's writer buffers per call for the (grid, bin)
+// and (grid, trace) variables. Tests lower it to exercise the slab-wise and
+// point-wise paths.
+inline std::size_t netcdf_buffer_values = std::size_t{1} << 22;  // 32 MiB of doubles
+
 // Throws stickslip::error (internal) unless rs has one point per grid point.
 void check_shape(const result_set& rs);
 

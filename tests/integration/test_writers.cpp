@@ -10,6 +10,7 @@
 #include <netcdf>
 
 #include "stickslip/error.hpp"
+#include "writers_detail.hpp"
 #include "writers_fixture.hpp"
 
 namespace stickslip::testing {
@@ -146,6 +147,26 @@ TEST_F(writers, NetcdfStatisticsEqualTheResultSetExactly) {
     }
     expect_same(p.stats.stick_fraction.mean(), trace_R[i * 4 + 3], "last trace entry = mean");
   }
+}
+
+TEST_F(writers, NetcdfRowsAreTheSameWrittenWholeBySlabOrByPoint) {
+  const auto read_all = [](const std::string& path) {
+    nc::NcFile f(path, nc::NcFile::read);
+    return std::make_pair(doubles(f.getVar("slip_duration_density")),
+                          doubles(f.getVar("convergence_stick_duration_mean")));
+  };
+  io::write_netcdf(rs(), small_metadata(), dir_ / "whole.nc");
+  const auto saved = io::detail::netcdf_buffer_values;
+  io::detail::netcdf_buffer_values = 60;  // bin rows: one slab per lambda (3 x 20 values)
+  io::write_netcdf(rs(), small_metadata(), dir_ / "slabs.nc");
+  io::detail::netcdf_buffer_values = 3;  // every row alone
+  io::write_netcdf(rs(), small_metadata(), dir_ / "points.nc");
+  io::detail::netcdf_buffer_values = saved;
+  const auto whole = read_all(dir_ / "whole.nc");
+  EXPECT_EQ(whole.first.size(), 6u * 20u);
+  EXPECT_EQ(whole.first[5 * 20 + 7], rs().points[5].stats.slip_duration_hist.density(7));
+  EXPECT_EQ(whole, read_all(dir_ / "slabs.nc"));
+  EXPECT_EQ(whole, read_all(dir_ / "points.nc"));
 }
 
 TEST_F(writers, NetcdfGlobalAttributesHoldSeedConfigAndFixedParameters) {
