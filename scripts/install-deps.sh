@@ -13,7 +13,7 @@ core=(
   libopenmpi-dev openmpi-bin
   libsleef-dev libxsimd-dev xtl-dev libhwy-dev libboost-dev
   clang libclang-rt-14-dev
-  gnuplot-nox
+  gnuplot-nox python3 python3-numpy python3-netcdf4
 )
 peers=(octave libsundials-dev)
 
