@@ -90,7 +90,12 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(ev.slip_reversals));
   std::printf("cpu_ns_per_event=%.2f\n", cpu / static_cast<double>(ev.total()) * 1e9);
   if (floor) {
+    const double fc0 = cpu_seconds();
     const auto f = stickslip::bench::draw_all_switch_times(s, threads);
+    const double fcpu = cpu_seconds() - fc0;
+    std::printf("floor_cpu_seconds=%.4f\n", fcpu);
+    // On a loaded machine wall times stretch with the load; CPU times do not.
+    std::printf("cpu_ratio_study_over_floor=%.3f\n", cpu / fcpu);
     std::printf("floor_seconds=%.4f\nfloor_switch_times=%llu\nfloor_checksum=%.6g\n", f.seconds,
                 static_cast<unsigned long long>(f.switch_times), f.checksum);
     std::printf("ratio_study_over_floor=%.3f\n", wall / f.seconds);

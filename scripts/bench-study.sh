@@ -44,5 +44,7 @@ for k in 4 40; do
     printf '    %-21s %8.3g events, %8.3g /s\n' "$e" "$n" "$(echo "$n / $s2" | bc -l)"
   done
   printf '  CPU per event           %8.2f ns\n' "$(median cpu_ns_per_event "$f")"
+  printf '  CPU time study/floor    %8.2f     (robust to other load on the machine)\n' "$(median cpu_ratio_study_over_floor "$f")"
+  printf '  CPU time study          %8.3f s   (wall on an idle machine ~ this / threads)\n' "$(median study_cpu_seconds "$f")"
   printf '  peak RSS                %8.1f MB  (target <= 100 MB)\n' "$(median peak_rss_mb "$f")"
 done
