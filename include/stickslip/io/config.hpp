@@ -1,6 +1,9 @@
-// Configuration: TOML files and grid specifications. Validation happens here,
-// at the edge; errors name the key, the value and what is allowed.
+// Configuration: TOML files, grid specifications, switch-time lists. This is
+// the edge where text becomes values: every error names the key, the text and
+// the problem (stickslip::error with exit_code::invalid_input).
+// The TOML schema is documented in docs/config.md.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -9,21 +12,46 @@
 
 namespace stickslip::io {
 
-// "0.1,0.5,3.8" (a list), "lin:a:b:n" (n values, a and b included),
-// "log:a:b:n" (n values geometrically spaced, a, b > 0). `key` names the
-// parameter in error messages.
+// One finite decimal number and nothing else (surrounding blanks ignored).
+// Rejects empty text, trailing garbage ("1.5x"), "nan" and "inf".
+[[nodiscard]] double parse_number(std::string_view key, std::string_view text);
+// One whole number in [min, max] and nothing else ("-1" is rejected for min 0,
+// never wrapped around).
+[[nodiscard]] std::uint64_t parse_unsigned(std::string_view key, std::string_view text,
+                                           std::uint64_t min = 0,
+                                           std::uint64_t max = UINT64_MAX);
+
+// Grid specification of one model parameter:
+//   "0.1,0.5,3.8"  a list, in the order given
+//   "lin:a:b:n"    n values evenly spaced from a to b, both included (n = 1 gives a)
+//   "log:a:b:n"    n values geometrically spaced from a to b (a, b > 0)
+// Every value must be finite and > 0 (all model parameters are positive).
+// `key` names the parameter in error messages (e.g. "--lambda", "grid.mu").
 [[nodiscard]] std::vector<double> parse_grid(std::string_view key, std::string_view text);
 
-// Reads a sweep spec from TOML text (see docs/config.md for the keys).
-// `origin` names the file in error messages.
-[[nodiscard]] sweep_spec parse_sweep_toml(std::string_view toml_text, std::string_view origin);
+// True when `text` is a single plain number (not a list, not lin:/log:), i.e.
+// a fixed value rather than a grid axis.
+[[nodiscard]] bool is_single_value(std::string_view text) noexcept;
 
-// The full resolved spec as TOML (what goes into every output's attributes).
+// Reads a sweep spec from TOML text (see docs/config.md for the keys). Keys
+// not given keep the defaults of sweep_spec. Does not call validate(): flags
+// may still override values; the caller validates the final spec.
+// `origin` names the file in error messages (file:line:col).
+[[nodiscard]] sweep_spec parse_sweep_toml(std::string_view toml_text, std::string_view origin);
+// The same, from a file (io_failure if it cannot be read).
+[[nodiscard]] sweep_spec read_sweep_toml_file(const std::string& path);
+
+// The full resolved spec as TOML: what goes into every output's attributes.
+// Round trip: parse_sweep_toml(to_toml(s), ...) == s for any spec.
 [[nodiscard]] std::string to_toml(const sweep_spec& s);
 
-// One switch time per line; blank lines and lines starting with '#' are
-// ignored. Validated: finite, >= 0, strictly increasing.
+// One switch time per line; blank lines and '#' comments are ignored.
+// Validated: finite, >= 0, strictly increasing; errors name origin:line.
 [[nodiscard]] std::vector<double> parse_switch_times(std::string_view text, std::string_view origin);
 [[nodiscard]] std::vector<double> read_switch_times_file(const std::string& path);
+// Comma-separated switch times ("1.5,2,7.25"), validated the same way;
+// errors name `key` and the entry number.
+[[nodiscard]] std::vector<double> parse_switch_time_list(std::string_view key,
+                                                         std::string_view text);
 
 }  // namespace stickslip::io

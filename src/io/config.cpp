@@ -1,0 +1,218 @@
+// Grid specifications, numbers and switch-time lists: text -> validated values.
+// The TOML side is in config_toml.cpp.
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
+#include "config_detail.hpp"
+
+namespace stickslip::io {
+namespace {
+
+constexpr std::size_t max_grid_values = 1'000'000;
+constexpr const char* grid_forms = "a list 'a,b,c', 'lin:a:b:n' or 'log:a:b:n'";
+
+std::string_view trim(std::string_view s) noexcept {
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && blank(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> split(std::string_view s, char sep) {
+  std::vector<std::string_view> parts;
+  std::size_t from = 0;
+  while (true) {
+    const auto at = s.find(sep, from);
+    parts.push_back(s.substr(from, at == std::string_view::npos ? s.npos : at - from));
+    if (at == std::string_view::npos) return parts;
+    from = at + 1;
+  }
+}
+
+// Parses the whole of `t` as a double; describes the problem in `why` on failure.
+bool to_double(std::string_view t, double& out, std::string& why) {
+  t = trim(t);
+  if (t.empty()) {
+    why = "an empty entry";
+    return false;
+  }
+  std::string_view digits = t;
+  if (digits.front() == '+') digits.remove_prefix(1);  // from_chars rejects a leading '+'
+  const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out);
+  if (ec == std::errc::result_out_of_range) {
+    why = fmt::format("'{}', out of the range of a double", t);
+    return false;
+  }
+  if (ec != std::errc{} || ptr == digits.data()) {
+    why = fmt::format("'{}', not a number", t);
+    return false;
+  }
+  if (ptr != digits.data() + digits.size()) {
+    why = fmt::format("'{}', with trailing characters '{}'", t,
+                      std::string_view(ptr, digits.data() + digits.size() - ptr));
+    return false;
+  }
+  if (!std::isfinite(out)) {
+    why = fmt::format("'{}', which is not finite", t);
+    return false;
+  }
+  return true;
+}
+
+// "invalid --lambda: 'log:0.1:30:0' (allowed: n >= 1, got n = 0; a grid is ...)"
+[[noreturn]] void grid_error(std::string_view key, std::string_view text, const std::string& rule,
+                             const std::string& got) {
+  throw invalid_value(std::string(key), std::string(text),
+                      fmt::format("{}, got {}; a grid is {} of finite values > 0", rule, got,
+                                  grid_forms));
+}
+
+double grid_number(std::string_view key, std::string_view text, std::string_view item,
+                   const std::string& what) {
+  double v = 0;
+  std::string why;
+  if (!to_double(item, v, why)) grid_error(key, text, "finite numbers", what + ": " + why);
+  if (!(v > 0.0)) grid_error(key, text, "values > 0", fmt::format("{} = {}", what, v));
+  return v;
+}
+
+std::vector<double> parse_range(std::string_view key, std::string_view text, std::string_view t) {
+  const auto parts = split(t, ':');
+  const bool log = parts[0] == "log";
+  if (parts.size() != 4)
+    grid_error(key, text, fmt::format("{}:a:b:n with 4 fields", parts[0]),
+               fmt::format("{} fields", parts.size()));
+  const double a = grid_number(key, text, parts[1], "a");
+  const double b = grid_number(key, text, parts[2], "b");
+  const auto n_text = trim(parts[3]);
+  long long n = 0;
+  const auto [ptr, ec] = std::from_chars(n_text.data(), n_text.data() + n_text.size(), n);
+  if (ec != std::errc{} || n_text.empty() || ptr != n_text.data() + n_text.size())
+    grid_error(key, text, "n a whole number", fmt::format("n = '{}'", n_text));
+  if (n < 1) grid_error(key, text, "n >= 1", fmt::format("n = {}", n));
+  if (static_cast<unsigned long long>(n) > max_grid_values)
+    grid_error(key, text, fmt::format("n <= {}", max_grid_values), fmt::format("n = {}", n));
+
+  std::vector<double> values(static_cast<std::size_t>(n));
+  values.front() = a;
+  if (n == 1) return values;
+  const double steps = static_cast<double>(n - 1);
+  for (long long i = 1; i < n - 1; ++i) {
+    const double f = static_cast<double>(i) / steps;
+    // lin: a + (b - a) f;  log: a (b/a)^f = exp(ln a + f (ln b - ln a)).
+    values[static_cast<std::size_t>(i)] =
+        log ? std::exp(std::log(a) + f * (std::log(b) - std::log(a))) : a + (b - a) * f;
+  }
+  values.back() = b;  // exact end points, no rounding drift
+  return values;
+}
+
+std::vector<double> validated_times(std::vector<double> times, std::vector<std::string> where) {
+  for (std::size_t i = 1; i < times.size(); ++i)
+    if (!(times[i] > times[i - 1]))
+      throw invalid_parameter(where[i], times[i],
+                              fmt::format("strictly greater than the previous time {}: switch "
+                                          "times must be sorted and distinct",
+                                          times[i - 1]));
+  return times;
+}
+
+double switch_time(const std::string& where, std::string_view item) {
+  double v = 0;
+  std::string why;
+  if (!to_double(item, v, why))
+    throw invalid_value(where, std::string(trim(item)), "a finite number >= 0; got " + why);
+  if (v < 0.0) throw invalid_parameter(where, v, "a finite number >= 0");
+  return v;
+}
+
+}  // namespace
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw io_error(path, std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw io_error(path, "read failed");
+  return ss.str();
+}
+
+double parse_number(std::string_view key, std::string_view text) {
+  double v = 0;
+  std::string why;
+  if (!to_double(text, v, why))
+    throw invalid_value(std::string(key), std::string(text), "a finite number; got " + why);
+  return v;
+}
+
+std::uint64_t parse_unsigned(std::string_view key, std::string_view text, std::uint64_t min,
+                             std::uint64_t max) {
+  const auto t = trim(text);
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  const auto allowed = fmt::format("a whole number from {} to {}", min, max);
+  if (t.empty() || ec != std::errc{} || ptr != t.data() + t.size() || v < min || v > max)
+    throw invalid_value(std::string(key), std::string(text), allowed);
+  return v;
+}
+
+bool is_single_value(std::string_view text) noexcept {
+  text = trim(text);
+  return !text.empty() && text.find(',') == std::string_view::npos && text.find(':') == std::string_view::npos;
+}
+
+std::vector<double> parse_grid(std::string_view key, std::string_view text) {
+  const auto t = trim(text);
+  if (t.empty()) grid_error(key, text, "at least one value", "an empty list");
+  if (t.starts_with("lin:") || t.starts_with("log:")) return parse_range(key, text, t);
+  if (t.find(':') != std::string_view::npos)
+    grid_error(key, text, "a range 'lin:a:b:n' or 'log:a:b:n'", "another prefix");
+  std::vector<double> values;
+  const auto items = split(t, ',');
+  if (items.size() > max_grid_values)
+    grid_error(key, text, fmt::format("at most {} values", max_grid_values),
+               fmt::format("{}", items.size()));
+  for (std::size_t i = 0; i < items.size(); ++i)
+    values.push_back(grid_number(key, text, items[i], fmt::format("entry #{}", i + 1)));
+  return values;
+}
+
+std::vector<double> parse_switch_times(std::string_view text, std::string_view origin) {
+  std::vector<double> times;
+  std::vector<std::string> where;
+  std::size_t line_no = 0;
+  for (auto line : split(text, '\n')) {
+    ++line_no;
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    if (trim(line).empty()) continue;
+    where.push_back(fmt::format("switch time at {}:{}", origin, line_no));
+    times.push_back(switch_time(where.back(), line));
+  }
+  return validated_times(std::move(times), std::move(where));
+}
+
+std::vector<double> read_switch_times_file(const std::string& path) {
+  return parse_switch_times(read_text_file(path), path);
+}
+
+std::vector<double> parse_switch_time_list(std::string_view key, std::string_view text) {
+  std::vector<double> times;
+  std::vector<std::string> where;
+  if (trim(text).empty()) return times;
+  const auto items = split(text, ',');
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    where.push_back(fmt::format("{} entry #{}", key, i + 1));
+    times.push_back(switch_time(where.back(), items[i]));
+  }
+  return validated_times(std::move(times), std::move(where));
+}
+
+}  // namespace stickslip::io

@@ -1,0 +1,347 @@
+// The sweep configuration as TOML (schema: docs/config.md), both directions.
+// Reading is strict: unknown tables and keys, wrong types and bad grid specs
+// are errors that name the key and its position (file:line:col).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "config_detail.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
+
+namespace stickslip::io {
+namespace {
+
+// Axis order when [grid] has no `order` key (TOML tables are unordered):
+// lambda, mu, then the other symbols in this order.
+constexpr const char* default_axis_order[] = {"lambda", "mu", "m", "k", "g", "V", "ta"};
+
+struct context {
+  std::string_view origin;
+
+  [[nodiscard]] std::string at(const toml::source_region& r) const {
+    return fmt::format("{}:{}:{}", origin, r.begin.line, r.begin.column);
+  }
+  [[noreturn]] void unknown_key(const std::string& dotted, const toml::key& k,
+                                const std::string& allowed) const {
+    throw invalid_value(fmt::format("config key at {}", at(k.source())), dotted,
+                        "a known key; here " + allowed);
+  }
+  [[noreturn]] void wrong(const std::string& dotted, const toml::node& n,
+                          const std::string& expected) const;
+};
+
+const char* type_name(toml::node_type t) noexcept {
+  switch (t) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date or time";
+  }
+}
+
+std::string show(const toml::node& n) {
+  std::ostringstream os;
+  n.visit([&](auto&& v) { os << v; });
+  std::string s = os.str();
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+void context::wrong(const std::string& dotted, const toml::node& n,
+                    const std::string& expected) const {
+  throw invalid_value(fmt::format("{} at {}", dotted, at(n.source())), show(n),
+                      fmt::format("{}; got {}", expected, type_name(n.type())));
+}
+
+const toml::table& as_table(const context& cx, const std::string& name, const toml::node& n) {
+  if (!n.is_table()) cx.wrong(name, n, "a table [" + name + "]");
+  return *n.as_table();
+}
+
+double read_number(const context& cx, const std::string& dotted, const toml::node& n) {
+  double v = 0;
+  if (n.is_integer())
+    v = static_cast<double>(n.as_integer()->get());
+  else if (n.is_floating_point())
+    v = n.as_floating_point()->get();
+  else
+    cx.wrong(dotted, n, "a number");
+  if (!std::isfinite(v)) cx.wrong(dotted, n, "a finite number");
+  return v;
+}
+
+// Unsigned 64-bit: an integer >= 0, or a string of digits for values above
+// 2^63 - 1 (TOML integers are signed 64-bit).
+std::uint64_t read_u64(const context& cx, const std::string& dotted, const toml::node& n) {
+  if (n.is_integer()) {
+    const auto v = n.as_integer()->get();
+    if (v < 0) cx.wrong(dotted, n, "an integer >= 0");
+    return static_cast<std::uint64_t>(v);
+  }
+  if (n.is_string()) {
+    const std::string& s = n.as_string()->get();
+    std::uint64_t v = 0;
+    const bool digits = !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+      return c >= '0' && c <= '9';
+    });
+    if (digits) {
+      try {
+        std::size_t used = 0;
+        v = std::stoull(s, &used);
+        if (used == s.size()) return v;
+      } catch (const std::exception&) {
+      }
+    }
+  }
+  cx.wrong(dotted, n, "an integer >= 0");
+}
+
+std::int64_t read_i64(const context& cx, const std::string& dotted, const toml::node& n) {
+  if (!n.is_integer()) cx.wrong(dotted, n, "an integer");
+  return n.as_integer()->get();
+}
+
+bool read_bool(const context& cx, const std::string& dotted, const toml::node& n) {
+  if (!n.is_boolean()) cx.wrong(dotted, n, "a boolean (true or false)");
+  return n.as_boolean()->get();
+}
+
+void read_model(const context& cx, const toml::table& t, model_parameters& p) {
+  for (auto&& [k, n] : t) {
+    const std::string key(k.str());
+    const std::string dotted = "model." + key;
+    if (std::find_if(std::begin(parameter_names), std::end(parameter_names),
+                     [&](const char* s) { return key == s; }) == std::end(parameter_names))
+      cx.unknown_key(dotted, k, "[model] takes m, k, g, mu, V, lambda, ta");
+    parameter_by_name(p, key) = read_number(cx, dotted, n);
+  }
+}
+
+void read_range(const context& cx, const std::string& dotted, const toml::node& n, double& lo,
+                double& hi) {
+  const auto* a = n.as_array();
+  if (!a || a->size() != 2) cx.wrong(dotted, n, "an array of two numbers [lo, hi]");
+  lo = read_number(cx, dotted + "[0]", *a->get(0));
+  hi = read_number(cx, dotted + "[1]", *a->get(1));
+}
+
+void read_initial(const context& cx, const toml::table& t, initial_condition_law& law) {
+  for (auto&& [k, n] : t) {
+    const std::string key(k.str());
+    const std::string dotted = "initial." + key;
+    if (key == "x0") {
+      read_range(cx, dotted, n, law.position_min, law.position_max);
+    } else if (key == "xdot0") {
+      read_range(cx, dotted, n, law.velocity_min, law.velocity_max);
+    } else if (key == "belt_start") {
+      const auto* s = n.as_string();
+      const std::string v = s ? s->get() : "";
+      if (v == "random")
+        law.belt_start = 0;
+      else if (v == "+1" || v == "1")
+        law.belt_start = 1;
+      else if (v == "-1")
+        law.belt_start = -1;
+      else
+        cx.wrong(dotted, n, "one of the strings \"random\", \"+1\", \"-1\"");
+    } else {
+      cx.unknown_key(dotted, k, "[initial] takes x0, xdot0, belt_start");
+    }
+  }
+}
+
+std::vector<double> read_axis_values(const context& cx, const std::string& dotted,
+                                     const toml::node& n) {
+  if (n.is_string()) return parse_grid(fmt::format("{} at {}", dotted, cx.at(n.source())),
+                                       n.as_string()->get());
+  const auto* a = n.as_array();
+  if (!a) cx.wrong(dotted, n, "a grid spec string (\"lin:a:b:n\", ...) or an array of numbers");
+  if (a->empty()) cx.wrong(dotted, n, "a non-empty array of numbers > 0 (the list is empty)");
+  std::vector<double> values;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto& item = *a->get(i);
+    const double v = read_number(cx, fmt::format("{}[{}]", dotted, i), item);
+    if (!(v > 0.0)) cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number > 0");
+    values.push_back(v);
+  }
+  return values;
+}
+
+std::vector<std::string> read_order(const context& cx, const toml::node& n) {
+  const auto* a = n.as_array();
+  if (!a) cx.wrong("grid.order", n, "an array of parameter symbols");
+  std::vector<std::string> order;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* s = a->get(i)->as_string();
+    if (!s) cx.wrong(fmt::format("grid.order[{}]", i), *a->get(i), "a parameter symbol string");
+    order.push_back(s->get());
+  }
+  return order;
+}
+
+void read_grid(const context& cx, const toml::table& t, std::vector<axis>& axes) {
+  std::vector<axis> found;
+  const toml::node* order_node = nullptr;
+  for (auto&& [k, n] : t) {
+    const std::string key(k.str());
+    if (key == "order") {
+      order_node = &n;
+      continue;
+    }
+    const std::string dotted = "grid." + key;
+    if (std::find_if(std::begin(parameter_names), std::end(parameter_names),
+                     [&](const char* s) { return key == s; }) == std::end(parameter_names))
+      cx.unknown_key(dotted, k, "[grid] takes order and m, k, g, mu, V, lambda, ta");
+    found.push_back({key, read_axis_values(cx, dotted, n)});
+  }
+  std::vector<std::string> order;
+  if (order_node) {
+    order = read_order(cx, *order_node);
+    std::set<std::string> seen;
+    for (const auto& name : order) {
+      const bool known = std::any_of(found.begin(), found.end(),
+                                     [&](const axis& a) { return a.name == name; });
+      if (!known || !seen.insert(name).second)
+        cx.wrong("grid.order", *order_node,
+                 "each swept parameter of [grid] exactly once ('" + name + "' is " +
+                     (known ? "repeated" : "not a key of [grid]") + ")");
+    }
+    if (order.size() != found.size())
+      cx.wrong("grid.order", *order_node, "every swept parameter of [grid] listed");
+  } else {
+    for (const char* s : default_axis_order) order.emplace_back(s);
+  }
+  for (const auto& name : order)
+    for (auto& a : found)
+      if (a.name == name) axes.push_back(std::move(a));
+}
+
+void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
+  for (auto&& [k, n] : t) {
+    const std::string key(k.str());
+    const std::string dotted = "sweep." + key;
+    if (key == "realizations")
+      s.realizations = read_u64(cx, dotted, n);
+    else if (key == "seed")
+      s.seed = read_u64(cx, dotted, n);
+    else if (key == "block_size")
+      s.block_size = read_u64(cx, dotted, n);
+    else if (key == "max_events")
+      s.max_events = read_i64(cx, dotted, n);
+    else if (key == "keep_records")
+      s.keep_records = read_bool(cx, dotted, n);
+    else
+      cx.unknown_key(dotted, k,
+                     "[sweep] takes realizations, seed, block_size, max_events, keep_records");
+  }
+}
+
+void read_histograms(const context& cx, const toml::table& t, histogram_spec& h) {
+  for (auto&& [k, n] : t) {
+    const std::string key(k.str());
+    const std::string dotted = "histograms." + key;
+    if (key == "bins")
+      h.bins = static_cast<std::size_t>(read_u64(cx, dotted, n));
+    else if (key == "stick_duration_max")
+      h.stick_duration_max = read_number(cx, dotted, n);
+    else if (key == "slip_duration_max")
+      h.slip_duration_max = read_number(cx, dotted, n);
+    else
+      cx.unknown_key(dotted, k, "[histograms] takes bins, stick_duration_max, slip_duration_max");
+  }
+}
+
+// Shortest text that reads back to the same double, always a TOML float.
+std::string toml_float(double v) {
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // "n": inf, nan
+  return s;
+}
+
+std::string toml_u64(std::uint64_t v) {
+  if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+    return fmt::format("\"{}\"", v);
+  return fmt::format("{}", v);
+}
+
+}  // namespace
+
+sweep_spec parse_sweep_toml(std::string_view toml_text, std::string_view origin) {
+  const context cx{origin};
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, origin);
+  } catch (const toml::parse_error& e) {
+    throw error(exit_code::invalid_input,
+                fmt::format("{}: TOML syntax error: {}", cx.at(e.source()), e.description()));
+  }
+  sweep_spec s;
+  for (auto&& [k, n] : root) {
+    const std::string key(k.str());
+    if (key == "model")
+      read_model(cx, as_table(cx, key, n), s.base);
+    else if (key == "initial")
+      read_initial(cx, as_table(cx, key, n), s.initial);
+    else if (key == "grid")
+      read_grid(cx, as_table(cx, key, n), s.axes);
+    else if (key == "sweep")
+      read_sweep(cx, as_table(cx, key, n), s);
+    else if (key == "histograms")
+      read_histograms(cx, as_table(cx, key, n), s.histograms);
+    else
+      cx.unknown_key(key, k, "the tables are [model], [initial], [grid], [sweep], [histograms]");
+  }
+  return s;
+}
+
+sweep_spec read_sweep_toml_file(const std::string& path) {
+  return parse_sweep_toml(read_text_file(path), path);
+}
+
+std::string to_toml(const sweep_spec& s) {
+  std::string out = "# stickslip sweep configuration, fully resolved (docs/config.md)\n\n[model]\n";
+  for (const char* name : parameter_names)
+    out += fmt::format("{} = {}\n", name, toml_float(parameter_by_name(s.base, name)));
+
+  const auto& law = s.initial;
+  out += fmt::format("\n[initial]\nx0 = [{}, {}]\nxdot0 = [{}, {}]\nbelt_start = \"{}\"\n",
+                     toml_float(law.position_min), toml_float(law.position_max),
+                     toml_float(law.velocity_min), toml_float(law.velocity_max),
+                     law.belt_start == 0 ? "random" : (law.belt_start > 0 ? "+1" : "-1"));
+
+  out += "\n[grid]\n";
+  if (!s.axes.empty()) {
+    out += "order = [";
+    for (std::size_t i = 0; i < s.axes.size(); ++i)
+      out += fmt::format("{}\"{}\"", i ? ", " : "", s.axes[i].name);
+    out += "]\n";
+  }
+  for (const auto& ax : s.axes) {
+    out += ax.name + " = [";
+    for (std::size_t i = 0; i < ax.values.size(); ++i)
+      out += (i ? ", " : "") + toml_float(ax.values[i]);
+    out += "]\n";
+  }
+
+  out += fmt::format(
+      "\n[sweep]\nrealizations = {}\nseed = {}\nblock_size = {}\nmax_events = {}\n"
+      "keep_records = {}\n",
+      toml_u64(s.realizations), toml_u64(s.seed), toml_u64(s.block_size), s.max_events,
+      s.keep_records);
+  out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
+                     toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
+                     toml_float(s.histograms.slip_duration_max));
+  return out;
+}
+
+}  // namespace stickslip::io
