@@ -1,0 +1,77 @@
+#include "model_flags.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "stickslip/integrator.hpp"
+#include "stickslip/io/config.hpp"
+
+namespace stickslip::app {
+
+void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
+                     const model_parameters& defaults) {
+  for (std::size_t i = 0; i < f.params.size(); ++i) {
+    const std::string symbol = parameter_names[i];
+    const auto& info = info_for(symbol);
+    auto& flag = f.params[i];
+    flag.symbol = symbol;
+    const std::string what =
+        kind == flag_values::grid
+            ? fmt::format("{} [{}]: a value, a list 'a,b,c', 'lin:a:b:n' or 'log:a:b:n' "
+                          "(default {})",
+                          info.description, info.units, parameter_by_name(defaults, symbol))
+            : fmt::format("{} [{}] (default {})", info.description, info.units,
+                          parameter_by_name(defaults, symbol));
+    flag.option = cmd.add_option(fmt::format("--{},--{}", symbol, info.long_name), flag.text, what)
+                      ->type_name(kind == flag_values::grid ? "GRID" : "X")
+                      ->group("Model parameters (the paper's symbols)");
+  }
+  f.seed_option = cmd.add_option("--seed", f.seed_text,
+                                 "seed of the random streams, 0 .. 2^64-1 (default 1)")
+                      ->type_name("S");
+  f.max_events_option =
+      cmd.add_option("--max-events", f.max_events_text,
+                     fmt::format("bound on events per realization; hitting it is an error "
+                                 "(default {})",
+                                 default_max_events))
+          ->type_name("N");
+}
+
+std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
+                                                        const model_flags& f) {
+  std::vector<const model_flags::flag*> given;
+  for (const CLI::Option* opt : cmd.parse_order())
+    for (const auto& flag : f.params)
+      if (flag.option == opt &&
+          std::find(given.begin(), given.end(), &flag) == given.end())
+        given.push_back(&flag);
+  return given;
+}
+
+std::string flag_label(const std::string& symbol) {
+  return fmt::format("--{} ({})", symbol, info_for(symbol).description);
+}
+
+model_parameters resolve_scalar_model(const CLI::App& cmd, const model_flags& f,
+                                      model_parameters base) {
+  for (const auto* flag : given_model_flags(cmd, f))
+    parameter_by_name(base, flag->symbol) = io::parse_number(flag_label(flag->symbol), flag->text);
+  validate(base);
+  return base;
+}
+
+std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback) {
+  if (!f.seed_option || f.seed_option->count() == 0) return fallback;
+  return io::parse_unsigned("--seed", f.seed_text);
+}
+
+std::int64_t resolve_max_events(const model_flags& f, std::int64_t fallback) {
+  if (!f.max_events_option || f.max_events_option->count() == 0) return fallback;
+  return static_cast<std::int64_t>(io::parse_unsigned(
+      "--max-events", f.max_events_text, 1,
+      static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())));
+}
+
+}  // namespace stickslip::app

@@ -1,0 +1,53 @@
+// Model-parameter flags shared by `simulate` and `sweep`: one flag per
+// parameter, named after the paper's symbol, with a descriptive alias
+// (--lambda / --switch-rate, ...), plus --seed and --max-events. Values are
+// kept as text and turned into numbers by the command: a scalar in
+// `simulate`, a grid specification in `sweep` (see io::parse_grid).
+#pragma once
+#include <CLI/CLI.hpp>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stickslip/parameters.hpp"
+
+namespace stickslip::app {
+
+struct model_flags {
+  struct flag {
+    std::string symbol;  // m k g mu V lambda ta
+    std::string text;    // as given on the command line
+    CLI::Option* option = nullptr;
+  };
+  std::array<flag, 7> params;
+  std::string seed_text, max_events_text;
+  CLI::Option* seed_option = nullptr;
+  CLI::Option* max_events_option = nullptr;
+};
+
+enum class flag_values { scalar, grid };
+
+// Registers --m/--mass, --k/--stiffness, --g/--gravity, --mu/--friction-coefficient,
+// --V/--belt-speed, --lambda/--switch-rate, --ta/--window, --seed, --max-events.
+// `defaults` is shown in --help.
+void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
+                     const model_parameters& defaults);
+
+// The model flags given on the command line, in the order they were given.
+[[nodiscard]] std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
+                                                                      const model_flags& f);
+
+// Flag name with its meaning, for messages: "--mu (friction coefficient)".
+[[nodiscard]] std::string flag_label(const std::string& symbol);
+
+// `base` with every given flag applied as one number; then validate(). Throws
+// stickslip::error (exit code 2) naming the parameter, value and allowed range.
+[[nodiscard]] model_parameters resolve_scalar_model(const CLI::App& cmd, const model_flags& f,
+                                                    model_parameters base);
+
+// --seed and --max-events if given, otherwise the fallbacks.
+[[nodiscard]] std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback);
+[[nodiscard]] std::int64_t resolve_max_events(const model_flags& f, std::int64_t fallback);
+
+}  // namespace stickslip::app
