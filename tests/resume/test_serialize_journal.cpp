@@ -1,0 +1,225 @@
+// Serialization is exact and never crashes on bad bytes; the journal keeps
+// every committed unit, and every kind of damage is reported and skipped.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/journal.hpp"
+#include "stickslip/serialize.hpp"
+
+using namespace stickslip;
+namespace fs = std::filesystem;
+
+namespace {
+
+sweep_spec small_spec(bool records = true) {
+  sweep_spec s;
+  s.axes = {{"lambda", {0.3, 4.0}}};
+  s.base.window = 10.0;
+  s.realizations = 25;
+  s.block_size = 10;
+  s.histograms.bins = 8;
+  s.keep_records = records;
+  return s;
+}
+
+struct temp_dir {
+  fs::path path;
+  temp_dir() {
+    path = fs::temp_directory_path() /
+           ("stickslip-journal-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+  }
+  ~temp_dir() { fs::remove_all(path); }
+};
+
+std::vector<fs::path> segments(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (auto& e : fs::directory_iterator(dir / io::journal_directory))
+    if (e.path().filename().string().starts_with("seg-")) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void rewrite(const fs::path& p, const std::function<void(std::string&)>& edit) {
+  std::string data;
+  {
+    std::ifstream in(p, std::ios::binary);
+    data.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  edit(data);
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << data;
+}
+
+// Writes every unit of `s` into a journal in `dir`, one segment per unit.
+void journal_everything(const sweep_spec& s, const fs::path& dir) {
+  io::journal_writer w(dir.string(), s, io::run_metadata{"cmd", "cfg", "v", "g", "t"}, "test",
+                       std::chrono::seconds(0));
+  for (std::uint64_t i = 0; i < unit_count(s); ++i) {
+    const auto u = unit_at(s, i);
+    w.add(u, simulate_block(s, u));
+  }
+}
+
+// Bit-exact equality of two statistics (point_statistics has no operator==
+// while event_counts lacks one): compare their exact encodings.
+bool same_bits(const point_statistics& a, const point_statistics& b) {
+  return serialize(work_unit{}, block_result{a, {}}) == serialize(work_unit{}, block_result{b, {}});
+}
+
+}  // namespace
+
+TEST(Serialize, BlockResultRoundTripIsExact) {
+  const auto s = small_spec();
+  const work_unit u{1, 2};
+  const auto b = simulate_block(s, u);
+  const auto bytes = serialize(u, b);
+  const auto [u2, b2] = deserialize_unit_result(bytes);
+  EXPECT_EQ(u2, u);
+  EXPECT_TRUE(same_bits(b2.stats, b.stats));
+  ASSERT_EQ(b2.records.size(), b.records.size());
+  EXPECT_EQ(serialize(u2, b2), bytes);
+  EXPECT_NO_THROW(check_block_shape(s, u2, b2));
+}
+
+TEST(Serialize, ConvergenceTraceAndEmptyAccumulatorsSurvive) {
+  const auto s = small_spec(false);
+  ordered_merger m(s);
+  run_units(s, 1, m);
+  block_result merged{m.points()[0], {}};
+  ASSERT_FALSE(merged.stats.convergence.empty());
+  const auto [u, b] = deserialize_unit_result(serialize(work_unit{0, 0}, merged));
+  EXPECT_TRUE(same_bits(b.stats, merged.stats));
+  block_result empty{point_statistics(point_parameters(s, 0), s.histograms), {}};
+  EXPECT_TRUE(same_bits(deserialize_unit_result(serialize(work_unit{0, 0}, empty)).second.stats, empty.stats));
+}
+
+TEST(Serialize, SpecRoundTripAndDifferences) {
+  auto s = small_spec();
+  EXPECT_TRUE(same_results(deserialize_sweep_spec(serialize(s)), s));
+  EXPECT_EQ(deserialize_sweep_spec(serialize(s)), s);
+  auto t = s;
+  t.realizations = 26;
+  EXPECT_EQ(first_difference(s, t), "realizations: 25 vs 26");
+  t = s;
+  t.axes[0].values[1] = 4.5;
+  EXPECT_NE(first_difference(s, t).find("lambda value #2"), std::string::npos);
+  t = s;
+  t.engine = sweep_engine::reference;  // speed only: same results
+  EXPECT_TRUE(same_results(s, t));
+  EXPECT_EQ(fingerprint(s), fingerprint(t));
+}
+
+TEST(Serialize, EveryTruncationThrowsCleanly) {
+  const auto s = small_spec();
+  const auto bytes = serialize(work_unit{0, 1}, simulate_block(s, work_unit{0, 1}));
+  for (std::size_t n = 0; n < bytes.size(); ++n)
+    EXPECT_THROW((void)deserialize_unit_result(std::string_view(bytes).substr(0, n)), error) << n;
+  const auto spec_bytes = serialize(s);
+  for (std::size_t n = 0; n < spec_bytes.size(); ++n)
+    EXPECT_THROW((void)deserialize_sweep_spec(std::string_view(spec_bytes).substr(0, n)), error);
+}
+
+TEST(Serialize, RandomCorruptionNeverCrashes) {
+  const auto s = small_spec();
+  const auto bytes = serialize(work_unit{0, 1}, simulate_block(s, work_unit{0, 1}));
+  std::mt19937_64 rng(7);
+  int thrown = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    auto bad = bytes;
+    for (int k = 0; k < 1 + trial % 4; ++k)
+      bad[rng() % bad.size()] = static_cast<char>(rng());
+    try {
+      auto [u, b] = deserialize_unit_result(bad);
+      check_block_shape(s, u, b);
+    } catch (const error&) {
+      ++thrown;
+    }
+  }
+  EXPECT_GT(thrown, 0);
+}
+
+TEST(Journal, ReadsBackEveryCommittedUnit) {
+  temp_dir d;
+  const auto s = small_spec();
+  journal_everything(s, d.path);
+  std::vector<std::string> problems;
+  const auto j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+  EXPECT_TRUE(problems.empty());
+  ASSERT_EQ(j.units.size(), unit_count(s));
+  ASSERT_TRUE(j.metadata);
+  EXPECT_EQ(j.metadata->created_utc, "t");
+  for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.stats, simulate_block(s, u).stats));
+}
+
+TEST(Journal, ChangedConfigurationIsRefused) {
+  temp_dir d;
+  const auto s = small_spec();
+  journal_everything(s, d.path);
+  auto t = s;
+  t.seed = 2;
+  try {
+    (void)io::read_journal(d.path.string(), &t);
+    FAIL() << "no error";
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::resume_mismatch);
+    EXPECT_NE(std::string(e.what()).find("seed: 1 vs 2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(io::journal_writer(d.path.string(), t, {}, "x"), error);
+  t = s;
+  t.engine = sweep_engine::reference;
+  EXPECT_EQ(io::read_journal(d.path.string(), &t).units.size(), unit_count(s));
+}
+
+TEST(Journal, CorruptOrTruncatedSegmentsAreReportedAndSkipped) {
+  temp_dir d;
+  const auto s = small_spec();
+  journal_everything(s, d.path);
+  auto segs = segments(d.path);
+  ASSERT_EQ(segs.size(), unit_count(s));
+  rewrite(segs[0], [](std::string& x) { x[x.size() - 5] ^= 0x40; });       // CRC mismatch
+  rewrite(segs[1], [](std::string& x) { x.resize(x.size() / 2); });        // truncated
+  rewrite(segs[2], [](std::string& x) { x.clear(); });                     // empty
+  rewrite(segs[3], [](std::string& x) { x[2] = 'X'; });                    // bad magic
+  std::ofstream(d.path / io::journal_directory / ".tmp-seg-half-written.bin") << "garbage";
+  std::vector<std::string> problems;
+  const auto j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+  EXPECT_EQ(problems.size(), 4u);
+  EXPECT_EQ(j.damaged, 4u);
+  EXPECT_EQ(j.units.size(), unit_count(s) - 4);
+  for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.stats, simulate_block(s, u).stats));
+}
+
+TEST(Journal, DamagedHeaderStillChecksRecordsAgainstTheCurrentSpec) {
+  temp_dir d;
+  const auto s = small_spec();
+  journal_everything(s, d.path);
+  rewrite(d.path / io::journal_directory / "header.bin", [](std::string& x) { x.resize(7); });
+  std::vector<std::string> problems;
+  auto j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+  EXPECT_EQ(problems.size(), 1u);
+  EXPECT_EQ(j.units.size(), unit_count(s));
+  auto t = s;
+  t.realizations = 30;  // another config: its fingerprint differs, so no record is used
+  problems.clear();
+  j = io::read_journal(d.path.string(), &t, [&](const std::string& m) { problems.push_back(m); });
+  EXPECT_TRUE(j.units.empty());
+  // and a writer repairs the header
+  { io::journal_writer w(d.path.string(), s, {}, "repair"); }
+  problems.clear();
+  j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+  EXPECT_TRUE(problems.empty());
+}
+
+TEST(Journal, UnwritableDirectoryIsAClearError) {
+  try {
+    io::journal_writer w("/proc/stickslip-cannot-exist", small_spec(), {}, "x");
+    FAIL();
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::io_failure);
+  }
+}
