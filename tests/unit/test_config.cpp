@@ -1,0 +1,337 @@
+// io/config: grid specifications, TOML sweep configuration (round trip and
+// every class of error), switch-time lists. Errors must name the key, the
+// offending text and the problem, and carry exit_code::invalid_input.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
+
+namespace stickslip::io {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+// The message of the stickslip::error that `f` throws ("" if none).
+template <class F>
+std::string error_of(F&& f, exit_code expected = exit_code::invalid_input) {
+  try {
+    f();
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), expected) << e.what();
+    return e.what();
+  }
+  ADD_FAILURE() << "no stickslip::error thrown";
+  return {};
+}
+
+// ---- grid specifications ----
+
+TEST(ParseGrid, ListKeepsOrderAndExactValues) {
+  EXPECT_THAT(parse_grid("lambda", "0.1,0.5,3.8"), ElementsAre(0.1, 0.5, 3.8));
+  EXPECT_THAT(parse_grid("lambda", " 3.8 , 0.1 "), ElementsAre(3.8, 0.1));
+  EXPECT_THAT(parse_grid("mu", "5"), ElementsAre(5.0));
+  EXPECT_THAT(parse_grid("mu", "+2,1e-3"), ElementsAre(2.0, 1e-3));
+}
+
+TEST(ParseGrid, LinearRangeIncludesBothEnds) {
+  const auto v = parse_grid("mu", "lin:0.5:7:8");
+  ASSERT_EQ(v.size(), 8u);
+  EXPECT_EQ(v.front(), 0.5);
+  EXPECT_EQ(v.back(), 7.0);
+  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_NEAR(v[i], 0.5 + 6.5 * i / 7.0, 1e-15);
+  EXPECT_THAT(parse_grid("mu", "lin:1:3:3"), ElementsAre(1.0, 2.0, 3.0));
+  EXPECT_THAT(parse_grid("mu", "lin:3:1:3"), ElementsAre(3.0, 2.0, 1.0));
+}
+
+TEST(ParseGrid, LogRangeIsGeometricWithExactEnds) {
+  const auto v = parse_grid("lambda", "log:0.1:30:40");
+  ASSERT_EQ(v.size(), 40u);
+  EXPECT_EQ(v.front(), 0.1);
+  EXPECT_EQ(v.back(), 30.0);
+  const double ratio = std::pow(300.0, 1.0 / 39);
+  for (std::size_t i = 1; i < v.size(); ++i) EXPECT_NEAR(v[i] / v[i - 1], ratio, 1e-12);
+  EXPECT_THAT(parse_grid("lambda", "log:1:100:3"), ElementsAre(1.0, ::testing::DoubleEq(10.0), 100.0));
+}
+
+TEST(ParseGrid, SinglePointRangeGivesA) {
+  EXPECT_THAT(parse_grid("lambda", "lin:2:9:1"), ElementsAre(2.0));
+  EXPECT_THAT(parse_grid("lambda", "log:0.3:30:1"), ElementsAre(0.3));
+}
+
+struct bad_grid {
+  const char* text;
+  const char* problem;  // a phrase the message must contain
+};
+
+class ParseGridError : public ::testing::TestWithParam<bad_grid> {};
+
+TEST_P(ParseGridError, NamesKeyTextAndProblem) {
+  const auto& c = GetParam();
+  const auto msg = error_of([&] { (void)parse_grid("--lambda", c.text); });
+  EXPECT_THAT(msg, AllOf(HasSubstr("--lambda"), HasSubstr(std::string("'") + c.text + "'"),
+                         HasSubstr(c.problem)));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllClasses, ParseGridError,
+    ::testing::Values(bad_grid{"", "empty list"}, bad_grid{"  ", "empty list"},
+                      bad_grid{"0.1,,2", "empty entry"}, bad_grid{"1,", "empty entry"},
+                      bad_grid{"nan", "not finite"}, bad_grid{"1,inf", "not finite"},
+                      bad_grid{"lin:1:nan:3", "not finite"}, bad_grid{"log:0.1:30:0", "n = 0"},
+                      bad_grid{"lin:1:2:-4", "n >= 1"}, bad_grid{"lin:1:2:2.5", "whole number"},
+                      bad_grid{"lin:1:2", "4 fields"}, bad_grid{"abc", "not a number"},
+                      bad_grid{"1.5x", "trailing characters 'x'"},
+                      bad_grid{"0.1,0.5;3", "trailing characters"},
+                      bad_grid{"-0.1,1", "entry #1 = -0.1"}, bad_grid{"1,0", "values > 0"},
+                      bad_grid{"log:0:1:3", "a = 0"}, bad_grid{"log:1:-2:3", "b = -2"},
+                      bad_grid{"geo:1:2:3", "lin:a:b:n"}, bad_grid{"1e999", "out of the range"},
+                      bad_grid{"lin:1:2:99999999", "n <= 1000000"}));
+
+TEST(ParseNumber, StrictWholeText) {
+  EXPECT_EQ(parse_number("--x0", " -0.25 "), -0.25);
+  EXPECT_EQ(parse_number("--x0", "0.1"), 0.1);
+  EXPECT_THAT(error_of([] { (void)parse_number("--x0", "1e"); }), HasSubstr("--x0"));
+  EXPECT_THAT(error_of([] { (void)parse_number("--x0", "-inf"); }), HasSubstr("not finite"));
+  EXPECT_THAT(error_of([] { (void)parse_number("--x0", ""); }), HasSubstr("empty"));
+}
+
+TEST(ParseUnsigned, RejectsNegativeInsteadOfWrapping) {
+  EXPECT_EQ(parse_unsigned("--seed", "18446744073709551615"), UINT64_MAX);
+  EXPECT_THAT(error_of([] { (void)parse_unsigned("--seed", "-1"); }),
+              AllOf(HasSubstr("--seed"), HasSubstr("'-1'")));
+  EXPECT_THAT(error_of([] { (void)parse_unsigned("--seed", "18446744073709551616"); }),
+              HasSubstr("--seed"));
+  EXPECT_THAT(error_of([] { (void)parse_unsigned("--realizations", "0", 1); }),
+              HasSubstr("from 1"));
+  EXPECT_THAT(error_of([] { (void)parse_unsigned("--threads", "2x"); }), HasSubstr("'2x'"));
+}
+
+TEST(IsSingleValue, DistinguishesFixedValuesFromGrids) {
+  EXPECT_TRUE(is_single_value("5"));
+  EXPECT_TRUE(is_single_value(" 0.5 "));
+  EXPECT_FALSE(is_single_value("1,2"));
+  EXPECT_FALSE(is_single_value("lin:1:2:1"));
+  EXPECT_FALSE(is_single_value(""));
+}
+
+// ---- TOML ----
+
+constexpr const char* paper_toml = R"(
+[model]
+m = 1
+k = 4.0
+ta = 50.0
+
+[initial]
+x0 = [-1.0, 1.0]
+xdot0 = [-0.5, 2]
+belt_start = "-1"
+
+[grid]
+mu = [0.5, 1.0, 7.0]
+lambda = "log:0.1:30:40"
+
+[sweep]
+realizations = 2000
+seed = 42
+block_size = 25
+keep_records = true
+max_events = 1000000
+
+[histograms]
+bins = 40
+stick_duration_max = 3.5
+)";
+
+TEST(ParseSweepToml, ReadsEveryTable) {
+  const auto s = parse_sweep_toml(paper_toml, "paper.toml");
+  EXPECT_EQ(s.base.mass, 1.0);
+  EXPECT_EQ(s.base.stiffness, 4.0);
+  EXPECT_EQ(s.base.gravity, 9.81);  // default kept
+  EXPECT_EQ(s.initial.velocity_min, -0.5);
+  EXPECT_EQ(s.initial.velocity_max, 2.0);
+  EXPECT_EQ(s.initial.belt_start, -1);
+  ASSERT_EQ(s.axes.size(), 2u);
+  EXPECT_EQ(s.axes[0].name, "lambda");  // default order: lambda, mu, others
+  EXPECT_EQ(s.axes[0].values, parse_grid("lambda", "log:0.1:30:40"));
+  EXPECT_EQ(s.axes[1].name, "mu");
+  EXPECT_THAT(s.axes[1].values, ElementsAre(0.5, 1.0, 7.0));
+  EXPECT_EQ(s.realizations, 2000u);
+  EXPECT_EQ(s.seed, 42u);
+  EXPECT_EQ(s.block_size, 25u);
+  EXPECT_TRUE(s.keep_records);
+  EXPECT_EQ(s.max_events, 1000000);
+  EXPECT_EQ(s.histograms.bins, 40u);
+  EXPECT_EQ(s.histograms.stick_duration_max, 3.5);
+  EXPECT_EQ(s.histograms.slip_duration_max, 0.0);
+  EXPECT_NO_THROW(validate(s));
+}
+
+TEST(ParseSweepToml, EmptyTextGivesDefaults) {
+  EXPECT_EQ(parse_sweep_toml("", "empty.toml"), sweep_spec{});
+}
+
+TEST(ParseSweepToml, ExplicitAxisOrderIsKept) {
+  const auto s = parse_sweep_toml("[grid]\norder = [\"k\", \"lambda\"]\nlambda = [1, 2]\nk = [3]\n",
+                                  "o.toml");
+  ASSERT_EQ(s.axes.size(), 2u);
+  EXPECT_EQ(s.axes[0].name, "k");
+  EXPECT_EQ(s.axes[1].name, "lambda");
+}
+
+sweep_spec awkward_spec() {
+  sweep_spec s;
+  s.base.mass = 0.1 + 0.2;  // not exactly representable in few digits
+  s.base.gravity = 9.80665;
+  s.base.window = 1e-300;
+  s.base.friction_coefficient = 1.0 / 3.0;
+  s.initial = {-2.5, 1e-17, 0.0, 0.0, 1};
+  s.axes = {{"k", {std::nextafter(4.0, 5.0), 1e300}},
+            {"lambda", parse_grid("lambda", "log:0.1:30:7")},
+            {"V", {2.0}}};
+  s.realizations = 123457;
+  s.seed = UINT64_MAX;  // above TOML's signed 64-bit integers
+  s.block_size = 7;
+  s.histograms = {17, 0.1, 2.0 / 3.0};
+  s.max_events = 12345678901;
+  s.keep_records = true;
+  return s;
+}
+
+TEST(ToToml, RoundTripsExactly) {
+  for (const auto& s : {sweep_spec{}, awkward_spec(), parse_sweep_toml(paper_toml, "p.toml")}) {
+    const auto text = to_toml(s);
+    EXPECT_EQ(parse_sweep_toml(text, "roundtrip.toml"), s) << text;
+    EXPECT_EQ(to_toml(parse_sweep_toml(text, "roundtrip.toml")), text);
+  }
+}
+
+TEST(ToToml, IsReadableAndComplete) {
+  const auto text = to_toml(parse_sweep_toml(paper_toml, "p.toml"));
+  for (const char* key : {"[model]", "[initial]", "[grid]", "[sweep]", "[histograms]",
+                          "order = [\"lambda\", \"mu\"]", "belt_start = \"-1\"", "seed = 42",
+                          "m = 1.0", "g = 9.81"})
+    EXPECT_THAT(text, HasSubstr(key));
+}
+
+struct bad_toml {
+  const char* text;
+  std::vector<const char*> expected;  // phrases the message must contain
+};
+
+class ParseSweepTomlError : public ::testing::TestWithParam<bad_toml> {};
+
+TEST_P(ParseSweepTomlError, NamesKeyAndPosition) {
+  const auto& c = GetParam();
+  const auto msg = error_of([&] { (void)parse_sweep_toml(c.text, "bad.toml"); });
+  for (const char* phrase : c.expected) EXPECT_THAT(msg, HasSubstr(phrase));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllClasses, ParseSweepTomlError,
+    ::testing::Values(
+        // syntax errors report file:line:col
+        bad_toml{"[model]\nm = \n", {"bad.toml:2:", "syntax error"}},
+        bad_toml{"[model\n", {"bad.toml:1:", "syntax error"}},
+        bad_toml{"[model]\nm = 1\nm = 2\n", {"bad.toml:3:", "syntax error"}},
+        // unknown tables and keys
+        bad_toml{"[modle]\nm = 1\n", {"'modle'", "bad.toml:1:", "[model]"}},
+        bad_toml{"[model]\nmass = 1\n", {"'model.mass'", "bad.toml:2:1", "m, k, g, mu"}},
+        bad_toml{"[grid]\nalpha = [1]\n", {"'grid.alpha'", "bad.toml:2:1"}},
+        bad_toml{"[sweep]\nthreads = 4\n", {"'sweep.threads'"}},
+        bad_toml{"[initial]\nv0 = [0, 1]\n", {"'initial.v0'"}},
+        bad_toml{"[histograms]\nbinz = 4\n", {"'histograms.binz'"}},
+        bad_toml{"seed = 4\n", {"'seed'", "tables are"}},
+        // wrong types
+        bad_toml{"[model]\nmu = \"five\"\n", {"model.mu", "bad.toml:2:6", "a number", "a string"}},
+        bad_toml{"model = 3\n", {"model", "a table"}},
+        bad_toml{"[sweep]\nrealizations = 2.5\n", {"sweep.realizations", "an integer >= 0",
+                                                     "a float"}},
+        bad_toml{"[sweep]\nrealizations = -5\n", {"sweep.realizations", "-5"}},
+        bad_toml{"[sweep]\nseed = \"12a\"\n", {"sweep.seed", "an integer"}},
+        bad_toml{"[sweep]\nkeep_records = 1\n", {"sweep.keep_records", "a boolean"}},
+        bad_toml{"[initial]\nx0 = [1]\n", {"initial.x0", "two numbers"}},
+        bad_toml{"[initial]\nx0 = 1.0\n", {"initial.x0", "two numbers"}},
+        bad_toml{"[initial]\nbelt_start = 2\n", {"initial.belt_start", "\"random\""}},
+        bad_toml{"[grid]\nlambda = 0.5\n", {"grid.lambda", "grid spec string", "a float"}},
+        bad_toml{"[grid]\nmu = [1, \"x\"]\n", {"grid.mu[1]", "a number"}},
+        bad_toml{"[model]\nm = nan\n", {"model.m", "finite"}},
+        // bad grids inside the file
+        bad_toml{"[grid]\nlambda = []\n", {"grid.lambda", "empty"}},
+        bad_toml{"[grid]\nlambda = [0.5, -1]\n", {"grid.lambda[1]", "> 0"}},
+        bad_toml{"[grid]\nlambda = \"log:0.1:30:0\"\n", {"grid.lambda", "bad.toml:2:", "n >= 1"}},
+        bad_toml{"[grid]\nlambda = \"1,nan\"\n", {"grid.lambda", "not finite"}},
+        bad_toml{"[grid]\norder = [\"mu\"]\nlambda = [1]\n", {"grid.order", "not a key"}},
+        bad_toml{"[grid]\norder = [\"lambda\", \"lambda\"]\nlambda = [1]\n", {"repeated"}},
+        bad_toml{"[grid]\norder = []\nlambda = [1]\n", {"grid.order", "every swept"}}));
+
+TEST(ReadSweepTomlFile, MissingFileIsAnIoError) {
+  const auto msg = error_of([] { (void)read_sweep_toml_file("/nonexistent/x.toml"); },
+                            exit_code::io_failure);
+  EXPECT_THAT(msg, HasSubstr("/nonexistent/x.toml"));
+}
+
+// ---- switch times ----
+
+TEST(ParseSwitchTimes, SkipsCommentsAndBlankLines) {
+  const auto t = parse_switch_times("# measured belt signal\n0.5\n\n  1.25  # second\n7\r\n",
+                                    "belt.txt");
+  EXPECT_THAT(t, ElementsAre(0.5, 1.25, 7.0));
+  EXPECT_TRUE(parse_switch_times("# nothing\n\n", "empty.txt").empty());
+  EXPECT_THAT(parse_switch_times("0\n3", "zero.txt"), ElementsAre(0.0, 3.0));
+}
+
+TEST(ParseSwitchTimes, ErrorsNameTheLine) {
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("1\n# c\n0.5\n", "b.txt"); }),
+              AllOf(HasSubstr("b.txt:3"), HasSubstr("0.5"), HasSubstr("sorted")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("1\n1\n", "b.txt"); }),
+              HasSubstr("b.txt:2"));
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("\n-1\n", "b.txt"); }),
+              AllOf(HasSubstr("b.txt:2"), HasSubstr("-1"), HasSubstr(">= 0")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("1\n2 3\n", "b.txt"); }),
+              AllOf(HasSubstr("b.txt:2"), HasSubstr("trailing")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("nan\n", "b.txt"); }),
+              AllOf(HasSubstr("b.txt:1"), HasSubstr("not finite")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("1,2\n", "b.txt"); }),
+              HasSubstr("b.txt:1"));
+}
+
+TEST(ParseSwitchTimeList, CommaSeparated) {
+  EXPECT_THAT(parse_switch_time_list("--switch-times", "0.5, 2,7.25"), ElementsAre(0.5, 2.0, 7.25));
+  EXPECT_TRUE(parse_switch_time_list("--switch-times", "").empty());
+  EXPECT_THAT(error_of([] { (void)parse_switch_time_list("--switch-times", "3,1"); }),
+              AllOf(HasSubstr("--switch-times entry #2"), HasSubstr("sorted")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_time_list("--switch-times", "-2"); }),
+              AllOf(HasSubstr("entry #1"), HasSubstr("-2")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_time_list("--switch-times", "1,,2"); }),
+              HasSubstr("entry #2"));
+}
+
+TEST(ReadSwitchTimesFile, ReadsAFileAndNamesIt) {
+  const std::string path = ::testing::TempDir() + "switch_times_test.txt";
+  {
+    std::ofstream f(path);
+    f << "# t\n0.25\n4\n";
+  }
+  EXPECT_THAT(read_switch_times_file(path), ElementsAre(0.25, 4.0));
+  {
+    std::ofstream f(path);
+    f << "4\n0.25\n";
+  }
+  EXPECT_THAT(error_of([&] { (void)read_switch_times_file(path); }), HasSubstr(path + ":2"));
+  std::remove(path.c_str());
+  EXPECT_THAT(error_of([&] { (void)read_switch_times_file(path); }, exit_code::io_failure),
+              HasSubstr(path));
+}
+
+}  // namespace
+}  // namespace stickslip::io
