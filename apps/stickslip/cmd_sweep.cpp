@@ -4,15 +4,26 @@
 // Three steps, each its own function:
 //   (a) build_sweep_spec: TOML file (--config) + flags -> validated sweep_spec.
 //       Nothing is touched on disk before this has succeeded.
-//   (b) run_with_progress: run_sweep with a progress bar on stderr (tty only).
+//   (b) run_journaled: every finished unit goes to the checkpoint journal
+//       DIR/.journal (io/journal.hpp); --resume reloads it first and runs
+//       only what is missing; --shard i/n runs one slice; under mpirun the
+//       units are spread over the ranks (backends/mpi). A progress bar on
+//       stderr when it is a terminal.
 //   (c) write_results: io::write_all(results.nc, summary.json, summary.csv,
-//       records.csv) with the resolved spec as TOML in the metadata.
+//       records.csv) with the first run's metadata (kept in the journal), then
+//       the journal is removed unless --keep-journal.
+// docs/scaling.md explains resume, shards and MPI.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "commands.hpp"
@@ -20,9 +31,14 @@
 #include "progress.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
+#ifdef STICKSLIP_HAVE_MPI
+#include "stickslip/mpi/distributed_sweep.hpp"
+#endif
 
 namespace stickslip::app {
 namespace {
@@ -33,6 +49,9 @@ struct sweep_options {
   std::string realizations, block_size, bins, threads = "0";
   bool records = false;
   std::string out_dir;
+  bool resume = false, keep_journal = false;
+  std::string shard;                       // "i/n"
+  std::string checkpoint_interval = "2";   // seconds between journal segments
   CLI::Option *config_opt = nullptr, *realizations_opt = nullptr, *block_size_opt = nullptr,
               *bins_opt = nullptr, *records_opt = nullptr;
 };
@@ -96,32 +115,248 @@ void check_output_dir(const std::string& dir) {
     throw invalid_value("-o (output directory)", dir, "a directory or a path that does not exist");
 }
 
-// (b) Runs every work unit, drawing a progress bar when stderr is a terminal.
-result_set run_with_progress(const sweep_spec& spec, unsigned threads) {
-  progress_bar bar;
-  sweep_hooks hooks;
-  if (bar.active())
-    hooks.progress = [&bar](std::uint64_t done, std::uint64_t total) { bar.update(done, total); };
-  auto rs = run_sweep(spec, threads, hooks);
-  bar.finish();
-  return rs;
+// --shard i/n: this process runs the units whose index (point-major, as
+// unit_at numbers them) is i modulo n.
+struct shard_spec {
+  std::uint64_t index = 0, count = 1;
+  [[nodiscard]] bool owns(const sweep_spec& s, const work_unit& u) const {
+    return (u.point * blocks_per_point(s) + u.block) % count == index;
+  }
+};
+
+std::optional<shard_spec> parse_shard(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  const auto slash = text.find('/');
+  if (slash == std::string::npos)
+    throw invalid_value("--shard", text, "i/n with 0 <= i < n, e.g. 3/16");
+  shard_spec sh;
+  sh.count = io::parse_unsigned("--shard (n)", text.substr(slash + 1), 1, 1u << 20);
+  sh.index = io::parse_unsigned("--shard (i)", text.substr(0, slash), 0, sh.count - 1);
+  return sh;
 }
 
-// (c) All outputs, atomically, with the resolved configuration as metadata.
-void write_results(const result_set& rs, const invocation& inv, const std::string& dir) {
-  io::write_all(rs, io::make_metadata(inv.argc, inv.argv, io::to_toml(rs.spec)), dir);
+// SIGINT/SIGTERM (Ctrl-C, a job scheduler's time limit) stop handing out new
+// units; the units in flight finish and are journaled, so --resume loses
+// nothing. Restores the previous handlers when it goes out of scope.
+std::atomic<int> stop_signal{0};
+extern "C" void on_stop_signal(int sig) { stop_signal.store(sig); }
+class stop_on_signals {
+ public:
+  stop_on_signals() {
+    stop_signal.store(0);
+    old_int_ = std::signal(SIGINT, on_stop_signal);
+    old_term_ = std::signal(SIGTERM, on_stop_signal);
+  }
+  ~stop_on_signals() {
+    std::signal(SIGINT, old_int_);
+    std::signal(SIGTERM, old_term_);
+  }
+  stop_on_signals(const stop_on_signals&) = delete;
+  stop_on_signals& operator=(const stop_on_signals&) = delete;
+
+ private:
+  void (*old_int_)(int);
+  void (*old_term_)(int);
+};
+
+// What a run needs besides the spec.
+struct run_plan {
+  std::string dir;
+  unsigned threads = 0;
+  std::optional<shard_spec> shard;
+  bool resume = false;
+  std::chrono::duration<double> checkpoint_interval{2.0};
+};
+
+struct run_outcome {
+  std::optional<result_set> results;  // absent for a shard
+  io::run_metadata metadata;          // the first run's, from the journal if resumed
+  std::uint64_t resumed_units = 0, computed_units = 0;
+  double elapsed_this_run = 0;
+};
+
+// (b) Journal, resume, shard, and the run itself (threads, or MPI ranks when
+// `coordinate` is given: it runs the units instead of run_units).
+using unit_runner = std::function<void(const sweep_spec&, ordered_merger&, const sweep_hooks&)>;
+run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan, const invocation& inv,
+                          const unit_runner& runner) {
+  const auto t0 = std::chrono::steady_clock::now();
+  run_outcome out;
+  io::journal_contents loaded;
+  if (io::journal_exists(plan.dir)) {
+    if (!plan.resume)
+      throw invalid_value("-o (output directory)", plan.dir,
+                          "a directory without the journal of an unfinished sweep (found " +
+                              io::journal_path(plan.dir) +
+                              "): add --resume to continue that sweep, or remove the journal");
+    loaded = io::read_journal(plan.dir, &spec, [](const std::string& problem) {
+      fmt::print(stderr, "stickslip: journal: {}\n", problem);
+    });
+    if (loaded.damaged)
+      fmt::print(stderr, "stickslip: journal: {} damaged file(s) or record(s) skipped; their "
+                         "units are recomputed\n", loaded.damaged);
+  } else if (plan.resume) {
+    fmt::print(stderr, "stickslip: no journal in {}: starting the sweep from the beginning\n",
+               plan.dir);
+  }
+  out.metadata = loaded.metadata ? *loaded.metadata
+                                 : io::make_metadata(inv.argc, inv.argv, io::to_toml(spec));
+
+  ordered_merger merger(spec);
+  std::vector<char> done(unit_count(spec), 0);
+  for (auto& [u, r] : loaded.units) {
+    done[u.point * blocks_per_point(spec) + u.block] = 1;
+    merger.add(u, std::move(r));
+    ++out.resumed_units;
+  }
+  loaded.units.clear();
+
+  const std::string tag =
+      plan.shard ? fmt::format("shard-{}-of-{}", plan.shard->index, plan.shard->count) : "run";
+  io::journal_writer journal(plan.dir, spec, out.metadata, tag, plan.checkpoint_interval);
+  progress_bar bar;
+  stop_on_signals signals;
+  sweep_hooks hooks;
+  if (bar.active())
+    hooks.progress = [&bar](std::uint64_t d, std::uint64_t total) { bar.update(d, total); };
+  hooks.unit_done = [&](const work_unit& u, const block_result& r) { journal.add(u, r); };
+  hooks.wanted = [&](const work_unit& u) {
+    return stop_signal.load() == 0 && !done[u.point * blocks_per_point(spec) + u.block] &&
+           (!plan.shard || plan.shard->owns(spec, u));
+  };
+  runner(spec, merger, hooks);
+  journal.flush();
+  bar.finish();
+  out.computed_units = journal.units_written();
+  out.elapsed_this_run = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (const int sig = stop_signal.load())
+    throw error(static_cast<exit_code>(128 + sig),
+                fmt::format("interrupted by signal {}: {} finished units are journaled in {}; "
+                            "continue with the same command and --resume",
+                            sig, merger.merged_units(), io::journal_path(plan.dir)));
+  if (plan.shard) return out;
+  if (!merger.complete())
+    throw error(exit_code::internal, "sweep ended with units missing from the merge");
+  out.results = make_result_set(spec, std::move(merger));
+  out.results->elapsed_seconds = loaded.elapsed_seconds + out.elapsed_this_run;
+  return out;
+}
+
+// (c) All outputs, atomically, with the first run's metadata; then the
+// journal has served its purpose.
+void write_results(const result_set& rs, const io::run_metadata& meta, const std::string& dir,
+                   bool keep_journal) {
+  io::write_all(rs, meta, dir);
+  if (!keep_journal) io::remove_journal(dir);
+}
+
+// A deterministic failure (work bound, invalid input) cannot be fixed by
+// --resume: remove what this run created so a failed sweep leaves nothing.
+// Other failures (disk full, I/O, signals) keep the journal for --resume.
+void clean_up_after_failure(const error& e, const std::string& dir, bool dir_existed,
+                            bool journal_existed) {
+  if (e.code() != exit_code::work_bound && e.code() != exit_code::invalid_input) return;
+  std::error_code ec;
+  if (!dir_existed)
+    std::filesystem::remove_all(dir, ec);
+  else if (!journal_existed)
+    io::remove_journal(dir);
+}
+
+void report(const sweep_spec& spec, const run_plan& plan, const run_outcome& out,
+            unsigned threads, int ranks) {
+  const std::string where = ranks > 1 ? fmt::format("{} ranks x {} threads", ranks, threads)
+                                      : fmt::format("{} threads", threads);
+  const std::string resumed =
+      out.resumed_units ? fmt::format(", {} units from the journal", out.resumed_units) : "";
+  if (plan.shard) {
+    fmt::print(stderr, "shard {}/{}: {} units in {:.3g} s ({}{}) journaled in {}; combine the "
+                       "shards with `stickslip merge`\n",
+               plan.shard->index, plan.shard->count, out.computed_units, out.elapsed_this_run,
+               where, resumed, io::journal_path(plan.dir));
+    return;
+  }
+  const std::uint64_t n = point_count(spec) * spec.realizations;
+  fmt::print(stderr, "{} realizations in {:.3g} s ({} grid points, {}{}) -> {}\n", n,
+             out.elapsed_this_run, point_count(spec), where, resumed, plan.dir);
 }
 
 void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invocation& inv) {
-  const sweep_spec spec = build_sweep_spec(cmd, o);
+  // Past `ulimit -f` a write must fail with EFBIG (reported), not kill us.
+  std::signal(SIGXFSZ, SIG_IGN);
   const auto threads =
       static_cast<unsigned>(io::parse_unsigned("--threads", o.threads, 0, 1u << 16));
-  check_output_dir(o.out_dir);
-  const auto rs = run_with_progress(spec, threads);
-  write_results(rs, inv, o.out_dir);
-  const std::uint64_t n = point_count(spec) * spec.realizations;
-  fmt::print(stderr, "{} realizations in {:.3g} s ({} grid points, {} threads) -> {}\n", n,
-             rs.elapsed_seconds, point_count(spec), rs.threads, o.out_dir);
+  const unsigned resolved_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+#ifdef STICKSLIP_HAVE_MPI
+  std::optional<mpi::session> ses;
+  if (mpi::launched_by_mpi()) {
+    ses.emplace();
+    if (!ses->is_root()) return mpi::serve(*ses, threads);  // rank 0 reports everything
+  }
+  const int ranks = ses ? ses->size() : 1;
+  auto cancel_workers = [&] {
+    if (ses) mpi::cancel(*ses);
+  };
+#else
+  const int ranks = 1;
+  auto cancel_workers = [] {};
+#endif
+
+  sweep_spec spec;
+  run_plan plan;
+  bool dir_existed = false, journal_existed = false;
+  try {
+    spec = build_sweep_spec(cmd, o);
+    check_output_dir(o.out_dir);
+    plan.dir = o.out_dir;
+    plan.threads = threads;
+    plan.shard = parse_shard(o.shard);
+    plan.resume = o.resume;
+    const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);
+    if (!(interval >= 0) || interval > 86400)
+      throw invalid_parameter("--checkpoint-interval", interval, "0 .. 86400 seconds");
+    plan.checkpoint_interval = std::chrono::duration<double>(interval);
+    dir_existed = std::filesystem::exists(plan.dir);
+    journal_existed = io::journal_exists(plan.dir);
+  } catch (...) {
+    cancel_workers();
+    throw;
+  }
+
+  unit_runner runner = [threads](const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) {
+    run_units(s, threads, m, h);
+  };
+#ifdef STICKSLIP_HAVE_MPI
+  if (ses)
+    runner = [&](const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) {
+      mpi::coordinate(*ses, s, threads, m, h);
+    };
+  bool coordinated = false;
+  auto inner = runner;
+  runner = [&](const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) {
+    coordinated = true;
+    inner(s, m, h);
+  };
+#endif
+  try {
+    auto out = run_journaled(spec, plan, inv, runner);
+    if (out.results) {
+      out.results->threads = resolved_threads;
+      write_results(*out.results, out.metadata, plan.dir, o.keep_journal);
+    }
+    report(spec, plan, out, resolved_threads, ranks);
+  } catch (const error& e) {
+#ifdef STICKSLIP_HAVE_MPI
+    if (!coordinated) cancel_workers();
+#endif
+    clean_up_after_failure(e, plan.dir, dir_existed, journal_existed);
+    throw;
+  } catch (...) {
+#ifdef STICKSLIP_HAVE_MPI
+    if (!coordinated) cancel_workers();
+#endif
+    throw;
+  }
 }
 
 }  // namespace
@@ -152,9 +387,23 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
   o.records_opt =
       cmd->add_flag("--records", o.records,
                     "keep raw per-realization records (records.csv; memory grows with N)");
-  cmd->add_option("-o,--output", o.out_dir, "output directory (created after a successful run)")
+  cmd->add_option("-o,--output", o.out_dir,
+                  "output directory; holds the checkpoint journal DIR/.journal while running")
       ->type_name("DIR")
       ->required();
+  cmd->add_flag("--resume", o.resume,
+                "continue the sweep journaled in DIR (after a crash, kill or time limit); "
+                "refused if the configuration changed; starts afresh if DIR has no journal");
+  cmd->add_option("--shard", o.shard,
+                  "run only units with index % n == i and journal them in DIR (no final "
+                  "outputs); combine shards with `stickslip merge`")
+      ->type_name("i/n");
+  cmd->add_option("--checkpoint-interval", o.checkpoint_interval,
+                  "seconds between journal segments (each is fsynced); 0 = after every unit "
+                  "(default 2)")
+      ->type_name("SECONDS");
+  cmd->add_flag("--keep-journal", o.keep_journal,
+                "keep DIR/.journal after the outputs are written (default: remove it)");
   cmd->callback([cmd, opts, inv] { run_sweep_command(*cmd, *opts, inv); });
 }
 
