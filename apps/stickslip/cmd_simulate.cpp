@@ -210,9 +210,13 @@ std::string trajectory_csv(const realization_run& r, double dt) {
   return out;
 }
 
-// Writes `text` to `path` atomically (path.tmp, then rename).
+// Writes `text` to `path` atomically (path.tmp, then rename), creating the
+// parent directory if needed.
 void write_file(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
+  std::error_code ec;
+  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty())
+    std::filesystem::create_directories(dir, ec);
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) throw io_error(tmp, "cannot open for writing");
@@ -220,7 +224,6 @@ void write_file(const std::string& path, const std::string& text) {
     f.flush();
     if (!f) throw io_error(tmp, "write failed");
   }
-  std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);

@@ -50,6 +50,7 @@ const char* type_name(toml::node_type t) noexcept {
 }
 
 std::string show(const toml::node& n) {
+  if (n.is_string()) return n.as_string()->get();  // invalid_value adds the quotes
   std::ostringstream os;
   n.visit([&](auto&& v) { os << v; });
   std::string s = os.str();
