@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# `mpirun -np P stickslip sweep` (P = 1, 2, 4; oversubscribed; loopback and
+# shared memory only; root-safe) must write the same results as the plain
+# single-process run, also when resuming a journal under MPI.
+#   mpi_cli.sh MPIRUN STICKSLIP WORKDIR
+set -uo pipefail
+mpirun=$1; bin=$2; work=$3
+here=$(cd "$(dirname "$0")" && pwd)
+compare="/usr/bin/python3 $here/../resume/compare_outputs.py"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+launch=("$mpirun" --oversubscribe --mca btl self,vader --mca btl_vader_single_copy_mechanism none)
+fail() { echo "mpi_cli: FAILED: $*" >&2; exit 1; }
+rm -rf "$work"; mkdir -p "$work"
+args=(sweep --lambda log:0.05:30:5 --mu 0.5,3 --ta 30 --realizations 90 --block-size 8 --records --seed 3)
+
+"$bin" "${args[@]}" --threads 1 -o "$work/single" 2>/dev/null || fail "single-process run"
+for np in 1 2 4; do
+  for t in 1 2; do
+    "${launch[@]}" -np $np "$bin" "${args[@]}" --threads $t -o "$work/np$np-t$t" 2>"$work/np$np.err" \
+      || { cat "$work/np$np.err"; fail "mpirun -np $np --threads $t"; }
+    $compare "$work/single" "$work/np$np-t$t" >/dev/null || fail "-np $np --threads $t differs"
+  done
+  echo "mpi_cli: mpirun -np $np (1 and 2 threads per rank) == single process"
+done
+# Resume under MPI: half the units journaled by a shard, the rest by 3 ranks.
+"$bin" "${args[@]}" --threads 1 --shard 1/2 -o "$work/resume" 2>/dev/null || fail "shard"
+"${launch[@]}" -np 3 "$bin" "${args[@]}" --threads 1 --resume -o "$work/resume" 2>/dev/null \
+  || fail "mpirun --resume"
+$compare "$work/single" "$work/resume" >/dev/null || fail "MPI resume differs"
+echo "mpi_cli: mpirun -np 3 --resume of a half-journaled sweep == single process"
+# A bad configuration is reported by rank 0 and every rank exits.
+timeout 60 "${launch[@]}" -np 2 "$bin" sweep --lambda 0.1,nan --realizations 10 -o "$work/bad" \
+  2>"$work/bad.err"; rc=$?
+((rc == 2)) || fail "bad input under mpirun: exit $rc, expected 2"
+[[ -e $work/bad ]] && fail "bad input under mpirun wrote $work/bad"
+# A unit over the event bound on some rank ends all ranks with exit 4.
+timeout 60 "${launch[@]}" -np 3 "$bin" sweep --lambda 0.05,0.1 --mu 0.5,3 --ta 30 --realizations 90 \
+  --block-size 8 --threads 1 --max-events 10 -o "$work/bound" \
+  2>"$work/bound.err"; rc=$?
+((rc == 4)) || fail "work bound under mpirun: exit $rc, expected 4"
+[[ -e $work/bound ]] && fail "work bound under mpirun left $work/bound"
+echo "mpi_cli: errors under mpirun: exit 2 (bad input) and 4 (work bound), no hang"
+rm -rf "$work"
