@@ -1,0 +1,197 @@
+// The reproduction of the founding paper (docs/reproduction.md): the study
+// design (grids, parameter sets), the refinement of the maximum of mean R in
+// lambda with confidence intervals, the claim-by-claim comparison, and the
+// report (report.md, report.html). Running simulations goes through
+// run_sweep; this layer only decides what to run and how to present it.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "stickslip/io/metadata.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::io {
+
+// ---------------------------------------------------------------- grids ----
+
+// The 40 lambda values [1/s] of the full study, increasing, in [0.1, 30]:
+// 20 log-spaced values on [0.1, 2.6), a uniform 0.3 step on [2.6, 4.7]
+// (2.6, 2.9, ..., 4.7: the paper's claimed maximum locations 3.5 and 3.8 are
+// nodes and the flat peak is sampled densely), and 12 log-spaced values on
+// (4.7, 30]. Log spacing because every lambda effect is relative: the mean
+// wait 1/lambda sets the stick-duration scale over two and a half decades.
+[[nodiscard]] std::vector<double> paper_lambda_grid();
+// The 8 mu values: 0.5, 1, 2, 3, 4, 5, 6, 7 (contains the paper's 0.5, 5, 7).
+[[nodiscard]] std::vector<double> paper_mu_grid();
+// The --quick design: 8 lambda values x mu in {0.5, 5, 7}.
+[[nodiscard]] std::vector<double> quick_lambda_grid();
+[[nodiscard]] std::vector<double> quick_mu_grid();
+
+// n values geometrically spaced on [center e^-h, center e^+h] (n >= 2).
+[[nodiscard]] std::vector<double> refinement_grid(double center, double log_half_width,
+                                                  std::size_t n);
+
+// -------------------------------------------------------- parameter sets ---
+
+struct parameter_set {
+  std::string id;     // folder name: "printed", "concluded", "k40_g10", ...
+  std::string label;  // for legends: "k = 4 N/m, g = 9.81 m/s^2"
+  std::string why;    // one sentence: where this set comes from
+  model_parameters base;  // mu and lambda are overwritten by the grid
+};
+
+// m = 1, k = 4, g = 9.81, V = 1, t_a = 50: the values printed in Sec. 5.
+[[nodiscard]] parameter_set printed_parameters();
+// k = 40, g = 9.81 (m = 1, V = 1, t_a = 50): the set the figures used
+// (evidence: docs/reproduction.md and the candidates table of the report).
+[[nodiscard]] parameter_set concluded_parameters();
+// Every candidate compared in the report, printed and concluded first.
+[[nodiscard]] std::vector<parameter_set> candidate_parameter_sets();
+
+// ------------------------------------------------- refinement of the peak ---
+
+// Weighted least-squares fit of R = b0 + b1 u + b2 u^2, u = ln(lambda/center),
+// weights 1/se_i^2, to the mean R of independent points. With b2 < 0:
+//   u* = -b1/(2 b2),  lambda* = center e^u*,  R* = b0 - b1^2/(4 b2).
+// Delta-method standard errors come from cov(b) = (X^T W X)^-1; the 95 %
+// intervals come from a parametric bootstrap: each point's mean is redrawn
+// from N(mean_i, se_i^2) (independent, since each lambda has its own Philox
+// key; normal by the CLT) and refitted, and the 2.5 and 97.5 percentiles of
+// lambda* and R* are taken. Draws without a maximum (b2 >= 0) are counted
+// and left out. The bootstrap streams are Philox with key {seed, tag}, so
+// the intervals are reproducible.
+struct peak_estimate {
+  bool valid = false;         // b2 < 0 and enough points
+  double center = 0;          // lambda the fit is expanded around
+  double b0 = 0, b1 = 0, b2 = 0;
+  double lambda_star = 0, lambda_lo = 0, lambda_hi = 0;  // bootstrap 95 %
+  double R_star = 0, R_lo = 0, R_hi = 0;                 // bootstrap 95 %
+  double lambda_se_delta = 0, R_se_delta = 0;            // delta method
+  double chi2 = 0;            // weighted residual sum of squares
+  std::size_t dof = 0;        // points - 3
+  bool interior = false;      // lambda* inside the fitted lambda range
+  std::size_t bootstrap = 0, bootstrap_degenerate = 0;
+};
+
+[[nodiscard]] peak_estimate fit_peak(const std::vector<double>& lambda,
+                                     const std::vector<double>& mean,
+                                     const std::vector<double>& std_error, double center,
+                                     std::uint64_t seed, std::uint64_t stream_tag,
+                                     std::size_t bootstrap = 2000);
+
+// ------------------------------------------------------------- the study ---
+
+struct study_options {
+  std::uint64_t realizations = 2000;         // per grid point of the main sweep
+  std::uint64_t refine_realizations = 10000; // per lambda of the refinement
+  std::size_t refine_points = 17;            // lambda values of the refinement
+  double refine_log_half_width = 0.4;        // window: lambda_c e^(+-0.4)
+  std::uint64_t candidate_realizations = 1000;
+  std::uint64_t candidate_refine_realizations = 4000;
+  std::uint64_t seed = 20200101;
+  unsigned threads = 0;  // 0 = all cores
+  bool quick = false;
+  bool candidates = true;  // compare the other candidate parameter sets too
+  std::vector<double> lambda, mu;  // empty: paper (or quick) grids
+  std::vector<double> refine_mu;   // empty: every mu of the grid
+};
+
+// The --quick settings: 8 lambda x 3 mu x 200 realizations, refinement with
+// 7 lambda values x 400, candidates at 100/200 realizations.
+[[nodiscard]] study_options quick_options();
+
+// Refinement of the maximum of mean R for one mu.
+struct mu_refinement {
+  double mu = 0;
+  std::size_t grid_argmax = 0;  // index into the lambda axis of the main sweep
+  double grid_max = 0, grid_max_ci95 = 0, grid_max_lambda = 0;
+  result_set fine;              // mu fixed, lambda on refinement_grid
+  peak_estimate peak;
+};
+
+struct set_study {
+  parameter_set set;
+  result_set sweep;             // axes: mu (outer), lambda (inner)
+  std::vector<mu_refinement> refinements;
+  double seconds = 0;           // wall time of sweep + refinements
+  double sweep_seconds = 0;     // wall time of the main sweep alone
+};
+
+struct study_result {
+  study_options options;
+  std::vector<set_study> sets;        // printed, concluded
+  std::vector<set_study> candidates;  // reduced designs of the other sets
+  double seconds = 0;                 // total wall time
+  unsigned threads = 1;
+};
+
+// Progress is reported as a line of text per stage (the app prints it).
+using study_log = std::function<void(const std::string&)>;
+
+// Main sweep for the set, then the refinement for each mu of `refine_mu`.
+[[nodiscard]] set_study run_set_study(const parameter_set& set, const study_options& o,
+                                      const study_log& log = {});
+// The whole reproduction: printed and concluded sets, then the candidates.
+[[nodiscard]] study_result run_paper_study(const study_options& o, const study_log& log = {});
+
+// Access to a result_set with axes (mu, lambda).
+[[nodiscard]] std::vector<const point_result*> points_at_mu(const result_set& rs, double mu);
+
+// ---------------------------------------------------------------- claims ---
+
+enum class verdict { agrees, partly, disagrees, not_evaluated };
+[[nodiscard]] const char* to_string(verdict v) noexcept;
+
+// One quantitative claim of the paper, evaluated for one parameter set.
+struct claim_value {
+  std::string value;  // our number(s), formatted
+  std::string ci95;   // our 95 % interval, formatted (may be empty)
+  verdict result = verdict::not_evaluated;
+  std::string note;   // how the verdict was reached
+};
+
+struct claim {
+  std::string id;           // short key: "dmax", "Rmax_mu5", ...
+  std::string statement;    // what the paper says
+  std::string paper_value;  // as printed
+  std::vector<claim_value> per_set;  // in the order of the sets evaluated
+};
+
+// Evaluates every claim for each set study (in order).
+[[nodiscard]] std::vector<claim> evaluate_claims(const std::vector<const set_study*>& sets);
+
+// Number of claims with verdict `agrees` (partly counts one half).
+[[nodiscard]] double claim_score(const std::vector<claim>& claims, std::size_t set_index);
+
+// ---------------------------------------------------------------- report ---
+
+struct figure;  // figures.hpp
+
+struct report_files {
+  std::string markdown, html;        // paths
+  std::vector<std::string> figures;  // PNG paths, relative to the report folder
+  bool rendered = false;             // gnuplot ran
+};
+
+// Writes everything into `dir`: the sweep outputs of each set (io::write_all
+// into DIR/<set id>/ plus refinement.csv and peaks.csv; candidates under
+// DIR/candidates/<id>/), the figures (DIR/figures/<set id>/), report.md and
+// report.html. With `render` false (or no gnuplot) the scripts and data are
+// written but nothing is rendered.
+report_files write_reproduction(const study_result& study, const run_metadata& meta,
+                                const std::string& dir, bool render = true);
+
+// The report as Markdown; `figures` carry paths relative to `report_dir`'s
+// parent layout (write_reproduction passes what it rendered).
+[[nodiscard]] std::string report_markdown(const study_result& study, const run_metadata& meta,
+                                          const std::vector<figure>& figures,
+                                          const std::string& report_dir);
+
+// Text of DIR/<set id>/peaks.csv: one row per refined mu.
+[[nodiscard]] std::string peaks_csv(const set_study& s);
+// Text of DIR/<set id>/refinement.csv: one row per (mu, lambda) of the refinement.
+[[nodiscard]] std::string refinement_csv(const set_study& s);
+
+}  // namespace stickslip::io

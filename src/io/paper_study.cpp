@@ -1,0 +1,239 @@
+// The study of the founding paper: grids, parameter sets and the runs.
+// Why these grids and these sets: docs/reproduction.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/report.hpp"
+
+namespace stickslip::io {
+
+namespace {
+
+std::vector<double> log_spaced(double lo, double hi, std::size_t n, bool include_lo,
+                               bool include_hi) {
+  // n values of lo (hi/lo)^(i/m); the interval ends are dropped on request.
+  std::vector<double> v;
+  const std::size_t first = include_lo ? 0 : 1;
+  const std::size_t m = n - 1 + first + (include_hi ? 0 : 1);
+  for (std::size_t i = first; v.size() < n; ++i)
+    v.push_back(lo * std::pow(hi / lo, static_cast<double>(i) / static_cast<double>(m)));
+  return v;
+}
+
+double round_to(double x, double digits) {
+  const double f = std::pow(10.0, digits);
+  return std::round(x * f) / f;
+}
+
+using clock = std::chrono::steady_clock;
+double seconds_since(clock::time_point t0) {
+  return std::chrono::duration<double>(clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::vector<double> paper_lambda_grid() {
+  std::vector<double> g;
+  for (double x : log_spaced(0.1, 2.6, 20, true, false)) g.push_back(round_to(x, 4));
+  for (int i = 0; i <= 7; ++i) g.push_back(round_to(2.6 + 0.3 * i, 4));  // 2.6 .. 4.7
+  for (double x : log_spaced(4.7, 30.0, 12, false, true)) g.push_back(round_to(x, 4));
+  return g;
+}
+
+std::vector<double> paper_mu_grid() { return {0.5, 1, 2, 3, 4, 5, 6, 7}; }
+std::vector<double> quick_lambda_grid() { return {0.1, 0.5, 1, 2, 3.5, 3.8, 10, 30}; }
+std::vector<double> quick_mu_grid() { return {0.5, 5, 7}; }
+
+std::vector<double> refinement_grid(double center, double log_half_width, std::size_t n) {
+  if (n < 2) throw invalid_parameter("refinement points", static_cast<double>(n), ">= 2");
+  std::vector<double> g;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = -log_half_width + 2.0 * log_half_width * static_cast<double>(i) /
+                                           static_cast<double>(n - 1);
+    g.push_back(center * std::exp(u));
+  }
+  return g;
+}
+
+parameter_set printed_parameters() {
+  parameter_set s;
+  s.id = "printed";
+  s.label = "m=1 kg, k=4 N/m, g=9.81 m/s^2, V=1 m/s";
+  s.why = "the values printed in Sec. 5 of the paper (g is not printed; standard gravity)";
+  s.base = model_parameters{};
+  s.base.mass = 1.0;
+  s.base.stiffness = 4.0;
+  s.base.gravity = 9.81;
+  s.base.belt_speed = 1.0;
+  s.base.window = 50.0;
+  return s;
+}
+
+parameter_set concluded_parameters() {
+  parameter_set s = printed_parameters();
+  s.id = "concluded";
+  s.label = "m=1 kg, k=40 N/m, g=9.81 m/s^2, V=1 m/s";
+  s.why = "k = 40 N/m: gives the printed d_max = 2 m g mu/(k V) = 2.45 ~ 2.5 s for mu = 5 and "
+          "matches the reported maxima of mean R (see the candidates table)";
+  s.base.stiffness = 40.0;
+  return s;
+}
+
+std::vector<parameter_set> candidate_parameter_sets() {
+  std::vector<parameter_set> c{printed_parameters(), concluded_parameters()};
+  parameter_set s = printed_parameters();
+  s.id = "k40_g10";
+  s.label = "k=40 N/m, g=10 m/s^2";
+  s.why = "k = 40 with rounded gravity: d_max = 2.5 s exactly";
+  s.base.stiffness = 40.0;
+  s.base.gravity = 10.0;
+  c.push_back(s);
+  s = printed_parameters();
+  s.id = "k4_g1";
+  s.label = "k=4 N/m, g=1 m/s^2";
+  s.why = "printed k with g = 1: d_max = 2.5 s exactly, same band a = mu/4 as k=40, g=10, "
+          "but natural frequency 2 rad/s instead of 6.3";
+  s.base.gravity = 1.0;
+  c.push_back(s);
+  s = printed_parameters();
+  s.id = "k4_V10";
+  s.label = "k=4 N/m, g=9.81 m/s^2, V=10 m/s";
+  s.why = "printed k and g with belt speed 10 m/s: d_max = 2.45 s, the other way to read "
+          "the d_max typo";
+  s.base.belt_speed = 10.0;
+  c.push_back(s);
+  return c;
+}
+
+study_options quick_options() {
+  study_options o;
+  o.quick = true;
+  o.realizations = 200;
+  o.refine_realizations = 400;
+  o.refine_points = 7;
+  o.candidate_realizations = 100;
+  o.candidate_refine_realizations = 200;
+  return o;
+}
+
+std::vector<const point_result*> points_at_mu(const result_set& rs, double mu) {
+  std::vector<const point_result*> out;
+  for (const auto& p : rs.points)
+    if (p.parameters.friction_coefficient == mu) out.push_back(&p);
+  std::sort(out.begin(), out.end(), [](auto* a, auto* b) {
+    return a->parameters.switch_rate < b->parameters.switch_rate;
+  });
+  return out;
+}
+
+namespace {
+
+sweep_spec base_spec(const parameter_set& set, const study_options& o) {
+  sweep_spec s;
+  s.base = set.base;
+  s.seed = o.seed;
+  s.realizations = o.realizations;
+  // x0, x'0 ~ U[-1, 1] (paper, Sec. 5); the belt starts at +V or -V with equal
+  // odds (by the symmetry x -> -x of the model and of U[-1,1]^2 this gives
+  // the same statistics as always starting at +V).
+  s.initial = initial_condition_law{};
+  return s;
+}
+
+mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, double mu,
+                        const study_options& o, std::uint64_t realizations) {
+  mu_refinement r;
+  r.mu = mu;
+  const auto pts = points_at_mu(sweep, mu);
+  if (pts.empty()) throw invalid_parameter("refinement mu", mu, "a mu of the main grid");
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    if (pts[i]->stats.stick_fraction.mean() > pts[best]->stats.stick_fraction.mean()) best = i;
+  r.grid_argmax = best;
+  r.grid_max = pts[best]->stats.stick_fraction.mean();
+  r.grid_max_ci95 = pts[best]->stats.stick_fraction.ci95_half_width();
+  r.grid_max_lambda = pts[best]->parameters.switch_rate;
+
+  sweep_spec s = base_spec(set, o);
+  s.base.friction_coefficient = mu;
+  s.realizations = realizations;
+  s.axes = {axis{"lambda", refinement_grid(r.grid_max_lambda, o.refine_log_half_width,
+                                           o.refine_points)}};
+  r.fine = run_sweep(s, o.threads);
+  std::vector<double> lam, mean, se;
+  for (const auto& p : r.fine.points) {
+    lam.push_back(p.parameters.switch_rate);
+    mean.push_back(p.stats.stick_fraction.mean());
+    se.push_back(p.stats.stick_fraction.std_error());
+  }
+  // Bootstrap seed: the study seed, tagged by set and mu so every fit has its own stream.
+  const std::uint64_t tag = point_key(s.base);
+  r.peak = fit_peak(lam, mean, se, r.grid_max_lambda, o.seed, tag);
+  return r;
+}
+
+set_study run_design(const parameter_set& set, const study_options& o,
+                     const std::vector<double>& lambda, const std::vector<double>& mu,
+                     const std::vector<double>& refine, std::uint64_t realizations,
+                     std::uint64_t refine_realizations, const study_log& log) {
+  const auto t0 = clock::now();
+  set_study st;
+  st.set = set;
+  sweep_spec s = base_spec(set, o);
+  s.realizations = realizations;
+  s.axes = {axis{"mu", mu}, axis{"lambda", lambda}};
+  if (log)
+    log(fmt::format("[{}] sweep: {} mu x {} lambda x {} realizations", set.id, mu.size(),
+                    lambda.size(), realizations));
+  st.sweep = run_sweep(s, o.threads);
+  st.sweep_seconds = st.sweep.elapsed_seconds;
+  for (double m : refine) {
+    if (log)
+      log(fmt::format("[{}] refining the maximum of mean R for mu = {} ({} lambda x {})",
+                      set.id, m, o.refine_points, refine_realizations));
+    st.refinements.push_back(refine_mu(set, st.sweep, m, o, refine_realizations));
+  }
+  st.seconds = seconds_since(t0);
+  if (log) log(fmt::format("[{}] done in {:.1f} s", set.id, st.seconds));
+  return st;
+}
+
+}  // namespace
+
+set_study run_set_study(const parameter_set& set, const study_options& o, const study_log& log) {
+  const auto lambda =
+      !o.lambda.empty() ? o.lambda : (o.quick ? quick_lambda_grid() : paper_lambda_grid());
+  const auto mu = !o.mu.empty() ? o.mu : (o.quick ? quick_mu_grid() : paper_mu_grid());
+  const auto refine = !o.refine_mu.empty() ? o.refine_mu : mu;
+  return run_design(set, o, lambda, mu, refine, o.realizations, o.refine_realizations, log);
+}
+
+study_result run_paper_study(const study_options& o, const study_log& log) {
+  const auto t0 = clock::now();
+  study_result r;
+  r.options = o;
+  r.threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  r.sets.push_back(run_set_study(printed_parameters(), o, log));
+  r.sets.push_back(run_set_study(concluded_parameters(), o, log));
+  if (o.candidates) {
+    // The other candidates on a reduced design: the three mu the paper
+    // quotes, the same lambda grid, fewer realizations.
+    const auto lambda =
+        !o.lambda.empty() ? o.lambda : (o.quick ? quick_lambda_grid() : paper_lambda_grid());
+    const std::vector<double> mu{0.5, 5, 7};
+    for (const auto& c : candidate_parameter_sets()) {
+      if (c.id == "printed" || c.id == "concluded") continue;
+      r.candidates.push_back(run_design(c, o, lambda, mu, mu, o.candidate_realizations,
+                                        o.candidate_refine_realizations, log));
+    }
+  }
+  r.seconds = seconds_since(t0);
+  return r;
+}
+
+}  // namespace stickslip::io
