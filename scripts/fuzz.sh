@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# libFuzzer runs of the four fuzz targets (tests/fuzz), built with clang and
+# -fsanitize=fuzzer,address,undefined in build-fuzz:
+#   fuzz_config_toml   TOML sweep configuration parser (+ to_toml round trip)
+#   fuzz_grid_spec     grid specifications, numbers, unsigned integers
+#   fuzz_switch_times  switch-times file reader and --switch-times lists
+#   fuzz_simulator     raw doubles -> validate -> simulate (small event bound)
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET]   (default 25: the bounded CI run)
+#   Longer run, documented in docs/bad-input.md:  scripts/fuzz.sh 1800
+# New inputs are kept in build-fuzz/corpus/<target>; crashes in build-fuzz/crashes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-25}
+jobs=${FUZZ_BUILD_JOBS:-$(nproc)}
+if ! command -v clang++ >/dev/null; then
+  echo "fuzz.sh: clang++ not found (Debian: clang, libclang-rt-14-dev); skipped"
+  exit 0
+fi
+gen=(); command -v ninja >/dev/null && gen=(-G Ninja)
+CC=clang CXX=clang++ cmake -S . -B build-fuzz "${gen[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DSTICKSLIP_BUILD_FUZZERS=ON -DSTICKSLIP_BUILD_TESTS=OFF -DSTICKSLIP_BUILD_BENCH=OFF \
+  -DSTICKSLIP_WITH_MPI=OFF -DSTICKSLIP_SANITIZE=fuzzer-no-link,address,undefined \
+  -DCMAKE_CXX_FLAGS="-fno-sanitize-recover=all" >/dev/null
+targets=(config_toml grid_spec switch_times simulator)
+cmake --build build-fuzz -j "$jobs" --target "${targets[@]/#/fuzz_}" >build-fuzz/build.log 2>&1 \
+  || { tail -n 40 build-fuzz/build.log; exit 1; }
+mkdir -p build-fuzz/crashes
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+status=0
+for t in "${targets[@]}"; do
+  corpus=build-fuzz/corpus/$t
+  mkdir -p "$corpus"
+  log=build-fuzz/fuzz_$t.log
+  if build-fuzz/tests/fuzz/fuzz_$t "$corpus" tests/fuzz/corpus/$t -max_total_time="$seconds" \
+      -timeout=10 -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+      -artifact_prefix=build-fuzz/crashes/$t- >"$log" 2>&1; then
+    runs=$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -Eo '[0-9]+$' || echo '?')
+    echo "fuzz_$t: ${seconds} s, $runs executions, no crash"
+  else
+    echo "fuzz_$t: FAILED (see $log and build-fuzz/crashes/)"; tail -n 30 "$log"; status=1
+  fi
+done
+exit $status
