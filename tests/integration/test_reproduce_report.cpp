@@ -1,0 +1,265 @@
+// `reproduce` on a small study, through the io layer and files on disk: the
+// outputs exist, images are valid, and the report's tables hold the numbers
+// of the result sets. gnuplot-dependent checks are skipped without gnuplot.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "stickslip/io/figures.hpp"
+#include "stickslip/io/metadata.hpp"
+#include "stickslip/io/report.hpp"
+
+namespace fs = std::filesystem;
+using namespace stickslip;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::uint32_t be32(const std::string& b, std::size_t at) {
+  return (static_cast<std::uint32_t>(static_cast<unsigned char>(b[at])) << 24) |
+         (static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 1])) << 16) |
+         (static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 2])) << 8) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 3]));
+}
+
+// Cells of the Markdown table that follows `heading` in `md`.
+std::vector<std::vector<std::string>> table_after(const std::string& md,
+                                                  const std::string& heading) {
+  std::vector<std::vector<std::string>> rows;
+  const auto at = md.find(heading);
+  if (at == std::string::npos) return rows;
+  std::istringstream in(md.substr(at));
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("|", 0) != 0) {
+      if (inside) break;
+      continue;
+    }
+    inside = true;
+    if (line.rfind("|---", 0) == 0) continue;
+    std::vector<std::string> cells;
+    std::size_t p = 1;
+    while (p < line.size()) {
+      const auto q = line.find(" |", p);
+      if (q == std::string::npos) break;
+      auto cell = line.substr(p, q - p);
+      while (!cell.empty() && cell.front() == ' ') cell.erase(0, 1);
+      cells.push_back(cell);
+      p = q + 2;
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+class ReproduceReport : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    auto o = io::quick_options();
+    o.realizations = 60;
+    o.refine_realizations = 120;
+    o.refine_points = 5;
+    o.candidate_realizations = 30;
+    o.candidate_refine_realizations = 40;
+    o.lambda = {0.1, 1.0, 3.5, 3.8, 10.0};
+    o.threads = 2;
+    study_ = new io::study_result(io::run_paper_study(o));
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("stickslip_reproduce_test_" + std::to_string(::getpid())));
+    fs::remove_all(*dir_);
+    const char* argv[] = {"stickslip", "reproduce", "--quick"};
+    const auto meta = io::make_metadata(3, argv, "");
+    files_ = new io::report_files(io::write_reproduction(*study_, meta, dir_->string(), true));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete files_;
+    delete dir_;
+    delete study_;
+  }
+  static io::study_result* study_;
+  static fs::path* dir_;
+  static io::report_files* files_;
+};
+io::study_result* ReproduceReport::study_ = nullptr;
+fs::path* ReproduceReport::dir_ = nullptr;
+io::report_files* ReproduceReport::files_ = nullptr;
+
+TEST_F(ReproduceReport, WritesTheReportTheSweepOutputsAndTheScripts) {
+  EXPECT_TRUE(fs::exists(*dir_ / "report.md"));
+  EXPECT_TRUE(fs::exists(*dir_ / "report.html"));
+  for (const char* set : {"printed", "concluded"}) {
+    for (const char* f : {"summary.json", "summary.csv", "results.nc", "refinement.csv",
+                          "peaks.csv"})
+      EXPECT_TRUE(fs::exists(*dir_ / set / f)) << set << "/" << f;
+    for (const char* stem : {"fig2_realization", "fig4_first_stick_hist", "fig5_stick_duration",
+                             "fig6a_sticks_per_time", "fig6b_stick_fraction",
+                             "fig7_stick_fraction_all_mu", "convergence_R", "refinement_peak"}) {
+      EXPECT_TRUE(fs::exists(*dir_ / "figures" / set / (std::string(stem) + ".gp"))) << stem;
+      EXPECT_TRUE(fs::exists(*dir_ / "figures" / set / (std::string(stem) + ".dat"))) << stem;
+    }
+  }
+  EXPECT_TRUE(fs::exists(*dir_ / "candidates" / "k40_g10" / "summary.json"));
+  EXPECT_TRUE(fs::exists(*dir_ / "figures" / "candidates" / "candidates_R.gp"));
+  // No temporary files left behind.
+  for (const auto& e : fs::recursive_directory_iterator(*dir_))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(ReproduceReport, PngsAndSvgsAreValid) {
+  if (!io::gnuplot_available()) GTEST_SKIP() << "gnuplot with pngcairo/svg not installed";
+  ASSERT_TRUE(files_->rendered);
+  ASSERT_FALSE(files_->figures.empty());
+  for (const auto& rel : files_->figures) {
+    const auto png = slurp(*dir_ / rel);
+    ASSERT_GE(png.size(), 33u) << rel;
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << rel;
+    EXPECT_EQ(png.substr(12, 4), "IHDR") << rel;
+    EXPECT_GE(be32(png, 16), 800u) << rel;  // width: every canvas is >= 1000 px
+    EXPECT_GE(be32(png, 20), 380u) << rel;  // height
+    auto svg_path = *dir_ / rel;
+    svg_path.replace_extension(".svg");
+    const auto svg = slurp(svg_path);
+    const auto start = svg.find('<');
+    ASSERT_NE(start, std::string::npos) << svg_path;
+    EXPECT_TRUE(svg.compare(start, 5, "<?xml") == 0 || svg.compare(start, 4, "<svg") == 0)
+        << svg_path;
+    EXPECT_NE(svg.find("<svg"), std::string::npos) << svg_path;
+    EXPECT_NE(svg.find("</svg>"), std::string::npos) << svg_path;
+  }
+  // The Fig. 6b canvas is what its script asks for.
+  const auto png = slurp(*dir_ / "figures/concluded/fig6b_stick_fraction.png");
+  EXPECT_EQ(be32(png, 16), 1000u);
+  EXPECT_EQ(be32(png, 20), 650u);
+}
+
+TEST_F(ReproduceReport, HtmlEmbedsEveryFigure) {
+  const auto html = slurp(*dir_ / "report.html");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("</html>"), std::string::npos);
+  if (!io::gnuplot_available()) GTEST_SKIP() << "gnuplot not installed: nothing to embed";
+  std::size_t images = 0;
+  for (auto p = html.find("data:image/png;base64,"); p != std::string::npos;
+       p = html.find("data:image/png;base64,", p + 1))
+    ++images;
+  EXPECT_EQ(images, files_->figures.size());
+  EXPECT_EQ(html.find("figure not rendered"), std::string::npos);
+}
+
+TEST_F(ReproduceReport, GridTableHoldsTheComputedNumbers) {
+  const auto md = slurp(*dir_ / "report.md");
+  for (const auto& s : study_->sets) {
+    const auto rows = table_after(md, "### Grid values at μ = 5 (" + s.set.id + ")");
+    const auto pts = io::points_at_mu(s.sweep, 5.0);
+    ASSERT_EQ(rows.size(), pts.size() + 1) << s.set.id;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const auto& row = rows[i + 1];
+      ASSERT_GE(row.size(), 8u);
+      const auto& st = pts[i]->stats;
+      EXPECT_NEAR(std::stod(row[0]), pts[i]->parameters.switch_rate, 1e-3);
+      EXPECT_NEAR(std::stod(row[1]), st.stick_fraction.mean(), 6e-6);
+      EXPECT_NEAR(std::stod(row[2]), st.stick_fraction.mean() - st.stick_fraction.ci95_half_width(),
+                  6e-6);
+      EXPECT_NEAR(std::stod(row[3]), st.stick_fraction.mean() + st.stick_fraction.ci95_half_width(),
+                  6e-6);
+      EXPECT_NEAR(std::stod(row[4]), st.sticks_per_time.mean(), 6e-6);
+      EXPECT_NEAR(std::stod(row[5]), st.stick_duration.mean(), 6e-6);
+      EXPECT_EQ(std::stoull(row[7]), st.realizations);
+    }
+  }
+}
+
+TEST_F(ReproduceReport, ClaimsTableHoldsTheRefinedMaxima) {
+  const auto md = slurp(*dir_ / "report.md");
+  const auto rows = table_after(md, "## Every quantitative claim of the paper");
+  ASSERT_GE(rows.size(), 11u);  // header + 10 claims
+  const std::regex percent(R"(^([0-9.]+) %)");
+  bool found = false;
+  for (const auto& row : rows) {
+    if (row[0] != "maximum of mean R for μ = 5") continue;
+    found = true;
+    EXPECT_EQ(row[1], "almost 80 %");
+    for (std::size_t k = 0; k < study_->sets.size(); ++k) {
+      std::smatch m;
+      const auto& cell = row[2 + 3 * k];
+      ASSERT_TRUE(std::regex_search(cell, m, percent)) << cell;
+      for (const auto& r : study_->sets[k].refinements)
+        if (r.mu == 5.0) {
+          const double expected = r.peak.valid ? r.peak.R_star : r.grid_max;
+          EXPECT_NEAR(std::stod(m[1]) / 100, expected, 5.1e-5) << cell;
+        }
+      const auto& verdict = row[4 + 3 * k];
+      EXPECT_TRUE(verdict == "**agrees**" || verdict == "**partly**" ||
+                  verdict == "**disagrees**")
+          << verdict;
+    }
+  }
+  EXPECT_TRUE(found);
+  // The d_max row holds the exact values of both sets.
+  for (const auto& row : rows)
+    if (row[0] == "maximum stick duration d_max for μ = 5") {
+      EXPECT_EQ(row[2], "24.53 s");
+      EXPECT_EQ(row[5], "2.453 s");
+      EXPECT_EQ(row[4], "**disagrees**");
+      EXPECT_EQ(row[7], "**agrees**");
+    }
+}
+
+TEST_F(ReproduceReport, PeaksCsvMatchesTheRefinement) {
+  const auto csv = slurp(*dir_ / "concluded" / "peaks.csv");
+  const auto& s = study_->sets[1];
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  for (const auto& r : s.refinements) {
+    ASSERT_TRUE(std::getline(in, line));
+    std::istringstream cells(line);
+    std::string mu, argmax, gmax, gci, valid, lstar;
+    std::getline(cells, mu, ',');
+    std::getline(cells, argmax, ',');
+    std::getline(cells, gmax, ',');
+    std::getline(cells, gci, ',');
+    std::getline(cells, valid, ',');
+    std::getline(cells, lstar, ',');
+    EXPECT_DOUBLE_EQ(std::stod(mu), r.mu);
+    EXPECT_DOUBLE_EQ(std::stod(gmax), r.grid_max);  // shortest round-trip text
+    if (r.peak.valid) {
+      EXPECT_DOUBLE_EQ(std::stod(lstar), r.peak.lambda_star);
+    }
+  }
+}
+
+TEST(ReproduceFigures, SampledRealizationFollowsTheSegments) {
+  sweep_spec spec;
+  model_parameters p = spec.base;
+  p.stiffness = 40;
+  p.switch_rate = 1;
+  const auto trace = io::sample_realization(spec, p, 0, 0.01, 10.0);
+  ASSERT_FALSE(trace.empty());
+  EXPECT_EQ(trace.front().t, 0.0);
+  EXPECT_LE(trace.back().t, 10.0);
+  const double a = p.band_half_width();
+  for (const auto& q : trace) {
+    if (!q.stick) continue;
+    EXPECT_DOUBLE_EQ(q.xdot, q.v);             // sticking: mass moves with the belt
+    EXPECT_LE(std::abs(q.x), a * (1 + 1e-12));  // inside the stick band
+  }
+  for (std::size_t i = 1; i < trace.size(); ++i) EXPECT_GE(trace[i].t, trace[i - 1].t);
+}
+
+}  // namespace
