@@ -310,36 +310,61 @@ figure convergence(const set_study& s, const std::string& dir, bool render) {
   const double mu = detail::nearest_mu(s.sweep, 5.0);
   const auto lams = detail::nearest_lambdas(s.sweep, {0.1, 3.8, 30.0});
   auto f = make(dir, "convergence", "convergence_R", "Convergence of mean R",
-                fmt::format("Running estimate of mean R and its 95 % confidence band against "
-                            "the number of realizations (one point per block of {}), at mu = {} "
-                            "for lambda = {}; {}. The paper's convergence study chose 2000.",
+                fmt::format("The paper's convergence study, redone: the running estimate of "
+                            "mean R after n realizations (one point per block of {}) at mu = "
+                            "{} for lambda = {}; {}. Top: running mean minus the final mean, "
+                            "with its 95 % confidence band. Bottom: the CI half-width, with the "
+                            "n^(-1/2) law dashed. The paper chose 2000 realizations.",
                             s.sweep.spec.block_size, mu, fmt::join(lams, ", "), set_note(s)));
-  std::string dat, plots;
+  std::string dat, top, bottom;
   int block = 0;
+  double ref_n = 0, ref_hw = 0;
   for (double lam : lams) {
     for (const auto* q : points_at_mu(s.sweep, mu)) {
-      if (q->parameters.switch_rate != lam) continue;
-      dat += fmt::format("# lambda = {}: realizations mean(R) ci95_lo ci95_hi\n", num(lam));
+      if (q->parameters.switch_rate != lam || q->stats.convergence.empty()) continue;
+      const double final_mean = q->stats.convergence.back().R_mean;
+      dat += fmt::format("# lambda = {} 1/s, final mean R = {}: realizations mean(R) "
+                         "ci95_lo ci95_hi ci95_half_width mean-final\n",
+                         num(lam), num(final_mean));
       for (const auto& c : q->stats.convergence)
-        dat += fmt::format("{} {} {} {}\n", c.realizations, num(c.R_mean),
+        dat += fmt::format("{} {} {} {} {} {}\n", c.realizations, num(c.R_mean),
                            num(c.R_mean - c.R_ci95_half_width),
-                           num(c.R_mean + c.R_ci95_half_width));
+                           num(c.R_mean + c.R_ci95_half_width), num(c.R_ci95_half_width),
+                           num(c.R_mean - final_mean));
       dat += "\n\n";
-      plots += fmt::format(
-          "{0}\"convergence_R.dat\" index {1} u 1:3:4 w filledcurves lt {2} notitle, "
-          "\"\" index {1} u 1:2 w l lt {2} title \"λ = {3} 1/s\"",
-          plots.empty() ? "" : ", ", block, block + 1, lam);
+      if (q->stats.convergence.back().R_ci95_half_width > ref_hw) {
+        ref_n = static_cast<double>(q->stats.convergence.back().realizations);
+        ref_hw = q->stats.convergence.back().R_ci95_half_width;
+      }
+      top += fmt::format(
+          "{0}\"convergence_R.dat\" index {1} u 1:($6-$5):($6+$5) w filledcurves lt {2} "
+          "notitle, \"\" index {1} u 1:6 w l lt {2} title \"λ = {3} 1/s\"",
+          top.empty() ? "" : ", ", block, block + 1, lam);
+      bottom += fmt::format("{0}\"convergence_R.dat\" index {1} u 1:5 w l lt {2} title "
+                            "\"λ = {3} 1/s\"",
+                            bottom.empty() ? "" : ", ", block, block + 1, lam);
       ++block;
     }
   }
+  if (bottom.empty()) bottom = "NaN notitle";
+  if (top.empty()) top = "NaN notitle";
   const std::string body = fmt::format(
-      "  set title {}\n  plot {}\n",
-      gp_string(fmt::format("Convergence of mean R, μ={}, {}", mu, set_note(s))), plots);
-  const std::string script = gp_preamble(f, 1000, 650) +
-                             "set xlabel \"number of realizations\"\n"
-                             "set ylabel \"running mean R and 95 % CI [-]\"\n"
-                             "set key outside right top\n" +
-                             gp_render_loop(f, 1000, 650, body);
+      "  set multiplot layout 2,1 title {}\n"
+      "  unset logscale\n"
+      "  set ylabel \"running mean R − final mean [-]\"\n"
+      "  plot {}, 0 w l lt 8 dt 2 notitle\n"
+      "  set logscale xy\n"
+      "  set ylabel \"95 % CI half-width of mean R [-]\"\n"
+      "  plot {}, {}*sqrt({}/x) w l lt 7 dt 2 title \"∝ n^{{-1/2}}\"\n"
+      "  unset multiplot\n"
+      "  unset logscale\n",
+      gp_string(fmt::format("Convergence of mean R, μ={}, {}", mu, set_note(s))), top, bottom,
+      num(ref_hw), num(ref_n));
+  const std::string script = gp_preamble(f, 1000, 800) +
+                             "set xlabel \"n, number of realizations\"\nset autoscale xfix\n"
+                             "set key outside right top\n"
+                             "set lmargin at screen 0.1\nset rmargin at screen 0.8\n" +
+                             gp_render_loop(f, 1000, 800, body);
   detail::finish_figure(f, dat, script, render);
   return f;
 }
