@@ -7,6 +7,7 @@
 #include <limits>
 #include <span>
 
+#include "stickslip/detail/fast_math.hpp"
 #include "stickslip/random_stream.hpp"
 
 namespace stickslip {
@@ -24,7 +25,7 @@ class poisson_switches {
       left_ = 4;
     }
     const double u = random_stream::open_uniform(block_.v[4 - left_--]);
-    time_ += -std::log(u) * mean_wait_;
+    time_ += -detail::fm::log(u) * mean_wait_;  // the shared kernel (fast_math.hpp)
     return time_;
   }
 

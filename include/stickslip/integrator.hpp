@@ -32,6 +32,7 @@
 #include <limits>
 #include <numbers>
 
+#include "stickslip/detail/fast_math.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
@@ -76,19 +77,39 @@ inline constexpr double two_pi = 2.0 * std::numbers::pi;
 // root's half of the region (w y r > 0); there a small negative atan2 can only
 // be rounding at the root itself and means 0. (It replaces acos(v/B) and
 // atan2(w y, x') with fmod, and is better conditioned near grazing, B ~ |v|.)
-[[nodiscard]] inline double root_angle(double wy, double z, double v, double sigma,
-                                       double sqrt_disc) noexcept {
+// The two halves of root_angle, so that the lane engine can evaluate the
+// atan2 of several realizations in one vector call between them.
+struct root_angle_args {
+  double y, x;  // atan2(y, x)
+};
+[[nodiscard]] inline root_angle_args root_angle_arguments(double wy, double z, double v,
+                                                          double sigma, double sqrt_disc) noexcept {
   const double r = -sigma * sqrt_disc;
-  const double raw = std::atan2(z * r - wy * v, z * v + wy * r);
+  return {z * r - wy * v, z * v + wy * r};
+}
+[[nodiscard]] inline double root_angle_from_raw(double raw, double wy, double v, double sigma,
+                                                double sqrt_disc) noexcept {
+  const double r = -sigma * sqrt_disc;
   if (raw >= 0.0) return raw;
   if ((sigma * v <= 0.0 || wy * r > 0.0) && raw > -0.5 * std::numbers::pi) return 0.0;
   return raw + two_pi;
 }
+[[nodiscard]] inline double root_angle(double wy, double z, double v, double sigma,
+                                       double sqrt_disc) noexcept {
+  const auto q = root_angle_arguments(wy, z, v, sigma, sqrt_disc);
+  return root_angle_from_raw(fm::atan2(q.y, q.x), wy, v, sigma, sqrt_disc);
+}
 
 // Phase run of the mirror return (header comment): from x' = -v back to
 // x' = v on the orbit through w y. Precondition: wy != 0, z = -v != 0.
+[[nodiscard]] inline double mirror_return_ratio(double wy, double z) noexcept {
+  return std::abs(wy) / std::abs(z);
+}
+[[nodiscard]] inline double mirror_return_from_atan(double atan_ratio) noexcept {
+  return std::numbers::pi - 2.0 * atan_ratio;
+}
 [[nodiscard]] inline double mirror_return_angle(double wy, double z) noexcept {
-  return std::numbers::pi - 2.0 * std::atan(std::abs(wy) / std::abs(z));
+  return mirror_return_from_atan(fm::atan(mirror_return_ratio(wy, z)));
 }
 
 }  // namespace detail
@@ -219,7 +240,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     obs.on_segment(segment{mode::slip, t, std::min(t_next, ta), x, z, v, c, w});
     if (t_next >= ta) {
       const double dt = ta - t;
-      const double cs = std::cos(w * dt), sn = std::sin(w * dt);
+      const double cs = detail::fm::cos(w * dt), sn = detail::fm::sin(w * dt);
       x = c + y * cs + z / w * sn;
       z = z * cs - wy * sn;
       t = ta;
@@ -227,7 +248,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     }
     if (t_switch <= t_root) {  // belt switch during a slip
       const double dt = t_switch - t;
-      const double cs = std::cos(w * dt), sn = std::sin(w * dt);
+      const double cs = detail::fm::cos(w * dt), sn = detail::fm::sin(w * dt);
       x = c + y * cs + z / w * sn;
       z = z * cs - wy * sn;
       t = t_switch;

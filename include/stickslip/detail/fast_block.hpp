@@ -91,7 +91,14 @@ class streaming_statistics_observer : public observer_base {
   realization_record rec_;
 };
 
-// simulate_block with the fast engine. Pure: depends only on (spec, unit).
+// simulate_block with the previous, one-realization-at-a-time fast engine
+// (kept for tests and comparisons). Pure: depends only on (spec, unit).
 [[nodiscard]] block_result simulate_block_fast(const sweep_spec& s, const work_unit& u);
+
+// simulate_block with the lane engine (src/core/fast_lanes.cpp), what
+// sweep_engine::fast runs: several realizations per thread in lock step, with
+// their transcendentals evaluated as SIMD vectors. Bit-identical to both
+// engines above. Pure: depends only on (spec, unit).
+[[nodiscard]] block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u);
 
 }  // namespace stickslip::detail

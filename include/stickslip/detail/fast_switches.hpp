@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "stickslip/detail/fast_math.hpp"
 #include "stickslip/random_stream.hpp"
 
 namespace stickslip::detail {
@@ -32,7 +33,8 @@ class batched_poisson_switches {
       const auto blk = rs_.next_block();
       for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
     }
-    for (int j = 0; j < chunk; ++j) w[j] = -std::log(w[j]) * mean_wait_;
+    fm::log_inplace(w.data(), chunk);  // the same kernel as poisson_switches
+    for (int j = 0; j < chunk; ++j) w[j] = -w[j] * mean_wait_;
     for (int j = 0; j < chunk; ++j) times_[j] = time_ += w[j];  // same order as poisson_switches
     i_ = 0;
   }

@@ -1,0 +1,167 @@
+// The lane engine (detail::simulate_block_lanes, what sweep_engine::fast
+// runs: several realizations per thread in lock step, transcendentals as SIMD
+// vectors) against the reference engine and the one-at-a-time fast engine:
+// every statistic and record bit for bit, for any block size (including
+// blocks longer than the lane engine's reorder ring), seed, stiffness and
+// thread count; the same error when a realization exceeds max_events; and the
+// shared kernels (detail/fast_math.hpp) against libm.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+#include "stickslip/detail/fast_block.hpp"
+#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip {
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+bool same_bits(const mean_variance& a, const mean_variance& b) {
+  return a.count() == b.count() && same_bits(a.mean(), b.mean()) &&
+         same_bits(a.sum_sq_dev(), b.sum_sq_dev());
+}
+bool same_bits(const event_counts& a, const event_counts& b) {
+  return a.belt_switches == b.belt_switches && a.stick_onsets == b.stick_onsets &&
+         a.stick_breaks == b.stick_breaks && a.slip_reversals == b.slip_reversals;
+}
+bool same_bits(const point_statistics& a, const point_statistics& b) {
+  return same_bits(a.stick_fraction, b.stick_fraction) &&
+         same_bits(a.sticks_per_time, b.sticks_per_time) &&
+         same_bits(a.slips_per_time, b.slips_per_time) &&
+         same_bits(a.stick_duration, b.stick_duration) &&
+         same_bits(a.first_stick_duration, b.first_stick_duration) &&
+         same_bits(a.slip_duration, b.slip_duration) &&
+         a.stick_fraction_hist == b.stick_fraction_hist &&
+         a.stick_duration_hist == b.stick_duration_hist &&
+         a.first_stick_duration_hist == b.first_stick_duration_hist &&
+         a.slip_duration_hist == b.slip_duration_hist && a.realizations == b.realizations &&
+         a.no_stick == b.no_stick && a.first_stick_censored == b.first_stick_censored &&
+         same_bits(a.events, b.events);
+}
+bool same_bits(const realization_record& a, const realization_record& b) {
+  return a.realization == b.realization && same_bits(a.x0, b.x0) && same_bits(a.xdot0, b.xdot0) &&
+         a.belt_start == b.belt_start && a.sticks == b.sticks && a.slips == b.slips &&
+         same_bits(a.stick_fraction, b.stick_fraction) &&
+         same_bits(a.first_stick_start, b.first_stick_start) &&
+         same_bits(a.first_stick_duration, b.first_stick_duration) &&
+         a.first_stick_censored == b.first_stick_censored && same_bits(a.events, b.events);
+}
+
+sweep_spec study(double stiffness, std::uint64_t realizations, std::uint64_t block) {
+  sweep_spec s;
+  s.base.stiffness = stiffness;
+  s.base.window = 20.0;
+  s.realizations = realizations;
+  s.block_size = block;
+  s.seed = 2024;
+  s.keep_records = true;
+  s.axes = {{"lambda", {0.1, 0.9, 3.8, 30.0}}, {"mu", {0.5, 2.0, 7.0}}};
+  return s;
+}
+
+// Every unit of the spec, three engines, bit for bit.
+void expect_units_agree(const sweep_spec& s) {
+  for (std::uint64_t i = 0; i < unit_count(s); ++i) {
+    const auto u = unit_at(s, i);
+    const auto ref = simulate_block_reference(s, u);
+    const auto lanes = detail::simulate_block_lanes(s, u);
+    const auto fast = detail::simulate_block_fast(s, u);
+    EXPECT_TRUE(same_bits(ref.stats, lanes.stats)) << "unit " << i;
+    EXPECT_TRUE(same_bits(ref.stats, fast.stats)) << "unit " << i;
+    ASSERT_EQ(ref.records.size(), lanes.records.size());
+    for (std::size_t j = 0; j < ref.records.size(); ++j)
+      EXPECT_TRUE(same_bits(ref.records[j], lanes.records[j])) << "unit " << i << " record " << j;
+  }
+}
+
+TEST(FastPathLanes, BitwiseEqualPrintedStiffness) { expect_units_agree(study(4.0, 45, 11)); }
+TEST(FastPathLanes, BitwiseEqualStiffSpring) { expect_units_agree(study(40.0, 45, 11)); }
+TEST(FastPathLanes, BlockOfOneRealization) { expect_units_agree(study(4.0, 5, 1)); }
+TEST(FastPathLanes, FewerRealizationsThanLanes) { expect_units_agree(study(40.0, 3, 3)); }
+
+TEST(FastPathLanes, BlockLongerThanTheReorderRing) {
+  auto s = study(4.0, 150, 150);
+  s.axes = {{"lambda", {0.2, 30.0}}, {"mu", {1.0}}};
+  s.seed = 5;
+  s.initial.belt_start = -1;
+  expect_units_agree(s);
+}
+
+TEST(FastPathLanes, SweepIsBitIdenticalForAnyThreadCount) {
+  auto s = study(40.0, 40, 9);
+  s.engine = sweep_engine::reference;
+  const auto ref = run_sweep(s, 1);
+  s.engine = sweep_engine::fast;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const auto r = run_sweep(s, threads);
+    ASSERT_EQ(ref.points.size(), r.points.size());
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      EXPECT_TRUE(same_bits(ref.points[i].stats, r.points[i].stats)) << threads << " " << i;
+      ASSERT_EQ(ref.points[i].stats.convergence.size(), r.points[i].stats.convergence.size());
+      for (std::size_t j = 0; j < r.points[i].stats.convergence.size(); ++j)
+        EXPECT_TRUE(same_bits(ref.points[i].stats.convergence[j].R_mean,
+                              r.points[i].stats.convergence[j].R_mean));
+    }
+  }
+}
+
+TEST(FastPathLanes, WorkBoundErrorIsTheReferenceOne) {
+  auto s = study(4.0, 10, 10);
+  s.max_events = 40;  // lambda = 30, t_a = 20: ~600 switches per realization
+  const work_unit u{9, 0};
+  std::string ref_msg, lanes_msg;
+  try {
+    (void)simulate_block_reference(s, u);
+  } catch (const error& e) {
+    ref_msg = e.what();
+  }
+  try {
+    (void)detail::simulate_block_lanes(s, u);
+  } catch (const error& e) {
+    lanes_msg = e.what();
+  }
+  EXPECT_FALSE(ref_msg.empty());
+  EXPECT_EQ(ref_msg, lanes_msg);
+}
+
+// The shared kernels agree with glibc to a few ulp (Highway's bounds; atan2
+// adds one division) and are odd/even where the functions are.
+TEST(FastPathLanes, KernelsMatchLibm) {
+  auto ulps = [](double got, double want) {
+    return std::abs(got - want) / (std::numeric_limits<double>::epsilon() *
+                                   std::max(std::abs(want), std::numeric_limits<double>::min()));
+  };
+  double worst_log = 0, worst_atan = 0, worst_atan2 = 0, worst_sc = 0;
+  for (int i = 1; i < 20000; ++i) {
+    const double u = i / 20000.0;
+    worst_log = std::max(worst_log, ulps(detail::fm::log(u), std::log(u)));
+    const double q = std::tan(u * 0.5 * std::numbers::pi) * 0.999;
+    worst_atan = std::max(worst_atan, ulps(detail::fm::atan(q), std::atan(q)));
+    const double y = std::sin(i * 0.7) * 3.0, x = std::cos(i * 1.3) * 2.0;
+    worst_atan2 = std::max(worst_atan2, ulps(detail::fm::atan2(y, x), std::atan2(y, x)));
+    const double ph = i * 0.0157;  // up to ~314 = w t_a for k = 40, t_a = 50
+    worst_sc = std::max(worst_sc, std::abs(detail::fm::sin(ph) - std::sin(ph)) / 2.2e-16);
+    worst_sc = std::max(worst_sc, std::abs(detail::fm::cos(ph) - std::cos(ph)) / 2.2e-16);
+  }
+  EXPECT_LE(worst_log, 4.0);
+  EXPECT_LE(worst_atan, 4.0);
+  EXPECT_LE(worst_atan2, 6.0);
+  EXPECT_LE(worst_sc, 8.0);  // absolute, in units of 2^-52
+  EXPECT_EQ(detail::fm::atan2(0.0, -1.0), std::numbers::pi);
+  EXPECT_EQ(detail::fm::atan2(-0.0, -1.0), -std::numbers::pi);
+  EXPECT_EQ(detail::fm::atan2(1.0, 0.0), 0.5 * std::numbers::pi);
+  // Phases past Highway's range are reduced exactly first.
+  EXPECT_NEAR(detail::fm::sin(1e6), std::sin(1e6), 1e-9);
+  EXPECT_NEAR(detail::fm::cos(-1e6), std::cos(-1e6), 1e-9);
+}
+
+}  // namespace
+}  // namespace stickslip
