@@ -22,6 +22,8 @@
 #include "stickslip/serialize.hpp"
 
 namespace stickslip::app {
+[[noreturn]] void exit_after_failed_write(const error& e);  // cmd_sweep.cpp
+
 namespace {
 
 struct merge_options {
@@ -107,7 +109,12 @@ void run_merge(const merge_options& o) {
   if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
   auto rs = make_result_set(spec, std::move(merger));
   rs.elapsed_seconds = all.elapsed;
-  io::write_all(rs, *all.metadata, o.out_dir);
+  try {
+    io::write_all(rs, *all.metadata, o.out_dir);
+  } catch (const error& e) {
+    if (e.code() == exit_code::io_failure) exit_after_failed_write(e);  // see cmd_sweep.cpp
+    throw;
+  }
   fmt::print(stderr, "merged {} units from {} journals ({} grid points) -> {}\n",
              unit_count(spec), o.inputs.size(), point_count(spec), o.out_dir);
 }

@@ -19,12 +19,16 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 #include "commands.hpp"
 #include "model_flags.hpp"
@@ -113,6 +117,27 @@ void check_output_dir(const std::string& dir) {
   const auto st = std::filesystem::status(dir, ec);
   if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
     throw invalid_value("-o (output directory)", dir, "a directory or a path that does not exist");
+}
+
+// The results live in memory until they are written: per grid point the
+// accumulators, four histograms and one convergence entry per block, plus the
+// raw records when kept; the writers hold about as much again. An absurd
+// grid must be refused with a clear error before it exhausts memory
+// (std::bad_alloc or the OOM killer), so estimate and compare with the RAM.
+void check_result_memory(const sweep_spec& spec) {
+  const double points = static_cast<double>(point_count(spec));
+  const double per_point = 1024.0 + 4.0 * 8.0 * static_cast<double>(spec.histograms.bins) +
+                           40.0 * static_cast<double>(blocks_per_point(spec));
+  const double records = spec.keep_records ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
+  const double bytes = 2.0 * points * (per_point + records);
+  const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                     static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (ram > 0 && bytes > 0.8 * ram)
+    throw invalid_parameter(
+        "grid size (estimated memory for the results, GiB)", bytes / (1u << 30),
+        fmt::format("<= 80% of this machine's {:.1f} GiB: use fewer grid points or bins, or a "
+                    "larger --block-size (one convergence entry per block is kept)",
+                    ram / (1u << 30)));
 }
 
 // --shard i/n: this process runs the units whose index (point-major, as
@@ -242,11 +267,35 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan, const in
   return out;
 }
 
+}  // namespace
+
+// After a failed NetCDF write (disk full, `ulimit -f`), HDF5 1.10 keeps a
+// half-closed file and segfaults in its atexit teardown (H5_term_library ->
+// H5F__close_cb). The error is already known and the outputs are already
+// rolled back, so report it the way main() does and leave without running
+// the library's exit handlers: a clear error, not a crash.
+[[noreturn]] void exit_after_failed_write(const error& e) {
+  std::fflush(stdout);
+  fmt::print(stderr, "stickslip: error: {}\n", e.what());
+  std::fflush(stderr);
+  std::_Exit(static_cast<int>(e.code()));
+}
+
+namespace {
+
 // (c) All outputs, atomically, with the first run's metadata; then the
 // journal has served its purpose.
 void write_results(const result_set& rs, const io::run_metadata& meta, const std::string& dir,
                    bool keep_journal) {
-  io::write_all(rs, meta, dir);
+  try {
+    io::write_all(rs, meta, dir);
+  } catch (const error& e) {
+    if (e.code() == exit_code::io_failure)
+      exit_after_failed_write(error(e.code(), std::string(e.what()) +
+                                                  "; the finished units stay in the journal: "
+                                                  "rerun with --resume to write the outputs"));
+    throw;
+  }
   if (!keep_journal) io::remove_journal(dir);
 }
 
@@ -307,6 +356,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   bool dir_existed = false, journal_existed = false;
   try {
     spec = build_sweep_spec(cmd, o);
+    check_result_memory(spec);
     check_output_dir(o.out_dir);
     plan.dir = o.out_dir;
     plan.threads = threads;

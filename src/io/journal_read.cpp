@@ -21,18 +21,30 @@ namespace detail {
 namespace {
 
 // Reads a whole file; nullopt (with `problem`) if it cannot be read.
+// Only regular files are read (a directory or device named like a journal
+// file is damage, not data).
 std::optional<std::string> slurp(const std::string& path, std::string& problem) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    problem = "cannot open";
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    problem = "not a regular file";
     return std::nullopt;
   }
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) {
-    problem = "read error";
+  try {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      problem = "cannot open";
+      return std::nullopt;
+    }
+    std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) {
+      problem = "read error";
+      return std::nullopt;
+    }
+    return data;
+  } catch (const std::exception& e) {
+    problem = std::string("read error: ") + e.what();
     return std::nullopt;
   }
-  return data;
 }
 
 // magic, version, length, crc, payload -> the checked payload.

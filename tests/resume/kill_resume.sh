@@ -7,7 +7,7 @@
 # outputs.
 #   kill_resume.sh STICKSLIP WORKDIR [MIN_KILLS]
 set -uo pipefail
-bin=$1; work=$2; min_kills=${3:-5}
+bin=$(realpath "$1"); work=$2; min_kills=${3:-5}
 here=$(cd "$(dirname "$0")" && pwd)
 compare="/usr/bin/python3 $here/compare_outputs.py"
 rm -rf "$work"; mkdir -p "$work"
