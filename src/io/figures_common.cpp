@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 
 #include "atomic_file.hpp"
@@ -31,7 +32,12 @@ bool gnuplot_available() {
 bool run_gnuplot(const std::string& dir, const std::string& script) {
   const std::string cmd = "cd " + shell_quote(dir) + " && gnuplot " + shell_quote(script) +
                           " > " + shell_quote(script + ".log") + " 2>&1";
-  return std::system(cmd.c_str()) == 0;
+  const bool ok = std::system(cmd.c_str()) == 0;
+  // Keep the log only when gnuplot said something.
+  std::error_code ec;
+  const auto log = std::filesystem::path(dir) / (script + ".log");
+  if (ok && std::filesystem::file_size(log, ec) == 0 && !ec) std::filesystem::remove(log, ec);
+  return ok;
 }
 
 namespace detail {
