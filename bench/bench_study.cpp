@@ -6,7 +6,9 @@
 // medians). Release builds only.
 //
 //   stickslip_bench_study [--k 4] [--threads 2] [--realizations 2000]
-//                         [--engine fast|reference] [--no-floor]
+//                         [--engine fast|lanes|scalar|reference] [--no-floor]
+//   fast = the default variant of sweep_engine::fast; lanes / scalar pick the
+//   lane engine or the one-realization-at-a-time engine (same results).
 #include <sys/resource.h>
 
 #include <chrono>
@@ -17,6 +19,7 @@
 #include <string>
 
 #include "floor.hpp"
+#include "stickslip/detail/fast_block.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace {
@@ -58,13 +61,19 @@ int main(int argc, char** argv) {
     if (a == "--k" && has) k = std::atof(argv[++i]);
     else if (a == "--threads" && has) threads = static_cast<unsigned>(std::atoi(argv[++i]));
     else if (a == "--realizations" && has) realizations = std::strtoull(argv[++i], nullptr, 10);
-    else if (a == "--engine" && has) engine = std::strcmp(argv[++i], "reference") == 0
-                                                  ? stickslip::sweep_engine::reference
-                                                  : stickslip::sweep_engine::fast;
+    else if (a == "--engine" && has) {
+      const std::string e = argv[++i];
+      engine = e == "reference" ? stickslip::sweep_engine::reference
+                                : stickslip::sweep_engine::fast;
+      // fast = the default fast variant; lanes / scalar pick one explicitly.
+      if (e == "lanes") stickslip::detail::set_fast_variant(stickslip::detail::fast_variant::lanes);
+      if (e == "scalar")
+        stickslip::detail::set_fast_variant(stickslip::detail::fast_variant::one_at_a_time);
+    }
     else if (a == "--no-floor") floor = false;
     else {
       std::fprintf(stderr, "usage: %s [--k K] [--threads N] [--realizations R] "
-                   "[--engine fast|reference] [--no-floor]\n", argv[0]);
+                   "[--engine fast|lanes|scalar|reference] [--no-floor]\n", argv[0]);
       return 2;
     }
   }
@@ -78,7 +87,11 @@ int main(int argc, char** argv) {
   for (const auto& p : rs.points) ev += p.stats.events;
   const double wall = rs.elapsed_seconds;
   const double n_real = static_cast<double>(s.realizations) * static_cast<double>(rs.points.size());
-  std::printf("k=%g threads=%u engine=%s\n", k, threads, stickslip::to_string(engine));
+  std::printf("k=%g threads=%u engine=%s%s\n", k, threads, stickslip::to_string(engine),
+              engine == stickslip::sweep_engine::reference ? ""
+              : stickslip::detail::get_fast_variant() == stickslip::detail::fast_variant::lanes
+                  ? " (lanes)"
+                  : " (one realization at a time)");
   std::printf("study_seconds=%.4f\nstudy_cpu_seconds=%.4f\n", wall, cpu);
   std::printf("realizations=%.0f\nrealizations_per_s=%.4g\n", n_real, n_real / wall);
   std::printf("events=%llu\nevents_per_s=%.4g\n", static_cast<unsigned long long>(ev.total()),

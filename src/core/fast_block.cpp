@@ -2,6 +2,7 @@
 #include "stickslip/detail/fast_block.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 #include "stickslip/detail/fast_switches.hpp"
 #include "stickslip/initial_conditions.hpp"
@@ -9,6 +10,12 @@
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::detail {
+
+namespace {
+std::atomic<fast_variant> g_variant{fast_variant::one_at_a_time};
+}
+void set_fast_variant(fast_variant v) noexcept { g_variant.store(v, std::memory_order_relaxed); }
+fast_variant get_fast_variant() noexcept { return g_variant.load(std::memory_order_relaxed); }
 
 block_result simulate_block_fast(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);

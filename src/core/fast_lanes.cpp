@@ -27,6 +27,7 @@
 // reference engine, which throws the same error the reference would.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <limits>
 #include <numbers>
@@ -47,7 +48,10 @@ namespace {
 namespace hn = hwy::HWY_NAMESPACE;
 using simd::dtag;
 
-constexpr int lanes = 4;        // realizations in flight per thread
+using vec = hn::Vec<dtag>;
+constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 4 with AVX2
+constexpr int groups = 4;                          // independent vectors per round
+constexpr int lanes = groups * static_cast<int>(N);  // realizations in flight per thread
 constexpr std::size_t ring = 64;  // finished realizations waiting for their turn
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -88,23 +92,18 @@ class lane_switches {
   HWY_ALIGN double times_[chunk] = {};
 };
 
-enum class root_kind : unsigned char { none, mirror, general, after_reversal };
 
-struct lane_state {
-  bool active = false;
-  std::uint64_t r = 0;
-  realization_observer* obs = nullptr;
-  double t = 0, x = 0, z = 0, v = 0, t_switch = 0, sigma = 1;
-  mode m = mode::slip;
-  bool grazing = false, after_reversal = false, mirror = false;
-  event_counts counts;
-  std::int64_t steps = 0;
-  episode ep{};
-  lane_switches sw;
-  // The slip event being evaluated this round.
-  bool pending = false;
-  root_kind kind = root_kind::none;
-  double c = 0, y = 0, wy = 0, disc = 0, sq = 0, dtheta = 0;
+// Event codes of one round (what the vector step decided for a lane).
+enum : int {
+  ev_none = 0,    // lane idle this round
+  ev_stick_ta,    // stick runs to t_a: realization ends
+  ev_stick_sw,    // belt switch ends the stick (mirror slip follows)
+  ev_stick_brk,   // stick breaks at the band edge (grazing orbit follows)
+  ev_slip_ta,     // slip runs to t_a: realization ends
+  ev_slip_sw,     // belt switch during the slip
+  ev_slip_onset,  // x' = v inside the band: a stick starts
+  ev_slip_edge,   // x' = v exactly on the outward edge: grazing, no stick
+  ev_slip_rev,    // x' = v outside the band: slip reversal
 };
 
 class lane_engine {
@@ -118,92 +117,70 @@ class lane_engine {
     pool_.reserve(n);
     for (std::size_t i = 0; i < n; ++i) pool_.emplace_back(p.window);
     done_.assign(n, 0);
+    for (int l = 0; l < lanes; ++l) {
+      t_[l] = x_[l] = z_[l] = tsw_[l] = 0.0;
+      v_[l] = sig_[l] = 1.0;
+      stk_[l] = grz_[l] = mir_[l] = arv_[l] = run_[l] = 0.0;
+      code_[l] = ev_none;
+    }
   }
 
   void run() {
     const dtag d;
-    constexpr std::size_t N = lanes;
-    HWY_ALIGN double at_in[N], at_out[N], a2y[N], a2x[N], a2_out[N], ph[N], sn[N], cs[N];
     while (true) {
       bool any = false;
-      for (int l = 0; l < lanes; ++l) {
-        auto& L = lanes_[l];
-        prepare(L);
-        if (!L.pending) {
-          at_in[l] = 0.0, a2y[l] = 0.0, a2x[l] = 1.0, ph[l] = 0.0;
-          continue;
-        }
-        any = true;
-        at_in[l] = L.kind == root_kind::mirror ? mirror_return_ratio(L.wy, L.z) : 0.0;
-        if (L.kind == root_kind::general) {
-          const auto q = root_angle_arguments(L.wy, L.z, L.v, L.sigma, L.sq);
-          a2y[l] = q.y, a2x[l] = q.x;
-        } else {
-          a2y[l] = 0.0, a2x[l] = 1.0;
-        }
-        ph[l] = fm::reduce_phase(w_ * (std::min(L.t_switch, ta_) - L.t));
-      }
+      for (int l = 0; l < lanes; ++l) any |= prepare(l);
       if (!any) break;
-      for (std::size_t j = 0; j < N; j += hn::Lanes(d)) {
-        hn::Store(simd::atan(d, hn::Load(d, at_in + j)), d, at_out + j);
-        hn::Store(simd::atan2(d, hn::Load(d, a2y + j), hn::Load(d, a2x + j)), d, a2_out + j);
-        const auto u = hn::Load(d, ph + j);
-        hn::Store(simd::sin(d, u), d, sn + j);
-        hn::Store(simd::cos(d, u), d, cs + j);
-      }
-      for (int l = 0; l < lanes; ++l) {
-        auto& L = lanes_[l];
-        if (L.pending) finish_slip(L, at_out[l], a2_out[l], sn[l], cs[l]);
-      }
+      vector_step(d);
+      side_effects();
     }
   }
 
  private:
   // ---- realization start and end ----
-  void start(lane_state& L, std::uint64_t r) {
+  void start(int l, std::uint64_t r) {
     const auto ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
-    L.sw.reset(p_.switch_rate, s_.seed, key_, r);
-    L.r = r;
-    L.obs = &pool_[(r - first_) % pool_.size()];
-    L.obs->reset(r, ic.position, ic.velocity, ic.belt_direction);
-    L.active = true;
-    L.counts = event_counts{};
-    L.steps = 0;
+    sw_[l].reset(p_.switch_rate, s_.seed, key_, r);
+    r_[l] = r;
+    obs_[l] = &pool_[(r - first_) % pool_.size()];
+    obs_[l]->reset(r, ic.position, ic.velocity, ic.belt_direction);
+    active_[l] = true;
+    counts_[l] = event_counts{};
+    steps_[l] = 0;
     // simulate(): initial state and mode.
     const double a = a_, V = V_;
-    L.t = 0.0, L.x = ic.position, L.z = ic.velocity;
-    L.v = ic.belt_direction >= 0 ? V : -V;
-    L.t_switch = L.sw.next();
-    L.sigma = 1.0;
-    L.grazing = L.after_reversal = L.mirror = false;
-    const double x = L.x, z = L.z, v = L.v;
+    const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
+    t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
+    tsw_[l] = sw_[l].next();
+    double sigma = 1.0;
+    bool stick = false, grazing = false, after_reversal = false;
     const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
     if (z == v && std::abs(x) <= a && !on_outward_edge) {
-      L.m = mode::stick;
+      stick = true;
     } else if (z == v && std::abs(x) <= a) {
-      L.m = mode::slip;
-      L.sigma = v > 0 ? 1.0 : -1.0;
-      L.grazing = true;
+      sigma = v > 0 ? 1.0 : -1.0;
+      grazing = true;
     } else if (z == v) {
-      L.m = mode::slip;
-      L.sigma = x > 0 ? 1.0 : -1.0;
-      L.after_reversal = true;
+      sigma = x > 0 ? 1.0 : -1.0;
+      after_reversal = true;
     } else {
-      L.m = mode::slip;
-      L.sigma = v > z ? 1.0 : -1.0;
+      sigma = v > z ? 1.0 : -1.0;
     }
-    L.ep = episode{L.m, 0.0, 0.0, L.x, L.v, false};
+    sig_[l] = sigma;
+    stk_[l] = stick ? 1.0 : 0.0;
+    grz_[l] = grazing ? 1.0 : 0.0;
+    arv_[l] = after_reversal ? 1.0 : 0.0;
+    mir_[l] = 0.0;
+    ep_kind_[l] = stick ? mode::stick : mode::slip;
+    ep_start_[l] = 0.0;
   }
 
-  void finish_realization(lane_state& L) {
-    L.ep.end = ta_;
-    L.ep.censored = true;
-    L.obs->on_episode(L.ep);
-    L.obs->finish();
-    L.obs->record().events = L.counts;
-    L.active = false;
-    L.pending = false;
-    done_[(L.r - first_) % pool_.size()] = 1;
+  void finish_realization(int l) {
+    obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, 0.0, 0.0, true});
+    obs_[l]->finish();
+    obs_[l]->record().events = counts_[l];
+    active_[l] = false;
+    done_[(r_[l] - first_) % pool_.size()] = 1;
     flush();
   }
 
@@ -220,171 +197,313 @@ class lane_engine {
     }
   }
 
-  void close_episode(lane_state& L, double when, mode next_mode) {
-    L.ep.end = when;
-    if (L.ep.end > L.ep.start) L.obs->on_episode(L.ep);
-    L.ep = episode{next_mode, when, 0.0, L.x, L.v, false};
+  // simulate()'s close_episode: only kind, start, end and censored matter to
+  // realization_observer.
+  void close_episode(int l, double when, mode next_mode) {
+    if (when > ep_start_[l]) obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], when, 0.0, 0.0, false});
+    ep_kind_[l] = next_mode;
+    ep_start_[l] = when;
   }
 
-  void resolve_at_contact(lane_state& L, double from_sigma) {
-    const double a = a_;
-    const bool inside = from_sigma > 0 ? L.x >= -a : L.x <= a;
-    if (inside) {
-      L.x = std::clamp(L.x, -a, a);
-      L.m = mode::stick;
-    } else {
-      L.m = mode::slip;
-      L.sigma = -from_sigma;
-      L.after_reversal = true;
-    }
+  void count_step(int l) {
+    if (++steps_[l] > s_.max_events) throw bound_exceeded{};
   }
 
-  // ---- round, step 1: stick events, then the slip event's arguments ----
-  void prepare(lane_state& L) {
-    L.pending = false;
+  // Before the vector step: start realizations in idle lanes and run the
+  // rare slips that start at a reversal (acos, scalar) until every active
+  // lane has an event the vector step handles. Returns whether the lane runs.
+  bool prepare(int l) {
+    run_[l] = 0.0;
     while (true) {
-      if (!L.active) {
-        if (next_ >= last_ || next_ - flush_ >= pool_.size()) return;
-        start(L, next_++);
+      if (!active_[l]) {
+        if (next_ >= last_ || next_ - flush_ >= pool_.size()) return false;
+        start(l, next_++);
       }
-      if (++L.steps > s_.max_events) throw bound_exceeded{};
-      if (L.m == mode::stick) {
-        stick_event(L);
-        continue;
-      }
-      prepare_slip(L);
-      return;
+      count_step(l);
+      if (arv_[l] == 0.0) break;
+      scalar_reversal_slip(l);
     }
+    run_[l] = 1.0;
+    return true;
   }
 
-  void stick_event(lane_state& L) {
-    const double a = a_, V = V_, ta = ta_;
-    const double s = L.v > 0 ? 1.0 : -1.0;
-    const double t_edge = L.t + (a - s * L.x) / V;
-    const double t_next = std::min(t_edge, L.t_switch);
-    if (t_next >= ta) {
-      L.x += L.v * (ta - L.t);
-      L.t = ta;
-      finish_realization(L);
-      return;
-    }
-    if (L.t_switch <= t_edge) {  // belt switch ends the stick
-      L.x = std::clamp(L.x + L.v * (L.t_switch - L.t), -a, a);
-      L.z = L.v;
-      L.t = L.t_switch;
-      L.v = -L.v;
-      L.sigma = -s;
-      L.m = mode::slip;
-      L.grazing = L.after_reversal = false;
-      L.mirror = true;
-      ++L.counts.belt_switches;
-      close_episode(L, L.t, mode::slip);
-      L.t_switch = L.sw.next();
-    } else {  // stick breaks at the band edge; then the grazing orbit
-      L.x = s * a;
-      L.z = L.v;
-      L.t = t_edge;
-      L.sigma = s;
-      L.m = mode::slip;
-      L.grazing = true;
-      L.after_reversal = L.mirror = false;
-      ++L.counts.stick_breaks;
-      close_episode(L, L.t, mode::slip);
-    }
-  }
-
-  void prepare_slip(lane_state& L) {
-    const double a = a_, w = w_;
-    L.pending = true;
-    L.c = L.sigma * a;
-    L.y = L.x - L.c;
-    L.wy = w * L.y;
-    L.disc = L.wy * L.wy + (L.z - L.v) * (L.z + L.v);
-    L.kind = root_kind::none;
-    if (!L.grazing && L.disc > 0.0) {
-      if (L.mirror) {
-        L.kind = root_kind::mirror;
-      } else if (L.after_reversal) {
-        L.kind = root_kind::after_reversal;
-        const double B = std::sqrt(L.wy * L.wy + L.z * L.z);
-        const double alpha = std::acos(std::clamp(L.v / B, -1.0, 1.0));
-        L.dtheta = L.sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
-      } else {
-        L.kind = root_kind::general;
-        L.sq = std::sqrt(L.disc);
-      }
-    }
-  }
-
-  // ---- round, step 3: the rest of simulate()'s slip branch ----
-  void finish_slip(lane_state& L, double atan_ratio, double raw, double sn, double cs) {
+  // simulate()'s slip branch for a slip that starts on a root after a
+  // reversal (after_reversal): all of the sigma region is left to run.
+  void scalar_reversal_slip(int l) {
     const double a = a_, w = w_, ta = ta_;
-    const double c = L.c, y = L.y, wy = L.wy, disc = L.disc;
+    double t = t_[l], x = x_[l], z = z_[l], v = v_[l], sigma = sig_[l];
+    const double c = sigma * a;
+    const double y = x - c;
+    const double wy = w * y;
+    const double disc = wy * wy + (z - v) * (z + v);
     double t_root = inf;
-    if (L.kind != root_kind::none) {
-      double dtheta;
-      if (L.kind == root_kind::mirror) {
-        dtheta = mirror_return_from_atan(atan_ratio);
-      } else if (L.kind == root_kind::after_reversal) {
-        dtheta = L.dtheta;
-      } else {
-        dtheta = root_angle_from_raw(raw, wy, L.v, L.sigma, L.sq);
-      }
-      t_root = L.t + dtheta / w;
+    if (grz_[l] == 0.0 && disc > 0.0) {
+      const double B = std::sqrt(wy * wy + z * z);
+      const double alpha = std::acos(std::clamp(v / B, -1.0, 1.0));
+      const double dtheta = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+      t_root = t + dtheta / w;
     }
-    const double t_next = std::min(t_root, L.t_switch);
+    const double t_next = std::min(t_root, tsw_[l]);
+    arv_[l] = 0.0;
     if (t_next >= ta) {
-      const double z = L.z;
-      L.x = c + y * cs + z / w * sn;
-      L.z = z * cs - wy * sn;
-      L.t = ta;
-      finish_realization(L);
+      finish_realization(l);
       return;
     }
-    L.pending = false;
-    if (L.t_switch <= t_root) {  // belt switch during a slip
-      const double z = L.z;
-      L.x = c + y * cs + z / w * sn;
-      L.z = z * cs - wy * sn;
-      L.t = L.t_switch;
-      L.v = -L.v;
-      L.grazing = L.after_reversal = L.mirror = false;
-      ++L.counts.belt_switches;
-      L.t_switch = L.sw.next();
-      if (L.z == L.v) {  // measure zero: landed exactly on relative rest
-        resolve_at_contact(L, L.x > 0 ? -1.0 : 1.0);
-        if (L.m == mode::stick && a - (L.v > 0 ? L.x : -L.x) <= 0.0) {
-          L.m = mode::slip;
-          L.sigma = L.v > 0 ? 1.0 : -1.0;
-          L.grazing = true;
-        } else if (L.m == mode::stick) {
-          ++L.counts.stick_onsets;
-          close_episode(L, L.t, mode::stick);
-        }
+    if (tsw_[l] <= t_root) {
+      const double dt = tsw_[l] - t;
+      const double cs = fm::cos(w * dt), sn = fm::sin(w * dt);
+      x_[l] = c + y * cs + z / w * sn;
+      z_[l] = z * cs - wy * sn;
+      t_[l] = tsw_[l];
+      v_[l] = -v;
+      grz_[l] = mir_[l] = 0.0;
+      ++counts_[l].belt_switches;
+      tsw_[l] = sw_[l].next();
+      if (z_[l] == v_[l]) {
+        contact_at_switch(l);
       } else {
-        L.sigma = L.v > L.z ? 1.0 : -1.0;
+        sig_[l] = v_[l] > z_[l] ? 1.0 : -1.0;
       }
       return;
     }
-    if (!L.mirror) L.x = c - L.sigma * std::sqrt(disc) / w;
-    L.z = L.v;
-    L.t = t_root;
-    const double from_sigma = L.sigma;
-    L.after_reversal = L.mirror = false;
-    resolve_at_contact(L, from_sigma);
-    if (L.m == mode::stick) {
-      const double s = L.v > 0 ? 1.0 : -1.0;
-      if (a - s * L.x <= 0.0) {  // onset exactly on the outward edge: zero-length stick
-        L.m = mode::slip;
-        L.sigma = s;
-        L.grazing = true;
-        return;
-      }
-      ++L.counts.stick_onsets;
-      close_episode(L, L.t, mode::stick);
-    } else {
-      ++L.counts.slip_reversals;
+    x = c - sigma * std::sqrt(disc) / w;
+    x_[l] = x;
+    z_[l] = v;
+    t_[l] = t_root;
+    root_contact(l, sigma);
+  }
+
+  // simulate()'s resolution at a root (x' = v), from the sigma of the slip.
+  void root_contact(int l, double from_sigma) {
+    const double a = a_;
+    mir_[l] = 0.0;
+    const bool inside = from_sigma > 0 ? x_[l] >= -a : x_[l] <= a;
+    if (!inside) {
+      sig_[l] = -from_sigma;
+      arv_[l] = 1.0;
+      ++counts_[l].slip_reversals;
+      return;
     }
+    x_[l] = std::clamp(x_[l], -a, a);
+    const double s = v_[l] > 0 ? 1.0 : -1.0;
+    if (a - s * x_[l] <= 0.0) {  // onset exactly on the outward edge: zero-length stick
+      sig_[l] = s;
+      grz_[l] = 1.0;
+      return;
+    }
+    stk_[l] = 1.0;
+    ++counts_[l].stick_onsets;
+    close_episode(l, t_[l], mode::stick);
+  }
+
+  // simulate(): a belt switch during a slip landed exactly on x' = v.
+  void contact_at_switch(int l) {
+    const double a = a_;
+    const double from_sigma = x_[l] > 0 ? -1.0 : 1.0;
+    const bool inside = from_sigma > 0 ? x_[l] >= -a : x_[l] <= a;
+    if (!inside) {
+      sig_[l] = -from_sigma;
+      arv_[l] = 1.0;
+      return;
+    }
+    x_[l] = std::clamp(x_[l], -a, a);
+    if (a - (v_[l] > 0 ? x_[l] : -x_[l]) <= 0.0) {
+      sig_[l] = v_[l] > 0 ? 1.0 : -1.0;
+      grz_[l] = 1.0;
+      return;
+    }
+    stk_[l] = 1.0;
+    ++counts_[l].stick_onsets;
+    close_episode(l, t_[l], mode::stick);
+  }
+
+  // ---- the vector step: one event for every lane ----
+  // Every expression is simulate()'s, operation for operation, lane-wise.
+  // The lanes form K independent vectors; each phase is written for all K
+  // before the next phase starts, so that the K dependency chains (sqrt, the
+  // divisions, Atan, Sin/Cos) are in flight together instead of one after
+  // the other.
+  void vector_step(dtag d) {
+    using hn::Add, hn::Sub, hn::Mul, hn::Div, hn::Min, hn::Max, hn::IfThenElse, hn::Set;
+    using mask = hn::Mask<dtag>;
+    constexpr int K = groups;
+#define K_LOOP for (int k = 0; k < K; ++k)
+    const vec A = Set(d, a_), W = Set(d, w_), VV = Set(d, V_), TA = Set(d, ta_);
+    const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
+    const vec mA = hn::Neg(A);
+    vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], c[K], y[K], wy[K], disc[K], sq[K];
+    mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K];
+    K_LOOP {
+      const std::size_t j = static_cast<std::size_t>(k) * N;
+      t[k] = hn::Load(d, t_ + j), x[k] = hn::Load(d, x_ + j), z[k] = hn::Load(d, z_ + j);
+      v[k] = hn::Load(d, v_ + j), tsw[k] = hn::Load(d, tsw_ + j), sig[k] = hn::Load(d, sig_ + j);
+      stick[k] = hn::Gt(hn::Load(d, stk_ + j), half);
+      graz[k] = hn::Gt(hn::Load(d, grz_ + j), half);
+      mirr[k] = hn::Gt(hn::Load(d, mir_ + j), half);
+      run[k] = hn::Gt(hn::Load(d, run_ + j), half);
+    }
+    K_LOOP {
+      s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
+      // stick
+      t_edge[k] = Add(t[k], Div(Sub(A, Mul(s[k], x[k])), VV));
+      st_ta[k] = hn::Ge(Min(t_edge[k], tsw[k]), TA);
+      st_sw[k] = hn::AndNot(st_ta[k], hn::Le(tsw[k], t_edge[k]));
+      // slip
+      c[k] = Mul(sig[k], A);
+      y[k] = Sub(x[k], c[k]);
+      wy[k] = Mul(W, y[k]);
+      disc[k] = Add(Mul(wy[k], wy[k]), Mul(Sub(z[k], v[k]), Add(z[k], v[k])));
+      has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(disc[k], zero));
+      sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], disc[k]));
+    }
+    vec r[K], ay[K], ax[K], at[K];
+    K_LOOP {
+      r[k] = Mul(hn::Neg(sig[k]), sq[k]);
+      ay[k] = Sub(Mul(z[k], r[k]), Mul(wy[k], v[k]));
+      ax[k] = Add(Mul(z[k], v[k]), Mul(wy[k], r[k]));
+      const vec q = IfThenElse(mirr[k], Div(hn::Abs(wy[k]), hn::Abs(z[k])),
+                               simd::atan2_ratio(ay[k], ax[k]));
+      at[k] = IfThenElse(has_root[k], q, zero);
+    }
+    K_LOOP at[k] = simd::atan(d, at[k]);
+    vec t_root[K];
+    mask sl_ta[K], sl_sw[K], sl_root[K];
+    bool any_rot = false;
+    K_LOOP {
+      const vec raw = simd::atan2_finish(d, at[k], ay[k], ax[k]);
+      const mask neg_ok =
+          hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(wy[k], r[k]), zero)),
+                  hn::Gt(raw, Set(d, -0.5 * std::numbers::pi)));
+      const vec dt_gen = IfThenElse(hn::Ge(raw, zero), raw,
+                                    IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
+      const vec dt_mir = Sub(Set(d, std::numbers::pi), Mul(Set(d, 2.0), at[k]));
+      const vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
+      t_root[k] = IfThenElse(has_root[k], Add(t[k], Div(dtheta, W)), Set(d, inf));
+      sl_ta[k] = hn::Ge(Min(t_root[k], tsw[k]), TA);
+      sl_sw[k] = hn::AndNot(sl_ta[k], hn::Le(tsw[k], t_root[k]));
+      sl_root[k] = hn::Not(hn::Or(sl_ta[k], sl_sw[k]));
+      any_rot |= !hn::AllFalse(d, hn::AndNot(stick[k], hn::AndNot(sl_root[k], run[k])));
+    }
+    // slip: the rotation to a switch or to t_a
+    vec xr[K], zr[K];
+    K_LOOP xr[k] = x[k], zr[k] = z[k];
+    if (any_rot) {
+      vec u[K], sn[K], cs[K];
+      K_LOOP {
+        u[k] = Mul(W, Sub(Min(tsw[k], TA), t[k]));
+        if (!hn::AllFalse(d, hn::Gt(hn::Abs(u[k]), Set(d, fm::max_direct_phase)))) {
+          HWY_ALIGN double ph[hn::MaxLanes(dtag())];
+          hn::Store(u[k], d, ph);
+          for (std::size_t i = 0; i < N; ++i) ph[i] = fm::reduce_phase(ph[i]);
+          u[k] = hn::Load(d, ph);
+        }
+      }
+      K_LOOP sn[k] = simd::sin(d, u[k]);
+      K_LOOP cs[k] = simd::cos(d, u[k]);
+      K_LOOP {
+        xr[k] = Add(Add(c[k], Mul(y[k], cs[k])), Mul(Div(z[k], W), sn[k]));
+        zr[k] = Sub(Mul(z[k], cs[k]), Mul(wy[k], sn[k]));
+      }
+    }
+    K_LOOP {
+      const std::size_t j = static_cast<std::size_t>(k) * N;
+      // slip: the root, and its resolution
+      const vec x_root = IfThenElse(mirr[k], x[k], Sub(c[k], Div(Mul(sig[k], sq[k]), W)));
+      const mask in_m = hn::MaskFromVec(IfThenElse(hn::Gt(sig[k], zero),
+                                                   hn::VecFromMask(d, hn::Ge(x_root, mA)),
+                                                   hn::VecFromMask(d, hn::Le(x_root, A))));
+      const vec x_cl = Min(Max(x_root, mA), A);
+      const mask on_edge = hn::Le(Sub(A, Mul(s[k], x_cl)), zero);
+      const mask onset = hn::AndNot(on_edge, in_m);
+      const mask edge = hn::And(on_edge, in_m);
+      const mask ssw = sl_sw[k], sroot = sl_root[k];
+
+      // new state, slip lanes
+      const vec vn = hn::Neg(v[k]);
+      vec nx = IfThenElse(sroot, IfThenElse(in_m, x_cl, x_root), xr[k]);
+      vec nz = IfThenElse(sroot, v[k], zr[k]);
+      vec nt = IfThenElse(sroot, t_root[k], IfThenElse(ssw, tsw[k], TA));
+      vec nv = IfThenElse(ssw, vn, v[k]);
+      vec nsig = IfThenElse(
+          ssw, IfThenElse(hn::Gt(vn, zr[k]), one, m_one),
+          IfThenElse(sroot, IfThenElse(in_m, IfThenElse(edge, s[k], sig[k]), hn::Neg(sig[k])),
+                     sig[k]));
+      vec nstk = IfThenElse(hn::And(sroot, onset), one, zero);
+      vec ngrz = IfThenElse(ssw, zero,
+                            IfThenElse(hn::And(sroot, edge), one, IfThenElse(graz[k], one, zero)));
+      vec nmir = IfThenElse(hn::Or(ssw, sroot), zero, IfThenElse(mirr[k], one, zero));
+      vec narv = IfThenElse(hn::AndNot(in_m, sroot), one, zero);
+      vec code = IfThenElse(sl_ta[k], Set(d, ev_slip_ta),
+                 IfThenElse(ssw, Set(d, ev_slip_sw),
+                 IfThenElse(onset, Set(d, ev_slip_onset),
+                 IfThenElse(edge, Set(d, ev_slip_edge), Set(d, ev_slip_rev)))));
+
+      // stick lanes
+      const mask stk = stick[k], sta = st_ta[k], ssw2 = st_sw[k];
+      const mask st_brk = hn::Not(hn::Or(sta, ssw2));
+      const vec x_sw = Min(Max(Add(x[k], Mul(v[k], Sub(tsw[k], t[k]))), mA), A);
+      nx = IfThenElse(stk, IfThenElse(ssw2, x_sw, IfThenElse(st_brk, Mul(s[k], A), x[k])), nx);
+      nz = IfThenElse(stk, IfThenElse(sta, z[k], v[k]), nz);
+      nt = IfThenElse(stk, IfThenElse(ssw2, tsw[k], IfThenElse(st_brk, t_edge[k], TA)), nt);
+      nv = IfThenElse(stk, IfThenElse(ssw2, vn, v[k]), nv);
+      nsig = IfThenElse(stk, IfThenElse(ssw2, hn::Neg(s[k]), IfThenElse(st_brk, s[k], sig[k])), nsig);
+      nstk = IfThenElse(stk, IfThenElse(sta, one, zero), nstk);
+      ngrz = IfThenElse(stk, IfThenElse(st_brk, one, zero), ngrz);
+      nmir = IfThenElse(stk, IfThenElse(ssw2, one, zero), nmir);
+      narv = IfThenElse(stk, zero, narv);
+      code = IfThenElse(stk, IfThenElse(sta, Set(d, ev_stick_ta),
+                                        IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),
+                        code);
+
+      // idle lanes keep their state
+      const mask rn = run[k];
+      hn::Store(IfThenElse(rn, nt, t[k]), d, t_ + j);
+      hn::Store(IfThenElse(rn, nx, x[k]), d, x_ + j);
+      hn::Store(IfThenElse(rn, nz, z[k]), d, z_ + j);
+      hn::Store(IfThenElse(rn, nv, v[k]), d, v_ + j);
+      hn::Store(IfThenElse(rn, nsig, sig[k]), d, sig_ + j);
+      hn::Store(IfThenElse(rn, nstk, hn::Load(d, stk_ + j)), d, stk_ + j);
+      hn::Store(IfThenElse(rn, ngrz, hn::Load(d, grz_ + j)), d, grz_ + j);
+      hn::Store(IfThenElse(rn, nmir, hn::Load(d, mir_ + j)), d, mir_ + j);
+      hn::Store(IfThenElse(rn, narv, hn::Load(d, arv_ + j)), d, arv_ + j);
+      hn::Store(IfThenElse(rn, code, zero), d, code_ + j);
+    }
+#undef K_LOOP
+  }
+
+  // ---- after the vector step: counts, episodes, switch draws ----
+  // Lanes are grouped by what they have to do (bit masks), so that the
+  // branches go per group, not per lane through an unpredictable 9-way jump.
+  void side_effects() {
+    unsigned pop = 0, close_stick = 0, close_slip = 0, fin = 0;
+    for (int l = 0; l < lanes; ++l) {
+      const int c = static_cast<int>(code_[l]);
+      const unsigned bit = 1u << l;
+      const bool ssw = c == ev_stick_sw, lsw = c == ev_slip_sw;
+      pop |= (ssw || lsw) ? bit : 0u;
+      close_stick |= (ssw || c == ev_stick_brk) ? bit : 0u;
+      close_slip |= c == ev_slip_onset ? bit : 0u;
+      fin |= (c == ev_stick_ta || c == ev_slip_ta) ? bit : 0u;
+      auto& n = counts_[l];
+      n.belt_switches += static_cast<std::uint64_t>(ssw || lsw);
+      n.stick_breaks += static_cast<std::uint64_t>(c == ev_stick_brk);
+      n.stick_onsets += static_cast<std::uint64_t>(c == ev_slip_onset);
+      n.slip_reversals += static_cast<std::uint64_t>(c == ev_slip_rev);
+    }
+    for (unsigned m = close_stick; m != 0; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      close_episode(l, t_[l], mode::slip);
+    }
+    for (unsigned m = close_slip; m != 0; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      close_episode(l, t_[l], mode::stick);
+    }
+    for (unsigned m = pop; m != 0; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      tsw_[l] = sw_[l].next();
+      if (z_[l] == v_[l] && stk_[l] == 0.0 && code_[l] == ev_slip_sw) contact_at_switch(l);
+    }
+    for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
   const sweep_spec& s_;
@@ -395,7 +514,18 @@ class lane_engine {
   std::uint64_t key_;
   std::vector<realization_observer> pool_;
   std::vector<unsigned char> done_;
-  std::array<lane_state, lanes> lanes_{};
+  // Lane state, one array per variable (structure of arrays): the vector
+  // step loads and stores whole vectors of it.
+  HWY_ALIGN double t_[lanes], x_[lanes], z_[lanes], v_[lanes], tsw_[lanes], sig_[lanes];
+  HWY_ALIGN double stk_[lanes], grz_[lanes], mir_[lanes], arv_[lanes], run_[lanes], code_[lanes];
+  bool active_[lanes] = {};
+  std::uint64_t r_[lanes] = {};
+  std::int64_t steps_[lanes] = {};
+  event_counts counts_[lanes];
+  double ep_start_[lanes] = {};
+  mode ep_kind_[lanes] = {};
+  realization_observer* obs_[lanes] = {};
+  lane_switches sw_[lanes];
 };
 
 }  // namespace

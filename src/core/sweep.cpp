@@ -98,8 +98,10 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
 }
 
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
-  return s.engine == sweep_engine::reference ? simulate_block_reference(s, u)
-                                             : detail::simulate_block_lanes(s, u);
+  if (s.engine == sweep_engine::reference) return simulate_block_reference(s, u);
+  return detail::get_fast_variant() == detail::fast_variant::lanes
+             ? detail::simulate_block_lanes(s, u)
+             : detail::simulate_block_fast(s, u);
 }
 
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {

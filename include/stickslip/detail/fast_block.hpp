@@ -95,6 +95,15 @@ class streaming_statistics_observer : public observer_base {
 // (kept for tests and comparisons). Pure: depends only on (spec, unit).
 [[nodiscard]] block_result simulate_block_fast(const sweep_spec& s, const work_unit& u);
 
+// Which implementation sweep_engine::fast runs. All give bit-identical
+// results (tests/unit/test_fast_path*.cpp), so this only changes speed; it is
+// process-wide and meant for benchmarks (bench_study --engine lanes).
+// Default: one_at_a_time, the faster one measured on the 2-core development
+// machine (docs/performance.md).
+enum class fast_variant : unsigned char { one_at_a_time, lanes };
+void set_fast_variant(fast_variant v) noexcept;
+[[nodiscard]] fast_variant get_fast_variant() noexcept;
+
 // simulate_block with the lane engine (src/core/fast_lanes.cpp), what
 // sweep_engine::fast runs: several realizations per thread in lock step, with
 // their transcendentals evaluated as SIMD vectors. Bit-identical to both

@@ -35,10 +35,11 @@ HWY_INLINE vec atan2(dtag d, vec y, vec x) {
 HWY_INLINE vec atan(dtag d, vec x) { return hn::Atan(d, x); }
 HWY_INLINE vec log(dtag d, vec x) { return hn::Log(d, x); }
 HWY_INLINE vec sin(dtag d, vec x) { return hn::Sin(d, x); }
-// cos(0) = 1 exactly (Highway's Cos reduces 0 by pi/2 and returns 1 - 1 ulp):
-// a rotation by a zero phase (a belt switch at t = 0) must be the identity.
+// cos(x) = 1 for |x| < 1e-8, where the correctly rounded value is 1
+// (Highway's Cos reduces by pi/2 and returns 1 - 1 ulp there): a rotation by
+// a zero phase (a belt switch at t = 0) must be the identity.
 HWY_INLINE vec cos(dtag d, vec x) {
-  return hn::IfThenElse(hn::Eq(x, hn::Zero(d)), hn::Set(d, 1.0), hn::Cos(d, x));
+  return hn::IfThenElse(hn::Lt(hn::Abs(x), hn::Set(d, 1e-8)), hn::Set(d, 1.0), hn::Cos(d, x));
 }
 
 }  // namespace stickslip::detail::simd
