@@ -108,6 +108,11 @@ void finish_figure(figure& f, const std::string& dat, const std::string& script,
   if (!dat.empty()) write_text_file(f.dir + "/" + f.stem + ".dat", dat);
   write_text_file(f.script(), script);
   f.rendered = render && run_gnuplot(f.dir, f.stem + ".gp");
+  if (!f.rendered) {  // no stale images from an earlier run beside new data
+    std::error_code ec;
+    std::filesystem::remove(f.png(), ec);
+    std::filesystem::remove(f.svg(), ec);
+  }
 }
 
 double nearest_mu(const result_set& rs, double mu) {

@@ -75,6 +75,16 @@ std::string relative_to(const std::string& path, const std::string& base) {
   return fs::relative(fs::path(path), fs::path(base)).generic_string();
 }
 
+void add_figure(document& d, const figure& f, const std::string& dir) {
+  if (f.rendered) {
+    d.image(f.title, relative_to(f.png(), dir), f.caption);
+    return;
+  }
+  d.paragraph(fmt::format("**{}** (not rendered: gnuplot was not run; `cd {} && gnuplot "
+                          "{}.gp` draws it) {}",
+                          f.title, relative_to(f.dir, dir), f.stem, f.caption));
+}
+
 // ---------------------------------------------------------------- sections --
 
 void claims_section(document& d, const study_result& st) {
@@ -155,7 +165,7 @@ void candidates_section(document& d, const study_result& st, const std::vector<f
   d.paragraph("Verdict of every claim under every candidate:");
   d.table(verdicts);
   for (const auto& f : figs)
-    if (f.key == "candidates") d.image(f.title, relative_to(f.png(), dir), f.caption);
+    if (f.key == "candidates") add_figure(d, f, dir);
 
   // g = 9.81 against g = 10 at k = 40: do the maxima tell them apart?
   const set_study* g981 = nullptr;
@@ -207,7 +217,7 @@ void figures_section(document& d, const set_study& s, const std::vector<figure>&
                           prefix));
   for (const auto& f : figs)
     if (f.dir == dir + "/" + prefix || fs::path(f.dir) == fs::path(dir) / prefix)
-      d.image(f.title, relative_to(f.png(), dir), f.caption);
+      add_figure(d, f, dir);
 }
 
 void refinement_section(document& d, const study_result& st) {

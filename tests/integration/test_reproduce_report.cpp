@@ -244,6 +244,24 @@ TEST_F(ReproduceReport, PeaksCsvMatchesTheRefinement) {
   }
 }
 
+TEST_F(ReproduceReport, WithoutRenderingWritesScriptsAndNoStaleImages) {
+  // Render into a folder, then rewrite it without gnuplot: the old images
+  // must go, the scripts stay, and the report says how to draw them.
+  const auto other = *dir_ / "unrendered";
+  const char* argv[] = {"stickslip", "reproduce", "--no-figures"};
+  const auto meta = io::make_metadata(3, argv, "");
+  if (io::gnuplot_available()) (void)io::write_reproduction(*study_, meta, other.string(), true);
+  const auto files = io::write_reproduction(*study_, meta, other.string(), false);
+  EXPECT_FALSE(files.rendered);
+  EXPECT_TRUE(fs::exists(other / "figures/concluded/fig6b_stick_fraction.gp"));
+  EXPECT_TRUE(fs::exists(other / "figures/concluded/fig6b_stick_fraction.dat"));
+  EXPECT_FALSE(fs::exists(other / "figures/concluded/fig6b_stick_fraction.png"));
+  EXPECT_FALSE(fs::exists(other / "figures/concluded/fig6b_stick_fraction.svg"));
+  const auto md = slurp(other / "report.md");
+  EXPECT_NE(md.find("not rendered"), std::string::npos);
+  EXPECT_EQ(slurp(other / "report.html").find("data:image/png"), std::string::npos);
+}
+
 TEST(ReproduceFigures, SampledRealizationFollowsTheSegments) {
   sweep_spec spec;
   model_parameters p = spec.base;
