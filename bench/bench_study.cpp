@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
   unsigned threads = 2;
   std::uint64_t realizations = 2000;
   bool floor = true;
+  std::uint64_t block_size = 0;  // 0: the sweep's default (50)
   auto engine = stickslip::sweep_engine::fast;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -71,13 +72,15 @@ int main(int argc, char** argv) {
         stickslip::detail::set_fast_variant(stickslip::detail::fast_variant::one_at_a_time);
     }
     else if (a == "--no-floor") floor = false;
+    else if (a == "--block-size" && has) block_size = std::strtoull(argv[++i], nullptr, 10);
     else {
       std::fprintf(stderr, "usage: %s [--k K] [--threads N] [--realizations R] "
-                   "[--engine fast|lanes|scalar|reference] [--no-floor]\n", argv[0]);
+                   "[--engine fast|lanes|scalar|reference] [--block-size B] [--no-floor]\n", argv[0]);
       return 2;
     }
   }
   auto s = paper_study(k, realizations);
+  if (block_size > 0) s.block_size = block_size;
   s.engine = engine;
 
   const double c0 = cpu_seconds();

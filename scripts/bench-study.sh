@@ -6,6 +6,8 @@
 # scaling 1 -> 2 threads. Needs a Release build with benchmarks:
 #   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release && ninja -C build stickslip_bench_study
 # Usage: scripts/bench-study.sh [build-dir] [runs]   (default: build 5)
+# STUDY_ENGINE=fast|lanes|scalar|reference selects the engine (default fast,
+# i.e. sweep_engine::fast with its default variant; see bench_study.cpp).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-5}
@@ -18,12 +20,12 @@ median() { grep "^$1=" "$2" | cut -d= -f2 | sort -g | awk '{a[NR]=$1} END {print
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; load: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "runs per figure: $runs (median)"
+echo "runs per figure: $runs (median); engine: ${STUDY_ENGINE:-fast}"
 for k in 4 40; do
   for t in 2 1; do
     for ((i = 0; i < runs; ++i)); do
-      extra=()
-      [[ $t == 1 ]] && extra=(--no-floor)
+      extra=(--engine "${STUDY_ENGINE:-fast}")
+      [[ $t == 1 ]] && extra+=(--no-floor)
       "$exe" --k "$k" --threads "$t" "${extra[@]}" >> "$tmp/k$k-t$t"
     done
   done

@@ -12,7 +12,7 @@
 namespace stickslip::detail {
 
 namespace {
-std::atomic<fast_variant> g_variant{fast_variant::one_at_a_time};
+std::atomic<fast_variant> g_variant{fast_variant::lanes};
 }
 void set_fast_variant(fast_variant v) noexcept { g_variant.store(v, std::memory_order_relaxed); }
 fast_variant get_fast_variant() noexcept { return g_variant.load(std::memory_order_relaxed); }

@@ -108,9 +108,12 @@ enum : int {
 
 class lane_engine {
  public:
-  lane_engine(const sweep_spec& s, const model_parameters& p, block_result& out,
-              std::uint64_t first, std::uint64_t last)
-      : s_(s), p_(p), out_(out), first_(first), last_(last), next_(first), flush_(first),
+  // Realizations [first, last) of one point; realization r goes to
+  // outs[r / block_size - first_block].
+  lane_engine(const sweep_spec& s, const model_parameters& p, std::vector<block_result>& outs,
+              std::uint64_t first_block, std::uint64_t first, std::uint64_t last)
+      : s_(s), p_(p), outs_(outs), first_block_(first_block), first_(first), last_(last),
+        next_(first), flush_(first),
         a_(p.band_half_width()), w_(p.natural_frequency()), V_(p.belt_speed), ta_(p.window),
         key_(point_key(p)) {
     const std::size_t n = std::min<std::size_t>(ring, last - first);
@@ -190,8 +193,9 @@ class lane_engine {
       const std::size_t slot = (flush_ - first_) % pool_.size();
       if (!done_[slot]) return;
       auto& o = pool_[slot];
-      out_.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
-      if (s_.keep_records) out_.records.push_back(o.record());
+      auto& out = outs_[flush_ / s_.block_size - first_block_];
+      out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
+      if (s_.keep_records) out.records.push_back(o.record());
       done_[slot] = 0;
       ++flush_;
     }
@@ -508,8 +512,8 @@ class lane_engine {
 
   const sweep_spec& s_;
   const model_parameters& p_;
-  block_result& out_;
-  std::uint64_t first_, last_, next_, flush_;
+  std::vector<block_result>& outs_;
+  std::uint64_t first_block_, first_, last_, next_, flush_;
   double a_, w_, V_, ta_;
   std::uint64_t key_;
   std::vector<realization_observer> pool_;
@@ -530,20 +534,29 @@ class lane_engine {
 
 }  // namespace
 
-block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u) {
-  const auto p = point_parameters(s, u.point);
-  block_result out;
-  out.stats = point_statistics(p, s.histograms);
-  const std::uint64_t first = u.block * s.block_size;
-  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
-  if (first >= last) return out;
-  if (s.keep_records) out.records.reserve(last - first);
-  try {
-    lane_engine(s, p, out, first, last).run();
-  } catch (const bound_exceeded&) {
-    return simulate_block_reference(s, u);  // throws what the reference throws
+std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
+                                               std::uint64_t first_block, std::uint64_t count) {
+  const auto p = point_parameters(s, point);
+  std::vector<block_result> outs(count);
+  const std::uint64_t first = first_block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, (first_block + count) * s.block_size);
+  for (std::uint64_t b = 0; b < count; ++b) {
+    outs[b].stats = point_statistics(p, s.histograms);
+    if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
-  return out;
+  if (first >= last) return outs;
+  try {
+    lane_engine(s, p, outs, first_block, first, last).run();
+  } catch (const bound_exceeded&) {
+    // Rerun on the reference engine, which throws what the reference throws.
+    for (std::uint64_t b = 0; b < count; ++b)
+      outs[b] = simulate_block_reference(s, work_unit{point, first_block + b});
+  }
+  return outs;
+}
+
+block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u) {
+  return std::move(simulate_blocks_lanes(s, u.point, u.block, 1).front());
 }
 
 }  // namespace stickslip::detail

@@ -191,18 +191,43 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
   auto scheduled = [&](std::uint64_t i) {
     return work_unit{order[static_cast<std::size_t>(i / nb)], i % nb};
   };
+  // With the lane engine a worker takes several consecutive units at once and
+  // simulates the runs of consecutive blocks of one point together (lanes do
+  // not idle at block tails); each unit still gets its own block_result, and
+  // merging stays per unit in block order, so results do not change.
+  const bool lanes = s.engine == sweep_engine::fast &&
+                     detail::get_fast_variant() == detail::fast_variant::lanes;
+  const std::uint64_t batch = lanes ? 20 : 1;  // 20 x 50 realizations
   std::atomic<std::uint64_t> next{0};
   std::mutex mu;
   std::exception_ptr failure;
   auto worker = [&] {
+    std::vector<work_unit> units;
+    std::vector<block_result> results;
     while (true) {
-      const std::uint64_t i = next.fetch_add(1);
-      if (i >= total) return;
-      const auto u = scheduled(i);
-      if (hooks.wanted && !hooks.wanted(u)) continue;
-      block_result r;
+      const std::uint64_t i0 = next.fetch_add(batch);
+      if (i0 >= total) return;
+      const std::uint64_t i1 = std::min(total, i0 + batch);
+      units.clear();
+      for (std::uint64_t i = i0; i < i1; ++i) {
+        const auto u = scheduled(i);
+        if (!hooks.wanted || hooks.wanted(u)) units.push_back(u);
+      }
+      results.clear();
       try {
-        r = simulate_block(s, u);
+        for (std::size_t a = 0; a < units.size();) {
+          std::size_t b = a + 1;  // units[a, b): consecutive blocks of one point
+          while (b < units.size() && units[b].point == units[a].point &&
+                 units[b].block == units[b - 1].block + 1)
+            ++b;
+          if (lanes) {
+            auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
+            for (auto& x : r) results.push_back(std::move(x));
+          } else {
+            for (std::size_t c = a; c < b; ++c) results.push_back(simulate_block(s, units[c]));
+          }
+          a = b;
+        }
       } catch (...) {
         std::lock_guard lock(mu);
         if (!failure) failure = std::current_exception();
@@ -212,9 +237,11 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
       std::lock_guard lock(mu);
       if (failure) return;
       try {
-        if (hooks.unit_done) hooks.unit_done(u, r);
-        merger.add(u, std::move(r));
-        if (hooks.progress) hooks.progress(merger.merged_units(), total);
+        for (std::size_t c = 0; c < units.size(); ++c) {
+          if (hooks.unit_done) hooks.unit_done(units[c], results[c]);
+          merger.add(units[c], std::move(results[c]));
+          if (hooks.progress) hooks.progress(merger.merged_units(), total);
+        }
       } catch (...) {
         failure = std::current_exception();
         next.store(total);

@@ -95,6 +95,25 @@ TEST(FastPathLanes, BlockLongerThanTheReorderRing) {
   expect_units_agree(s);
 }
 
+// Several consecutive blocks of a point in one lane engine (what run_units
+// does with the lanes variant): each block's result is the reference's.
+TEST(FastPathLanes, ConsecutiveBlocksAtOnceEqualTheReferencePerBlock) {
+  for (double k : {4.0, 40.0}) {
+    auto s = study(k, 47, 7);  // 7 blocks, the last one partial
+    for (std::size_t point : {0u, 5u, 11u}) {
+      const auto all = detail::simulate_blocks_lanes(s, point, 1, 6);
+      ASSERT_EQ(all.size(), 6u);
+      for (std::uint64_t b = 0; b < 6; ++b) {
+        const auto ref = simulate_block_reference(s, work_unit{point, 1 + b});
+        EXPECT_TRUE(same_bits(ref.stats, all[b].stats)) << k << " " << point << " " << b;
+        ASSERT_EQ(ref.records.size(), all[b].records.size());
+        for (std::size_t j = 0; j < ref.records.size(); ++j)
+          EXPECT_TRUE(same_bits(ref.records[j], all[b].records[j]));
+      }
+    }
+  }
+}
+
 TEST(FastPathLanes, SweepIsBitIdenticalForAnyThreadCount) {
   auto s = study(40.0, 40, 9);
   s.engine = sweep_engine::reference;

@@ -12,6 +12,7 @@
 //     so there are no per-realization vectors to fill and walk again.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "stickslip/episode.hpp"
 #include "stickslip/observer.hpp"
@@ -98,8 +99,8 @@ class streaming_statistics_observer : public observer_base {
 // Which implementation sweep_engine::fast runs. All give bit-identical
 // results (tests/unit/test_fast_path*.cpp), so this only changes speed; it is
 // process-wide and meant for benchmarks (bench_study --engine lanes).
-// Default: one_at_a_time, the faster one measured on the 2-core development
-// machine (docs/performance.md).
+// Default: lanes, ~10-15 % less CPU per event than one_at_a_time on the
+// 2-core development machine (docs/performance.md).
 enum class fast_variant : unsigned char { one_at_a_time, lanes };
 void set_fast_variant(fast_variant v) noexcept;
 [[nodiscard]] fast_variant get_fast_variant() noexcept;
@@ -109,5 +110,13 @@ void set_fast_variant(fast_variant v) noexcept;
 // their transcendentals evaluated as SIMD vectors. Bit-identical to both
 // engines above. Pure: depends only on (spec, unit).
 [[nodiscard]] block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u);
+// The same for `count` consecutive blocks of one point at once (what
+// run_units uses with the lanes variant): lanes move on to the next block's
+// realizations instead of idling at a block's tail. Element i is exactly
+// simulate_block_lanes(s, {point, first_block + i}).
+[[nodiscard]] std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s,
+                                                              std::size_t point,
+                                                              std::uint64_t first_block,
+                                                              std::uint64_t count);
 
 }  // namespace stickslip::detail
