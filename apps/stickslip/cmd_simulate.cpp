@@ -102,6 +102,7 @@ realization_run run_one(const CLI::App& cmd, const simulate_options& o) {
       run.given_belt = true;
     }
   }
+  validate(run.ic);
   const auto times = given_switch_times(o);
   run.given_switches = times.has_value();
 

@@ -21,8 +21,11 @@ struct initial_condition_law {
   friend bool operator==(const initial_condition_law&, const initial_condition_law&) = default;
 };
 
-// Throws stickslip::error on non-finite bounds, min > max, or belt_start not in {-1,0,1}.
+// Throws stickslip::error on non-finite bounds (or |bound| > 1e60), min > max,
+// or belt_start not in {-1,0,1}.
 void validate(const initial_condition_law& law);
+// Throws on non-finite or |value| > 1e60 position/velocity, or belt not +-1.
+void validate(const initial_conditions& ic);
 
 // Draw from substream::initial_conditions: one Philox block gives x0, x'0 and
 // the belt direction.

@@ -30,8 +30,12 @@ struct model_parameters {
   friend bool operator==(const model_parameters&, const model_parameters&) = default;
 };
 
+// Magnitudes the closed form handles without overflow in its squares.
+inline constexpr double min_magnitude = 1e-60, max_magnitude = 1e60;
+
 // Throws stickslip::error naming the first invalid parameter: every value must
-// be finite and > 0, and the derived a, omega must be finite and > 0.
+// be finite and > 0, and it and the derived scales (a, omega, d_max, omega a,
+// V/omega) must lie in [min_magnitude, max_magnitude].
 void validate(const model_parameters& p);
 
 // Names of the parameters as they appear on the command line, in config files

@@ -9,7 +9,8 @@ namespace stickslip {
 
 void validate(const initial_condition_law& law) {
   auto finite = [](const char* name, double v) {
-    if (!std::isfinite(v)) throw invalid_parameter(name, v, "a finite number");
+    if (!std::isfinite(v) || std::abs(v) > max_magnitude)
+      throw invalid_parameter(name, v, "a finite number with |value| <= 1e60");
   };
   finite("x0 (initial position)", law.position_min);
   finite("x0 (initial position)", law.position_max);
@@ -23,6 +24,17 @@ void validate(const initial_condition_law& law) {
                             "<= maximum " + std::to_string(law.velocity_max));
   if (law.belt_start < -1 || law.belt_start > 1)
     throw invalid_parameter("belt-start", law.belt_start, "+1, -1 or random");
+}
+
+void validate(const initial_conditions& ic) {
+  if (!std::isfinite(ic.position) || std::abs(ic.position) > max_magnitude)
+    throw invalid_parameter("x0 (initial position)", ic.position,
+                            "a finite number with |value| <= 1e60");
+  if (!std::isfinite(ic.velocity) || std::abs(ic.velocity) > max_magnitude)
+    throw invalid_parameter("xdot0 (initial velocity)", ic.velocity,
+                            "a finite number with |value| <= 1e60");
+  if (ic.belt_direction != 1 && ic.belt_direction != -1)
+    throw invalid_parameter("belt-start", ic.belt_direction, "+1 or -1");
 }
 
 void validate_switch_times(std::span<const double> times) {

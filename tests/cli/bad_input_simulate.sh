@@ -23,8 +23,10 @@ expect_fail "lambda (switch rate)|0|> 0" simulate --lambda 0
 expect_fail "lambda (switch rate)|-2|> 0" simulate --switch-rate -2
 expect_fail "ta (window)|0|> 0" simulate --ta 0
 expect_fail "ta (window)|-50|> 0" simulate --window -50
-# derived quantities that overflow
-expect_fail "band half-width|inf" simulate --mu 1e300 --m 1e300
+# magnitudes the closed form cannot square, alone or in a derived scale
+expect_fail "m (mass)|1e+300|between 1e-60 and 1e60" simulate --mu 1e300 --m 1e300
+expect_fail "band half-width|e+80|between 1e-60 and 1e60" simulate --mu 1e40 --m 1e40
+expect_fail "x0 (initial position)|1e+70|1e60" simulate --x0 1e70
 # not a number
 expect_fail "--mu|'abc'|not a number" simulate --mu abc
 expect_fail "--k|'4x'|trailing" simulate --k 4x

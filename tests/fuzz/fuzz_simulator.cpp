@@ -8,7 +8,6 @@
 // must be reported as stickslip::error with exit_code::work_bound.
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -63,17 +62,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const error&) {
     return 0;
   }
-  // OPEN FINDING (docs/bad-input.md): validate() accepts finite magnitudes so
-  // large that B^2 = (w y)^2 + x'^2 overflows (e.g. V = 6.9e274), and the
-  // integrator then reports an episode starting at NaN. Until validation
-  // bounds them, the CI run skips such inputs; STICKSLIP_FUZZ_STRICT=1 keeps them.
-  static const bool strict = std::getenv("STICKSLIP_FUZZ_STRICT") != nullptr;
-  if (!strict) {
-    const double big = 1e150;
-    for (double v : {p.mass, p.stiffness, p.gravity, p.friction_coefficient, p.belt_speed,
-                     p.switch_rate, p.window, p.band_half_width() * p.natural_frequency(),
-                     std::abs(ic.position) * p.natural_frequency(), std::abs(ic.velocity)})
-      if (!(v < big)) return 0;
+  // Found by this target: finite magnitudes so large that B^2 = (w y)^2 + x'^2
+  // overflowed (e.g. V = 6.9e274) gave NaN episode times. validate() now bounds
+  // every parameter and derived scale to [1e-60, 1e60], and the initial state
+  // is validated like the CLI does (tests/regression/test_overflowing_magnitudes.cpp).
+  try {
+    validate(ic);
+  } catch (const error&) {
+    return 0;
   }
 
   // 1. given switch times (validated like the CLI does), bounded events
