@@ -52,12 +52,13 @@ struct sweep_options {
   std::string config;
   std::string realizations, block_size, bins, threads = "0";
   bool records = false;
+  std::string engine;
   std::string out_dir;
   bool resume = false, keep_journal = false;
   std::string shard;                       // "i/n"
   std::string checkpoint_interval = "2";   // seconds between journal segments
   CLI::Option *config_opt = nullptr, *realizations_opt = nullptr, *block_size_opt = nullptr,
-              *bins_opt = nullptr, *records_opt = nullptr;
+              *bins_opt = nullptr, *records_opt = nullptr, *engine_opt = nullptr;
 };
 
 // Grid axes that come from flags: lambda first, then mu, then the others in
@@ -106,6 +107,7 @@ sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   if (o.bins_opt->count() > 0)
     spec.histograms.bins = static_cast<std::size_t>(io::parse_unsigned("--bins", o.bins, 1));
   if (o.records_opt->count() > 0) spec.keep_records = o.records;
+  if (o.engine_opt->count() > 0) spec.engine = io::parse_engine("--engine", o.engine);
   validate(spec);
   return spec;
 }
@@ -437,6 +439,10 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
   o.records_opt =
       cmd->add_flag("--records", o.records,
                     "keep raw per-realization records (records.csv; memory grows with N)");
+  o.engine_opt = cmd->add_option("--engine", o.engine,
+                                 "fast (default: SIMD lanes) or reference (one realization at a "
+                                 "time, the plain exact path); results are bit-identical")
+                     ->type_name("NAME");
   cmd->add_option("-o,--output", o.out_dir,
                   "output directory; holds the checkpoint journal DIR/.journal while running")
       ->type_name("DIR")

@@ -45,6 +45,7 @@ struct event_counts {
   [[nodiscard]] std::uint64_t total() const noexcept {
     return belt_switches + stick_onsets + stick_breaks + slip_reversals;
   }
+  friend bool operator==(const event_counts&, const event_counts&) = default;
   event_counts& operator+=(const event_counts& o) noexcept {
     belt_switches += o.belt_switches;
     stick_onsets += o.stick_onsets;

@@ -24,8 +24,10 @@ struct axis {
 
 // Which engine simulates a work unit. Both run the same exact integrator and
 // give bit-identical statistics for a given seed (tests/unit/test_fast_path*.cpp):
-//   fast       batched switch draws, statistics streamed into the accumulators
-//              (src/core/fast_block.cpp); the default;
+//   fast       the lane engine: 16 realizations per thread advanced together as
+//              AVX2 vectors, one event per lane per round, finished realizations
+//              added to the statistics in realization order
+//              (src/core/fast_lanes.cpp; docs/performance.md); the default;
 //   reference  poisson_switches + realization_observer + point_statistics::add,
 //              the plain path, kept as the oracle.
 enum class sweep_engine : unsigned char { fast, reference };

@@ -505,7 +505,7 @@ class lane_engine {
     for (unsigned m = pop; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
       tsw_[l] = sw_[l].next();
-      if (z_[l] == v_[l] && stk_[l] == 0.0 && code_[l] == ev_slip_sw) contact_at_switch(l);
+      if (z_[l] == v_[l] && stk_[l] == 0.0 && static_cast<int>(code_[l]) == ev_slip_sw) contact_at_switch(l);
     }
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }

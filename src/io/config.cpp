@@ -215,4 +215,10 @@ std::vector<double> parse_switch_time_list(std::string_view key, std::string_vie
   return validated_times(std::move(times), std::move(where));
 }
 
+sweep_engine parse_engine(std::string_view key, std::string_view text) {
+  if (text == "fast") return sweep_engine::fast;
+  if (text == "reference") return sweep_engine::reference;
+  throw invalid_value(std::string(key), std::string(text), "fast or reference");
+}
+
 }  // namespace stickslip::io

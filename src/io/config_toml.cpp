@@ -241,9 +241,13 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       s.max_events = read_i64(cx, dotted, n);
     else if (key == "keep_records")
       s.keep_records = read_bool(cx, dotted, n);
-    else
+    else if (key == "engine") {
+      if (!n.is_string()) cx.wrong(dotted, n, "a string: \"fast\" or \"reference\"");
+      s.engine = parse_engine(dotted, n.as_string()->get());
+    } else
       cx.unknown_key(dotted, k,
-                     "[sweep] takes realizations, seed, block_size, max_events, keep_records");
+                     "[sweep] takes realizations, seed, block_size, max_events, keep_records, "
+                     "engine");
   }
 }
 
@@ -336,9 +340,9 @@ std::string to_toml(const sweep_spec& s) {
 
   out += fmt::format(
       "\n[sweep]\nrealizations = {}\nseed = {}\nblock_size = {}\nmax_events = {}\n"
-      "keep_records = {}\n",
+      "keep_records = {}\nengine = \"{}\"\n",
       toml_u64(s.realizations), toml_u64(s.seed), toml_u64(s.block_size), s.max_events,
-      s.keep_records);
+      s.keep_records, to_string(s.engine));
   out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
                      toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
                      toml_float(s.histograms.slip_duration_max));

@@ -215,6 +215,16 @@ TEST(ToToml, RoundTripsExactly) {
   }
 }
 
+TEST(ToToml, RoundTripsTheEngine) {
+  sweep_spec s;
+  s.engine = sweep_engine::reference;
+  const auto text = to_toml(s);
+  EXPECT_THAT(text, HasSubstr("engine = \"reference\""));
+  EXPECT_EQ(parse_sweep_toml(text, "engine.toml"), s);
+  EXPECT_THROW((void)parse_sweep_toml("[sweep]\nengine = \"turbo\"\n", "e.toml"), stickslip::error);
+  EXPECT_THROW((void)parse_sweep_toml("[sweep]\nengine = 1\n", "e.toml"), stickslip::error);
+}
+
 TEST(ToToml, IsReadableAndComplete) {
   const auto text = to_toml(parse_sweep_toml(paper_toml, "p.toml"));
   for (const char* key : {"[model]", "[initial]", "[grid]", "[sweep]", "[histograms]",

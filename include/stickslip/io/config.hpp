@@ -33,6 +33,9 @@ namespace stickslip::io {
 // a fixed value rather than a grid axis.
 [[nodiscard]] bool is_single_value(std::string_view text) noexcept;
 
+// "fast" or "reference" (the engine never changes results, only speed).
+[[nodiscard]] sweep_engine parse_engine(std::string_view key, std::string_view text);
+
 // Reads a sweep spec from TOML text (see docs/config.md for the keys). Keys
 // not given keep the defaults of sweep_spec. Does not call validate(): flags
 // may still override values; the caller validates the final spec.
