@@ -82,8 +82,15 @@ template <class Observer>
 event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
                                   std::uint64_t realization, Observer& obs);
 
+// Whether the convergence trace gets a point after merging block b (1-based)
+// of `total`: every block up to 64, then 32 points per doubling, and the last.
+// The trace therefore grows like log N (about 350 points for N = 10^6 in
+// blocks of 50), keeping memory flat in N.
+[[nodiscard]] bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept;
+
 // Accepts block results in any order; merges each point's blocks in block
-// order and records a convergence point after each merge.
+// order and records a convergence point after the blocks that
+// records_convergence_after() selects.
 class ordered_merger {
  public:
   explicit ordered_merger(const sweep_spec& s);

@@ -110,3 +110,18 @@ TEST(Histogram, MergeEqualsFillingTwice) {
   a += b;
   EXPECT_EQ(a, both);
 }
+
+#include "stickslip/sweep.hpp"
+
+TEST(ConvergenceTrace, EveryBlockUpTo64ThenLogarithmic) {
+  using stickslip::records_convergence_after;
+  for (std::uint64_t b = 1; b <= 64; ++b) EXPECT_TRUE(records_convergence_after(b, 1000));
+  EXPECT_FALSE(records_convergence_after(65, 1000));
+  EXPECT_TRUE(records_convergence_after(66, 1000));
+  EXPECT_TRUE(records_convergence_after(999, 999));  // the last block always
+  // N = 10^6 in blocks of 50: 20000 blocks, a trace of a few hundred points.
+  std::uint64_t points = 0;
+  for (std::uint64_t b = 1; b <= 20000; ++b) points += records_convergence_after(b, 20000);
+  EXPECT_GT(points, 300u);
+  EXPECT_LT(points, 400u);
+}
