@@ -43,11 +43,16 @@ struct simulate_options {
 
 // Everything the integrator reports about one realization.
 struct recorder : observer_base {
+  bool keep_events = false, keep_segments = false;  // only what an output needs
   std::vector<episode> episodes;
   std::vector<event> events;
   std::vector<segment> segments;
-  void on_event(const event& e) { events.push_back(e); }
-  void on_segment(const segment& s) { segments.push_back(s); }
+  void on_event(const event& e) {
+    if (keep_events) events.push_back(e);
+  }
+  void on_segment(const segment& s) {
+    if (keep_segments) segments.push_back(s);
+  }
   void on_episode(const episode& e) { episodes.push_back(e); }
 };
 
@@ -85,6 +90,10 @@ realization_run run_one(const CLI::App& cmd, const simulate_options& o) {
   spec.seed = run.seed = resolve_seed(o.model, spec.seed);
   spec.max_events = resolve_max_events(o.model, spec.max_events);
   run.realization = io::parse_unsigned("--realization", o.realization);
+  spec.base = run.params;
+  validate(spec);  // the sweep's checks for one point, e.g. lambda * ta vs max_events
+  run.rec.keep_events = o.events;
+  run.rec.keep_segments = o.trajectory_opt->count() > 0;
 
   const auto key = point_key(run.params);
   run.ic = draw_initial_conditions(spec.initial, spec.seed, key, run.realization);
@@ -246,9 +255,9 @@ void run_simulate(const CLI::App& cmd, const simulate_options& o) {
     if (!(dt > 0)) throw invalid_parameter("--trajectory (sampling step DT)", dt, "> 0");
   }
   const auto run = run_one(cmd, o);
-  if (dt > 0 && run.params.window / dt > 1e8)
+  if (dt > 0 && run.params.window / dt > 1e7)
     throw invalid_parameter("--trajectory (sampling step DT)", dt,
-                            fmt::format(">= t_a / 1e8 = {}", run.params.window / 1e8));
+                            fmt::format(">= t_a / 1e7 = {}", run.params.window / 1e7));
 
   const std::string table = o.format == "json" ? to_json(run, o.events) : episodes_csv(run);
   if (o.output.empty() || o.output == "-")

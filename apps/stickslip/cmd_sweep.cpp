@@ -15,6 +15,7 @@
 // docs/scaling.md explains resume, shards and MPI.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -122,14 +123,17 @@ void check_output_dir(const std::string& dir) {
 }
 
 // The results live in memory until they are written: per grid point the
-// accumulators, four histograms and one convergence entry per block, plus the
+// accumulators, four histograms and the convergence trace (every block up
+// to 64, then 32 entries per doubling: records_convergence_after), plus the
 // raw records when kept; the writers hold about as much again. An absurd
 // grid must be refused with a clear error before it exhausts memory
 // (std::bad_alloc or the OOM killer), so estimate and compare with the RAM.
 void check_result_memory(const sweep_spec& spec) {
   const double points = static_cast<double>(point_count(spec));
+  const double blocks = static_cast<double>(blocks_per_point(spec));
+  const double trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
   const double per_point = 1024.0 + 4.0 * 8.0 * static_cast<double>(spec.histograms.bins) +
-                           40.0 * static_cast<double>(blocks_per_point(spec));
+                           40.0 * trace;
   const double records = spec.keep_records ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
   const double bytes = 2.0 * points * (per_point + records);
   const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
@@ -137,8 +141,7 @@ void check_result_memory(const sweep_spec& spec) {
   if (ram > 0 && bytes > 0.8 * ram)
     throw invalid_parameter(
         "grid size (estimated memory for the results, GiB)", bytes / (1u << 30),
-        fmt::format("<= 80% of this machine's {:.1f} GiB: use fewer grid points or bins, or a "
-                    "larger --block-size (one convergence entry per block is kept)",
+        fmt::format("<= 80% of this machine's {:.1f} GiB: use fewer grid points or bins",
                     ram / (1u << 30)));
 }
 

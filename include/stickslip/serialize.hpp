@@ -149,8 +149,10 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
 [[nodiscard]] bool same_results(const sweep_spec& a, const sweep_spec& b);
 
 // A 64-bit fingerprint of the results-relevant part of a spec (FNV-1a over
-// its serialized bytes, engine reset): specs with same_results() give equal
-// fingerprints. Stamped on every journal segment.
+// its serialized bytes, engine reset) and of the build (version, git
+// revision, SIMD target): specs with same_results() give equal fingerprints
+// within one build. Stamped on every journal segment, so a resume or merge
+// never mixes in units computed by another build (they are recomputed).
 [[nodiscard]] std::uint64_t fingerprint(const sweep_spec& s);
 
 // Human-readable name of the first results-relevant field in which two specs

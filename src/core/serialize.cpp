@@ -1,4 +1,6 @@
 #include "stickslip/serialize.hpp"
+#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/version.hpp"
 
 #include <array>
 #include <bit>
@@ -336,7 +338,11 @@ bool same_results(const sweep_spec& a, const sweep_spec& b) {
 
 std::uint64_t fingerprint(const sweep_spec& s) {
   std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
-  for (char c : serialize(results_relevant(s))) {
+  // The build is part of the identity: another version, revision or SIMD
+  // target may round differently, and its units must not be mixed in.
+  const std::string build = std::string(stickslip::version) + '|' + stickslip::git_revision +
+                            '|' + detail::fm::target_name();
+  for (char c : build + serialize(results_relevant(s))) {
     h ^= static_cast<std::uint8_t>(c);
     h *= 0x100000001b3ULL;
   }

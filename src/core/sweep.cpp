@@ -49,19 +49,26 @@ void validate(const sweep_spec& s) {
                             "finite and >= 0 (0 = automatic)");
   if (s.max_events < 1)
     throw invalid_parameter("max_events", static_cast<double>(s.max_events), ">= 1");
-  const double points = static_cast<double>(point_count(s));
+  // Product of the axis sizes in floating point: point_count() would wrap.
+  double points = 1.0;
+  for (const auto& ax : s.axes) points *= static_cast<double>(ax.values.size());
   if (points > 1e7) throw invalid_parameter("number of grid points", points, "<= 1e7");
   if (s.keep_records && points * static_cast<double>(s.realizations) > 5e7)
     throw invalid_parameter("points x realizations with raw records", points * s.realizations,
                             "<= 5e7 (records are held in memory)");
-  // Expected belt switches per realization must fit the event bound.
-  for (std::size_t i = 0; i < point_count(s); i += std::max<std::size_t>(1, point_count(s) / 64)) {
-    const auto p = point_parameters(s, i);
-    const double expected = p.switch_rate * p.window;
-    if (expected > 0.5 * static_cast<double>(s.max_events))
-      throw invalid_parameter("lambda * ta (expected belt switches per realization)", expected,
-                              "<= max_events / 2 = " + std::to_string(s.max_events / 2));
-  }
+  // Expected belt switches per realization must fit the event bound, at the
+  // worst point: the largest lambda times the largest t_a over the grid.
+  auto largest = [&](const char* symbol) {
+    double v = parameter_by_name(s.base, symbol);
+    for (const auto& ax : s.axes)
+      if (info_for(ax.name).symbol == std::string(symbol))
+        v = *std::max_element(ax.values.begin(), ax.values.end());
+    return v;
+  };
+  const double expected = largest("lambda") * largest("ta");
+  if (expected > 0.5 * static_cast<double>(s.max_events))
+    throw invalid_parameter("lambda * ta (expected belt switches per realization)", expected,
+                            "<= max_events / 2 = " + std::to_string(s.max_events / 2));
 }
 
 std::size_t point_count(const sweep_spec& s) noexcept {

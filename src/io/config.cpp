@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <system_error>
@@ -137,6 +138,16 @@ double switch_time(const std::string& where, std::string_view item) {
 }  // namespace
 
 std::string read_text_file(const std::string& path) {
+  // A directory opens as an empty stream and /dev/zero never ends: accept
+  // regular files of sane size only.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec) throw io_error(path, ec.message());
+  if (!std::filesystem::is_regular_file(status))
+    throw io_error(path, "not a regular file");
+  constexpr std::uintmax_t max_bytes = 64u << 20;
+  if (std::filesystem::file_size(path, ec) > max_bytes || ec)
+    throw io_error(path, ec ? ec.message() : "larger than 64 MiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw io_error(path, std::strerror(errno));
   std::ostringstream ss;

@@ -131,7 +131,10 @@ struct segment_reader {
       count = h.u64("record count");
       h.finish("segment header");
       if (fp != fingerprint)
-        return note(fmt::format("{}: written for another configuration; ignored", path));
+        return note(fmt::format(
+            "{}: written for another configuration or by another build of stickslip; "
+            "ignored, its units will be recomputed",
+            path));
       auto& e = run_elapsed[run];
       if (std::isfinite(elapsed) && elapsed > e) e = elapsed;
     } catch (const error& e) {

@@ -54,9 +54,14 @@ expect_fail "--max-events|'0'" simulate --max-events 0
 expect_fail "--trajectory|0|> 0" simulate --trajectory 0
 expect_fail "--trajectory|'nan'" simulate --trajectory nan
 # the event bound is an error, never a silent truncation
-expect_fail "bound on events|--max-events" simulate --lambda 100 --max-events 10
+# expected switches over the bound: refused before any work
+expect_fail "lambda * ta|5000|max_events / 2 = 5" simulate --lambda 100 --max-events 10
+# far more slip reversals than switches (x0 = 1000 m, band 1 mm): stopped at the bound
+expect_fail "bound on events|--max-events" simulate --x0 1000 --mu 0.01 --k 100 --max-events 200
 # unknown flags and values
 expect_fail "--bogus" simulate --bogus 1
 expect_fail "--lamda" simulate --lamda 1
 expect_fail "--format" simulate --format xml
+# a directory is not a switch-times file
+expect_fail "not a regular file" simulate --switch-times-file /tmp
 finish

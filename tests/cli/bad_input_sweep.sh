@@ -65,4 +65,10 @@ echo keep >a_file
 "$BIN" sweep --realizations 10 -o a_file >/dev/null 2>"$WORK/stderr"
 expect_eq "exit status for -o FILE" "$?" 2
 expect_eq "the file is untouched" "$(cat a_file)" keep
+# a grid whose point count overflows 64 bits must not wrap to 0 points
+expect_fail "number of grid points|<= 1e7" sweep --lambda lin:1:2:65536 --mu lin:1:2:65536 \
+  --k lin:1:2:65536 --m lin:1:2:65536 --realizations 1
+# a directory or a device is not a config file
+expect_fail "not a regular file" sweep --config /tmp
+expect_fail "not a regular file" sweep --config /dev/zero
 finish
