@@ -68,23 +68,12 @@ std::vector<std::uint64_t> decode_indices(const std::string& data) {
   return v;
 }
 
-// The units hooks.wanted selects, costliest points first (the same
-// heuristic as run_units: expected events ~ t_a (lambda + omega/pi + 1)),
-// blocks in order within a point, so cheap units fill the tail.
+// The units hooks.wanted selects, costliest points first (points_by_cost, as
+// run_units does), blocks in order within a point, so cheap units fill the tail.
 std::vector<std::uint64_t> units_to_run(const sweep_spec& s, const sweep_hooks& hooks) {
-  const std::size_t n = point_count(s);
   const auto nb = blocks_per_point(s);
-  std::vector<double> cost(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto p = point_parameters(s, i);
-    cost[i] = p.window * (p.switch_rate + p.natural_frequency() / std::numbers::pi + 1.0);
-  }
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
   std::vector<std::uint64_t> out;
-  for (auto point : order)
+  for (auto point : points_by_cost(s))
     for (std::uint64_t b = 0; b < nb; ++b)
       if (!hooks.wanted || hooks.wanted(work_unit{point, b})) out.push_back(point * nb + b);
   return out;

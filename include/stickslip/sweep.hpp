@@ -125,6 +125,14 @@ struct result_set {
 
 [[nodiscard]] result_set make_result_set(const sweep_spec& s, ordered_merger&& m);
 
+// Points in order of decreasing expected work (stable for ties). The cost of
+// a realization is about linear in its events, ~ lambda t_a belt switches plus
+// the sticks and reversals between them (~ omega t_a / pi at most), so at
+// fixed t_a it varies ~300x across the paper's lambda range. Schedulers (the
+// thread pool, the MPI master) start the costliest points first; the ordered
+// merge keeps results independent of this order.
+[[nodiscard]] std::vector<std::size_t> points_by_cost(const sweep_spec& s);
+
 struct sweep_hooks {
   // Called from one thread at a time, after each unit is merged.
   std::function<void(std::uint64_t units_done, std::uint64_t units_total)> progress;

@@ -177,11 +177,6 @@ result_set make_result_set(const sweep_spec& s, ordered_merger&& m) {
   return rs;
 }
 
-namespace {
-// Points in order of decreasing expected work. The cost of a realization is
-// about linear in its events, ~ lambda t_a belt switches plus the sticks and
-// reversals between them (~ omega t_a / pi at most), so at fixed t_a it
-// varies ~300x across the paper's lambda range.
 std::vector<std::size_t> points_by_cost(const sweep_spec& s) {
   const std::size_t n = point_count(s);
   std::vector<double> cost(n);
@@ -195,7 +190,6 @@ std::vector<std::size_t> points_by_cost(const sweep_spec& s) {
                    [&](std::size_t a, std::size_t b) { return cost[a] > cost[b]; });
   return order;
 }
-}  // namespace
 
 void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
                const sweep_hooks& hooks) {
