@@ -83,6 +83,9 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
     remove_created(created);
     throw;
   }
+  // A records.csv left by an earlier run into the same directory would
+  // describe other results: once this set is in place, it goes.
+  if (!rs.spec.keep_records) detail::remove_file_quietly(in_dir(records_csv_file));
 }
 
 }  // namespace stickslip::io

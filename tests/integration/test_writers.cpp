@@ -424,3 +424,24 @@ TEST_F(writers, NcdumpShowsASelfDescribingHeader) {
 
 }  // namespace
 }  // namespace stickslip::testing
+
+// A rerun without records into a directory that holds an older records.csv
+// must not leave that file behind next to results it does not describe.
+TEST(write_all, WithoutRecordsRemovesAStaleRecordsFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "stickslip_stale_records";
+  fs::remove_all(dir);
+  stickslip::sweep_spec s;
+  s.axes = {{"lambda", {1.0}}};
+  s.realizations = 20;
+  s.base.window = 5;
+  s.keep_records = true;
+  const auto meta = stickslip::io::make_metadata(0, nullptr, "");
+  stickslip::io::write_all(stickslip::run_sweep(s, 1), meta, dir.string());
+  ASSERT_TRUE(fs::exists(dir / "records.csv"));
+  s.keep_records = false;
+  stickslip::io::write_all(stickslip::run_sweep(s, 1), meta, dir.string());
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "records.csv"));
+  fs::remove_all(dir);
+}
