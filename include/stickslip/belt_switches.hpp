@@ -1,8 +1,9 @@
 // Sources of belt switch times. A source yields non-decreasing times through
 // next(); +infinity means "no more switches". Given lists are validated to be
 // strictly increasing; a Poisson sum can repeat a time only when W rounds to
-// 0 against Y (probability ~1e-16 per draw), and then the two switches cancel
-// at one instant and the integrator reports no zero-length episode.
+// 0 against Y (probability ~1e-16 per draw). The two flips then cancel at one
+// instant; no zero-length episode is reported, but a stick in progress is
+// counted as two sticks that meet at that instant.
 //   poisson_switches: W_j ~ Exp(lambda) i.i.d., Y_j = W_1 + ... + W_j (paper, Sec. 3).
 //   given_switches:   a replayed, measured or hand-made list.
 #pragma once
