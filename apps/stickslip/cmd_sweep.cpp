@@ -233,6 +233,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan, const in
                                  : io::make_metadata(inv.argc, inv.argv, io::to_toml(spec));
 
   ordered_merger merger(spec);
+  if (plan.shard) merger.discard_results();  // a shard only journals (merge combines them)
   std::vector<char> done(unit_count(spec), 0);
   for (auto& [u, r] : loaded.units) {
     done[u.point * blocks_per_point(spec) + u.block] = 1;

@@ -95,6 +95,10 @@ class ordered_merger {
  public:
   explicit ordered_merger(const sweep_spec& s);
   void add(const work_unit& u, block_result r);
+  // Count units without keeping them (a --shard run only journals its units;
+  // holding them until the missing blocks of other shards arrive would grow
+  // memory with the shard's size).
+  void discard_results() noexcept { discard_ = true; }
   [[nodiscard]] bool complete() const noexcept;
   [[nodiscard]] std::uint64_t merged_units() const noexcept { return merged_; }
   [[nodiscard]] std::vector<point_statistics>& points() noexcept { return points_; }
@@ -107,6 +111,7 @@ class ordered_merger {
   std::vector<std::uint64_t> next_block_;
   std::map<work_unit, block_result> pending_;
   std::uint64_t merged_ = 0;
+  bool discard_ = false;
 };
 
 struct point_result {

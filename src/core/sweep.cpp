@@ -148,6 +148,10 @@ bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept {
 }
 
 void ordered_merger::add(const work_unit& u, block_result r) {
+  if (discard_) {
+    ++merged_;
+    return;
+  }
   pending_.emplace(u, std::move(r));
   const auto nb = blocks_per_point(*spec_);
   auto it = pending_.find(work_unit{u.point, next_block_[u.point]});
