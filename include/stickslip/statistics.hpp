@@ -84,7 +84,24 @@ class realization_observer : public observer_base {
  public:
   explicit realization_observer(double window) : window_(window) {}
   void reset(std::uint64_t realization, double x0, double xdot0, int belt);
-  void on_episode(const episode& e);
+  // Inline: the engines call it once per episode.
+  void on_episode(const episode& e) {
+    const double d = e.duration();
+    if (e.kind == mode::stick) {
+      if (!(d > 0.0)) return;  // sticks of positive length only
+      if (rec_.sticks == 0) {
+        rec_.first_stick_start = e.start;
+        rec_.first_stick_duration = d;
+        rec_.first_stick_censored = e.censored;
+      }
+      ++rec_.sticks;
+      total_stick_ += d;
+      sticks_.push_back(d);
+    } else if (rec_.sticks > 0) {  // slips after the first stick
+      ++rec_.slips;
+      slips_.push_back(d);
+    }
+  }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }

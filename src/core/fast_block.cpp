@@ -25,13 +25,15 @@ block_result simulate_block_fast(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const auto key = point_key(p);
-  streaming_statistics_observer obs(out.stats, p.window);
+  realization_observer obs(p.window);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
     batched_poisson_switches sw(p.switch_rate, s.seed, key, r);
     obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
     const auto counts = simulate(p, ic, sw, obs, s.max_events);
-    obs.finish(counts);
+    obs.finish();
+    obs.record().events = counts;
+    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }
   return out;

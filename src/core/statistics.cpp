@@ -21,14 +21,10 @@ void point_statistics::add(const realization_record& r, const std::vector<double
   stick_fraction_hist.add(r.stick_fraction);
   sticks_per_time.add(r.sticks / window);
   slips_per_time.add(r.slips / window);
-  for (double d : sticks) {
-    stick_duration.add(d);
-    stick_duration_hist.add(d);
-  }
-  for (double h : slips) {
-    slip_duration.add(h);
-    slip_duration_hist.add(h);
-  }
+  stick_duration.add_batch(sticks.data(), sticks.data() + sticks.size());
+  for (double d : sticks) stick_duration_hist.add(d);
+  slip_duration.add_batch(slips.data(), slips.data() + slips.size());
+  for (double h : slips) slip_duration_hist.add(h);
   if (r.sticks == 0) {
     ++no_stick;
   } else {
@@ -71,24 +67,6 @@ void realization_observer::reset(std::uint64_t realization, double x0, double xd
   rec_.belt_start = belt;
   sticks_.clear();
   slips_.clear();
-}
-
-void realization_observer::on_episode(const episode& e) {
-  const double d = e.duration();
-  if (e.kind == mode::stick) {
-    if (!(d > 0.0)) return;  // sticks of positive length only
-    if (rec_.sticks == 0) {
-      rec_.first_stick_start = e.start;
-      rec_.first_stick_duration = d;
-      rec_.first_stick_censored = e.censored;
-    }
-    ++rec_.sticks;
-    total_stick_ += d;
-    sticks_.push_back(d);
-  } else if (rec_.sticks > 0) {  // slips after the first stick
-    ++rec_.slips;
-    slips_.push_back(d);
-  }
 }
 
 void realization_observer::finish() noexcept { rec_.stick_fraction = total_stick_ / window_; }

@@ -2,6 +2,7 @@
 // equals filling everything at once; shifted data keeps its variance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -67,6 +68,39 @@ TEST(MeanVariance, RobustToLargeOffset) {
     shifted.add(x + 1e8);
   }
   EXPECT_NEAR(shifted.variance(), plain.variance(), 1e-6 * plain.variance());
+}
+
+// add_batch (what point_statistics uses for the D_i and H_i of a
+// realization): batches of any size, merged, agree with one sample at a time
+// and with the two-pass formulas, also far from the origin; an empty batch
+// changes nothing.
+TEST(MeanVariance, BatchesEqualOneAtATime) {
+  for (double offset : {0.0, 1e8}) {
+    auto v = sample(1000);
+    for (double& x : v) x += offset;
+    mean_variance one, batched;
+    for (double x : v) one.add(x);
+    std::size_t i = 0, len = 0;
+    while (i < v.size()) {  // batch sizes 0, 1, 2, ... 44
+      const std::size_t n = std::min(len++, v.size() - i);
+      batched.add_batch(v.data() + i, v.data() + i + n);
+      i += n;
+    }
+    EXPECT_EQ(batched.count(), one.count());
+    const double tol = v.size() * 2.2e-16;
+    EXPECT_NEAR(batched.mean(), one.mean(), tol * std::abs(one.mean())) << offset;
+    EXPECT_NEAR(batched.variance(), one.variance(), 1e-6 * one.variance()) << offset;
+  }
+  const auto v = sample(50);
+  mean_variance a;
+  a.add_batch(v.data(), v.data() + v.size());
+  const auto before = a;
+  a.add_batch(v.data(), v.data());
+  EXPECT_EQ(a, before);
+  mean_variance single;
+  single.add_batch(v.data(), v.data() + 1);
+  EXPECT_EQ(single.mean(), v[0]);
+  EXPECT_EQ(single.sum_sq_dev(), 0.0);
 }
 
 TEST(MeanVariance, ConfidenceIntervalIsNormalApproximation) {

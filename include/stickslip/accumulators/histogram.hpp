@@ -13,7 +13,8 @@ class histogram {
  public:
   histogram() = default;
   // Preconditions (checked at the edge): lo < hi, finite, bins >= 1.
-  histogram(double lo, double hi, std::size_t bins) : lo_(lo), hi_(hi), counts_(bins, 0) {}
+  histogram(double lo, double hi, std::size_t bins)
+      : lo_(lo), hi_(hi), scale_(static_cast<double>(bins) / (hi - lo)), counts_(bins, 0) {}
 
   void add(double x) noexcept {
     if (!(x >= lo_)) {  // also catches NaN
@@ -24,7 +25,9 @@ class histogram {
       ++overflow_;
       return;
     }
-    auto i = static_cast<std::size_t>((x - lo_) / (hi_ - lo_) * static_cast<double>(counts_.size()));
+    // One multiplication (bins / (hi - lo) is fixed): this runs once per
+    // episode of every realization.
+    auto i = static_cast<std::size_t>((x - lo_) * scale_);
     if (i >= counts_.size()) i = counts_.size() - 1;
     ++counts_[i];
   }
@@ -64,7 +67,7 @@ class histogram {
   friend bool operator==(const histogram&, const histogram&) = default;
 
  private:
-  double lo_ = 0.0, hi_ = 1.0;
+  double lo_ = 0.0, hi_ = 1.0, scale_ = 0.0;
   std::vector<std::uint64_t> counts_;
   std::uint64_t underflow_ = 0, overflow_ = 0;
 };

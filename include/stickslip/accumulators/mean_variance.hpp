@@ -22,6 +22,20 @@ class mean_variance {
     mean_ += d / static_cast<double>(n_);
     m2_ += d * (x - mean_);
   }
+  // Adds the samples [first, last) as one batch: their mean and sum of
+  // squared deviations by two passes, then the exact merge below. One
+  // division per batch instead of one per sample (point_statistics adds the
+  // D_i and H_i of a realization this way).
+  void add_batch(const double* first, const double* last) noexcept {
+    if (first == last) return;
+    const auto n = static_cast<std::uint64_t>(last - first);
+    double sum = 0.0;
+    for (const double* p = first; p != last; ++p) sum += *p;
+    const double m = sum / static_cast<double>(n);
+    double m2 = 0.0;
+    for (const double* p = first; p != last; ++p) m2 += (*p - m) * (*p - m);
+    *this += from_raw(n, m, m2);
+  }
   mean_variance& operator+=(const mean_variance& o) noexcept {
     if (o.n_ == 0) return *this;
     if (n_ == 0) return *this = o;

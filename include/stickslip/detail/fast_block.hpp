@@ -6,10 +6,8 @@
 // everything around the integrator:
 //   - belt switch times come in batches (batched_poisson_switches: the same
 //     values as poisson_switches);
-//   - episodes stream straight into the point_statistics accumulators
-//     (streaming_statistics_observer), with the same sequence of add() calls
-//     per accumulator as point_statistics::add makes from the duration lists,
-//     so there are no per-realization vectors to fill and walk again.
+//   - the statistics are the reference's: realization_observer, then
+//     point_statistics::add in realization order.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -25,72 +23,6 @@ struct block_result;
 }  // namespace stickslip
 
 namespace stickslip::detail {
-
-// Observer that does what realization_observer + point_statistics::add do,
-// without the intermediate duration lists. Accumulator updates happen in the
-// same per-accumulator order, hence bitwise-equal results.
-class streaming_statistics_observer : public observer_base {
- public:
-  streaming_statistics_observer(point_statistics& stats, double window) noexcept
-      : stats_(stats), window_(window) {}
-
-  void reset(std::uint64_t realization, double x0, double xdot0, int belt) noexcept {
-    total_stick_ = 0;
-    rec_ = realization_record{};
-    rec_.realization = realization;
-    rec_.x0 = x0;
-    rec_.xdot0 = xdot0;
-    rec_.belt_start = belt;
-  }
-
-  void on_episode(const episode& e) noexcept {
-    const double d = e.duration();
-    if (e.kind == mode::stick) {
-      if (!(d > 0.0)) return;  // sticks of positive length only
-      if (rec_.sticks == 0) {
-        rec_.first_stick_start = e.start;
-        rec_.first_stick_duration = d;
-        rec_.first_stick_censored = e.censored;
-      }
-      ++rec_.sticks;
-      total_stick_ += d;
-      stats_.stick_duration.add(d);
-      stats_.stick_duration_hist.add(d);
-    } else if (rec_.sticks > 0) {  // slips after the first stick
-      ++rec_.slips;
-      stats_.slip_duration.add(d);
-      stats_.slip_duration_hist.add(d);
-    }
-  }
-
-  // The per-realization part of point_statistics::add.
-  void finish(const event_counts& counts) noexcept {
-    rec_.stick_fraction = total_stick_ / window_;
-    rec_.events = counts;
-    auto& s = stats_;
-    ++s.realizations;
-    s.stick_fraction.add(rec_.stick_fraction);
-    s.stick_fraction_hist.add(rec_.stick_fraction);
-    s.sticks_per_time.add(rec_.sticks / window_);
-    s.slips_per_time.add(rec_.slips / window_);
-    if (rec_.sticks == 0) {
-      ++s.no_stick;
-    } else {
-      s.first_stick_duration.add(rec_.first_stick_duration);
-      s.first_stick_duration_hist.add(rec_.first_stick_duration);
-      if (rec_.first_stick_censored) ++s.first_stick_censored;
-    }
-    s.events += counts;
-  }
-
-  [[nodiscard]] const realization_record& record() const noexcept { return rec_; }
-
- private:
-  point_statistics& stats_;
-  double window_;
-  double total_stick_ = 0;
-  realization_record rec_;
-};
 
 // simulate_block with the previous, one-realization-at-a-time fast engine
 // (kept for tests and comparisons). Pure: depends only on (spec, unit).
