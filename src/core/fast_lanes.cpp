@@ -1,18 +1,24 @@
 // The lane engine behind simulate_block (sweep_engine::fast): several
 // realizations of one work unit advance together, one event each per round,
 // so that their serial dependency chains overlap and their transcendentals
-// are evaluated as one SIMD vector (Highway, AVX2: 4 doubles).
+// are evaluated as one SIMD vector (Highway: 4 doubles with AVX2, 8 with
+// AVX-512).
 //
 // Each round, for every lane (= one realization in flight):
-//   1. scalar: run a pending stick event (no transcendental), then prepare the
-//      slip event: the argument of atan (mirror return), of atan2 (general
-//      root) and the phase w * (min(t_switch, t_a) - t) whose sin and cos the
-//      slip needs if it ends at a belt switch or at t_a (which it does exactly
-//      when the root does not come first);
-//   2. vector: atan, atan2, sin, cos of all lanes at once (the same kernels,
-//      detail/fast_math_simd.hpp, that the scalar integrator calls one lane at
-//      a time through detail/fast_math.hpp);
-//   3. scalar: finish the slip event exactly as `simulate` does.
+//   1. scalar: start a realization in an idle lane, and run the rare slips
+//      that start at a reversal (acos);
+//   2. vector: both the stick and the slip outcome of every lane: the stick's
+//      end (band edge, switch or t_a), the slip's root by atan (mirror
+//      return) or atan2 (general root), and the sin and cos of the phase
+//      w * (min(t_switch, t_a) - t) when some slip ends at a switch or at t_a,
+//      with the same kernels (detail/fast_math_simd.hpp) that the scalar
+//      integrator calls one lane at a time through detail/fast_math.hpp;
+//   3. vector: finish both outcomes exactly as `simulate` does, count the
+//      events, and leave one bit per lane for each piece of bookkeeping
+//      (close an episode, draw the next switch, finish the realization);
+//   4. scalar: that bookkeeping, only for the lanes whose bit is set.
+// In the common round (every lane busy, none starting at a reversal) step 1
+// is a vector step as well: count the event, check the max_events bound.
 // The per-event arithmetic is a transcription of `simulate`
 // (include/stickslip/integrator.hpp) with the same operations in the same
 // order, sharing its helpers (root_angle_arguments / root_angle_from_raw,
@@ -22,7 +28,7 @@
 // Lanes take realizations in order; a finished realization waits in a small
 // ring until all earlier ones are finished, and is then added to the block's
 // statistics by point_statistics::add in realization order, exactly as the
-// reference engine adds it: every Welford update happens in the same order.
+// reference engine adds it: every accumulator update happens in the same order.
 // A realization that exceeds max_events makes the whole block rerun on the
 // reference engine, which throws the same error the reference would.
 #include <algorithm>
@@ -52,6 +58,7 @@ using vec = hn::Vec<dtag>;
 constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 4 with AVX2
 constexpr int groups = 4;                          // independent vectors per round
 constexpr int lanes = groups * static_cast<int>(N);  // realizations in flight per thread
+static_assert(lanes <= 32, "lane bit masks are 32 bits");
 constexpr std::size_t ring = 64;  // finished realizations waiting for their turn
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -115,7 +122,7 @@ class lane_engine {
       : s_(s), p_(p), outs_(outs), first_block_(first_block), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), w_(p.natural_frequency()), V_(p.belt_speed), ta_(p.window),
-        key_(point_key(p)) {
+        key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
     for (std::size_t i = 0; i < n; ++i) pool_.emplace_back(p.window);
@@ -131,9 +138,11 @@ class lane_engine {
   void run() {
     const dtag d;
     while (true) {
-      bool any = false;
-      for (int l = 0; l < lanes; ++l) any |= prepare(l);
-      if (!any) break;
+      if (!all_running(d)) {
+        bool any = false;
+        for (int l = 0; l < lanes; ++l) any |= prepare(l);
+        if (!any) break;
+      }
       vector_step(d);
       side_effects();
     }
@@ -148,8 +157,9 @@ class lane_engine {
     obs_[l] = &pool_[(r - first_) % pool_.size()];
     obs_[l]->reset(r, ic.position, ic.velocity, ic.belt_direction);
     active_[l] = true;
-    counts_[l] = event_counts{};
-    steps_[l] = 0;
+    act_[l] = 1.0;
+    n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
+    steps_[l] = 0.0;
     // simulate(): initial state and mode.
     const double a = a_, V = V_;
     const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
@@ -181,8 +191,11 @@ class lane_engine {
   void finish_realization(int l) {
     obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, 0.0, 0.0, true});
     obs_[l]->finish();
-    obs_[l]->record().events = counts_[l];
+    obs_[l]->record().events = event_counts{
+        static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
+        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])};
     active_[l] = false;
+    act_[l] = 0.0;
     done_[(r_[l] - first_) % pool_.size()] = 1;
     flush();
   }
@@ -210,7 +223,30 @@ class lane_engine {
   }
 
   void count_step(int l) {
-    if (++steps_[l] > s_.max_events) throw bound_exceeded{};
+    if ((steps_[l] += 1.0) > max_steps_) throw bound_exceeded{};
+  }
+
+  // The common round: every lane runs a realization and none starts at a
+  // reversal. Then prepare() is one vector step: count the event, check the
+  // bound, run every lane.
+  bool all_running(dtag d) {
+    auto ok = hn::Not(hn::FirstN(d, 0));
+    for (int k = 0; k < groups; ++k) {
+      const std::size_t j = static_cast<std::size_t>(k) * N;
+      ok = hn::And(ok, hn::And(hn::Gt(hn::Load(d, act_ + j), hn::Set(d, 0.5)),
+                               hn::Lt(hn::Load(d, arv_ + j), hn::Set(d, 0.5))));
+    }
+    if (!hn::AllTrue(d, ok)) return false;
+    auto over = hn::FirstN(d, 0);
+    for (int k = 0; k < groups; ++k) {
+      const std::size_t j = static_cast<std::size_t>(k) * N;
+      const vec st = hn::Add(hn::Load(d, steps_ + j), hn::Set(d, 1.0));
+      hn::Store(st, d, steps_ + j);
+      hn::Store(hn::Set(d, 1.0), d, run_ + j);
+      over = hn::Or(over, hn::Gt(st, hn::Set(d, max_steps_)));
+    }
+    if (!hn::AllFalse(d, over)) throw bound_exceeded{};
+    return true;
   }
 
   // Before the vector step: start realizations in idle lanes and run the
@@ -261,7 +297,7 @@ class lane_engine {
       t_[l] = tsw_[l];
       v_[l] = -v;
       grz_[l] = mir_[l] = 0.0;
-      ++counts_[l].belt_switches;
+      n_sw_[l] += 1.0;
       tsw_[l] = sw_[l].next();
       if (z_[l] == v_[l]) {
         contact_at_switch(l);
@@ -285,7 +321,7 @@ class lane_engine {
     if (!inside) {
       sig_[l] = -from_sigma;
       arv_[l] = 1.0;
-      ++counts_[l].slip_reversals;
+      n_rev_[l] += 1.0;
       return;
     }
     x_[l] = std::clamp(x_[l], -a, a);
@@ -296,7 +332,7 @@ class lane_engine {
       return;
     }
     stk_[l] = 1.0;
-    ++counts_[l].stick_onsets;
+    n_on_[l] += 1.0;
     close_episode(l, t_[l], mode::stick);
   }
 
@@ -317,7 +353,7 @@ class lane_engine {
       return;
     }
     stk_[l] = 1.0;
-    ++counts_[l].stick_onsets;
+    n_on_[l] += 1.0;
     close_episode(l, t_[l], mode::stick);
   }
 
@@ -388,6 +424,7 @@ class lane_engine {
       sl_root[k] = hn::Not(hn::Or(sl_ta[k], sl_sw[k]));
       any_rot |= !hn::AllFalse(d, hn::AndNot(stick[k], hn::AndNot(sl_root[k], run[k])));
     }
+    std::uint32_t pop = 0, cl_stick = 0, cl_slip = 0, fin = 0;
     // slip: the rotation to a switch or to t_a
     vec xr[K], zr[K];
     K_LOOP xr[k] = x[k], zr[k] = z[k];
@@ -471,7 +508,24 @@ class lane_engine {
       hn::Store(IfThenElse(rn, nmir, hn::Load(d, mir_ + j)), d, mir_ + j);
       hn::Store(IfThenElse(rn, narv, hn::Load(d, arv_ + j)), d, arv_ + j);
       hn::Store(IfThenElse(rn, code, zero), d, code_ + j);
+      // the bookkeeping after the round: event counts, and lane bits
+      const vec cd = IfThenElse(rn, code, zero);
+      const mask m_ssw = hn::Eq(cd, Set(d, ev_stick_sw)), m_lsw = hn::Eq(cd, Set(d, ev_slip_sw));
+      const mask m_brk = hn::Eq(cd, Set(d, ev_stick_brk)), m_on = hn::Eq(cd, Set(d, ev_slip_onset));
+      const mask m_pop = hn::Or(m_ssw, m_lsw);
+      const mask m_fin = hn::Or(hn::Eq(cd, Set(d, ev_stick_ta)), hn::Eq(cd, Set(d, ev_slip_ta)));
+      hn::Store(Add(hn::Load(d, n_sw_ + j), hn::IfThenElseZero(m_pop, one)), d, n_sw_ + j);
+      hn::Store(Add(hn::Load(d, n_brk_ + j), hn::IfThenElseZero(m_brk, one)), d, n_brk_ + j);
+      hn::Store(Add(hn::Load(d, n_on_ + j), hn::IfThenElseZero(m_on, one)), d, n_on_ + j);
+      hn::Store(Add(hn::Load(d, n_rev_ + j), hn::IfThenElseZero(hn::Eq(cd, Set(d, ev_slip_rev)), one)),
+                d, n_rev_ + j);
+      const unsigned shift = static_cast<unsigned>(j);
+      pop |= lane_bits(d, m_pop) << shift;
+      cl_stick |= lane_bits(d, hn::Or(m_ssw, m_brk)) << shift;
+      cl_slip |= lane_bits(d, m_on) << shift;
+      fin |= lane_bits(d, m_fin) << shift;
     }
+    pop_ = pop, close_stick_ = cl_stick, close_slip_ = cl_slip, fin_ = fin;
 #undef K_LOOP
   }
 
@@ -479,21 +533,7 @@ class lane_engine {
   // Lanes are grouped by what they have to do (bit masks), so that the
   // branches go per group, not per lane through an unpredictable 9-way jump.
   void side_effects() {
-    unsigned pop = 0, close_stick = 0, close_slip = 0, fin = 0;
-    for (int l = 0; l < lanes; ++l) {
-      const int c = static_cast<int>(code_[l]);
-      const unsigned bit = 1u << l;
-      const bool ssw = c == ev_stick_sw, lsw = c == ev_slip_sw;
-      pop |= (ssw || lsw) ? bit : 0u;
-      close_stick |= (ssw || c == ev_stick_brk) ? bit : 0u;
-      close_slip |= c == ev_slip_onset ? bit : 0u;
-      fin |= (c == ev_stick_ta || c == ev_slip_ta) ? bit : 0u;
-      auto& n = counts_[l];
-      n.belt_switches += static_cast<std::uint64_t>(ssw || lsw);
-      n.stick_breaks += static_cast<std::uint64_t>(c == ev_stick_brk);
-      n.stick_onsets += static_cast<std::uint64_t>(c == ev_slip_onset);
-      n.slip_reversals += static_cast<std::uint64_t>(c == ev_slip_rev);
-    }
+    const std::uint32_t pop = pop_, close_stick = close_stick_, close_slip = close_slip_, fin = fin_;
     for (unsigned m = close_stick; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
       close_episode(l, t_[l], mode::slip);
@@ -510,6 +550,12 @@ class lane_engine {
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
+  static std::uint32_t lane_bits(dtag d, hn::Mask<dtag> m) {
+    std::uint8_t b[8] = {};
+    hn::StoreMaskBits(d, m, b);
+    return b[0];
+  }
+
   const sweep_spec& s_;
   const model_parameters& p_;
   std::vector<block_result>& outs_;
@@ -522,10 +568,15 @@ class lane_engine {
   // step loads and stores whole vectors of it.
   HWY_ALIGN double t_[lanes], x_[lanes], z_[lanes], v_[lanes], tsw_[lanes], sig_[lanes];
   HWY_ALIGN double stk_[lanes], grz_[lanes], mir_[lanes], arv_[lanes], run_[lanes], code_[lanes];
+  // Event counts and the events so far (the max_events bound), exact in
+  // doubles up to 2^53; act_: 1 while the lane runs a realization.
+  HWY_ALIGN double n_sw_[lanes] = {}, n_on_[lanes] = {}, n_brk_[lanes] = {}, n_rev_[lanes] = {};
+  HWY_ALIGN double steps_[lanes] = {}, act_[lanes] = {};
+  double max_steps_;
+  // What the last vector step left to do, one bit per lane.
+  std::uint32_t pop_ = 0, close_stick_ = 0, close_slip_ = 0, fin_ = 0;
   bool active_[lanes] = {};
   std::uint64_t r_[lanes] = {};
-  std::int64_t steps_[lanes] = {};
-  event_counts counts_[lanes];
   double ep_start_[lanes] = {};
   mode ep_kind_[lanes] = {};
   realization_observer* obs_[lanes] = {};
