@@ -401,8 +401,12 @@ class lane_engine {
       r[k] = Mul(hn::Neg(sig[k]), sq[k]);
       ay[k] = Sub(Mul(z[k], r[k]), Mul(wy[k], v[k]));
       ax[k] = Add(Mul(z[k], v[k]), Mul(wy[k], r[k]));
-      const vec q = IfThenElse(mirr[k], Div(hn::Abs(wy[k]), hn::Abs(z[k])),
-                               simd::atan2_ratio(ay[k], ax[k]));
+      // one division for both kinds of root: |wy| / |z| (mirror return) or
+      // atan2_ratio's min(|ay|, |ax|) / max(|ay|, |ax|)
+      vec num, den;
+      simd::atan2_ratio_operands(ay[k], ax[k], num, den);
+      const vec q = Div(IfThenElse(mirr[k], hn::Abs(wy[k]), num),
+                        IfThenElse(mirr[k], hn::Abs(z[k]), den));
       at[k] = IfThenElse(has_root[k], q, zero);
     }
     K_LOOP at[k] = simd::atan(d, at[k]);

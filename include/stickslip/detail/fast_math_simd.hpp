@@ -17,10 +17,16 @@ using vec = hn::Vec<dtag>;
 // Split in two so that the lane engine can share one Atan call between
 // atan2 lanes and plain atan lanes: atan2 = atan2_finish(Atan(q), ...) with
 // q = atan2_ratio(...).
-HWY_INLINE vec atan2_ratio(vec y, vec x) {
+HWY_INLINE void atan2_ratio_operands(vec y, vec x, vec& num, vec& den) {
   const vec ay = hn::Abs(y), ax = hn::Abs(x);
   const auto steep = hn::Gt(ay, ax);
-  return hn::Div(hn::IfThenElse(steep, ax, ay), hn::IfThenElse(steep, ay, ax));
+  num = hn::IfThenElse(steep, ax, ay);
+  den = hn::IfThenElse(steep, ay, ax);
+}
+HWY_INLINE vec atan2_ratio(vec y, vec x) {
+  vec num, den;
+  atan2_ratio_operands(y, x, num, den);
+  return hn::Div(num, den);
 }
 HWY_INLINE vec atan2_finish(dtag d, vec atan_ratio, vec y, vec x) {
   const auto steep = hn::Gt(hn::Abs(y), hn::Abs(x));
