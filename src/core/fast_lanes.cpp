@@ -137,12 +137,7 @@ class lane_engine {
 
   void run() {
     const dtag d;
-    while (true) {
-      if (!all_running(d)) {
-        bool any = false;
-        for (int l = 0; l < lanes; ++l) any |= prepare(l);
-        if (!any) break;
-      }
+    while (prepare_round(d)) {
       vector_step(d);
       side_effects();
     }
@@ -226,32 +221,39 @@ class lane_engine {
     if ((steps_[l] += 1.0) > max_steps_) throw bound_exceeded{};
   }
 
-  // The common round: every lane runs a realization and none starts at a
-  // reversal. Then prepare() is one vector step: count the event, check the
-  // bound, run every lane.
-  bool all_running(dtag d) {
-    auto ok = hn::Not(hn::FirstN(d, 0));
-    for (int k = 0; k < groups; ++k) {
-      const std::size_t j = static_cast<std::size_t>(k) * N;
-      ok = hn::And(ok, hn::And(hn::Gt(hn::Load(d, act_ + j), hn::Set(d, 0.5)),
-                               hn::Lt(hn::Load(d, arv_ + j), hn::Set(d, 0.5))));
-    }
-    if (!hn::AllTrue(d, ok)) return false;
+  // Before the vector step. Every busy lane counts its event (and the
+  // max_events bound is checked) in vector form; the scalar prepare() runs
+  // only for idle lanes and for lanes whose slip starts at a reversal.
+  // Returns whether any lane runs this round.
+  bool prepare_round(dtag d) {
+    const vec half = hn::Set(d, 0.5), one = hn::Set(d, 1.0), zero = hn::Zero(d);
     auto over = hn::FirstN(d, 0);
+    std::uint32_t special = 0;
     for (int k = 0; k < groups; ++k) {
       const std::size_t j = static_cast<std::size_t>(k) * N;
-      const vec st = hn::Add(hn::Load(d, steps_ + j), hn::Set(d, 1.0));
+      const auto act = hn::Gt(hn::Load(d, act_ + j), half);
+      const vec st = hn::Add(hn::Load(d, steps_ + j), hn::IfThenElseZero(act, one));
       hn::Store(st, d, steps_ + j);
-      hn::Store(hn::Set(d, 1.0), d, run_ + j);
-      over = hn::Or(over, hn::Gt(st, hn::Set(d, max_steps_)));
+      hn::Store(hn::IfThenElse(act, one, zero), d, run_ + j);
+      over = hn::Or(over, hn::And(act, hn::Gt(st, hn::Set(d, max_steps_))));
+      special |= lane_bits(d, hn::Or(hn::Not(act), hn::Gt(hn::Load(d, arv_ + j), half)))
+                 << static_cast<unsigned>(j);
     }
     if (!hn::AllFalse(d, over)) throw bound_exceeded{};
-    return true;
+    for (unsigned m = special; m != 0; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      if (active_[l]) scalar_reversal_slip(l);  // its event was counted above
+      prepare(l);
+    }
+    auto any = hn::FirstN(d, 0);
+    for (int k = 0; k < groups; ++k)
+      any = hn::Or(any, hn::Gt(hn::Load(d, run_ + static_cast<std::size_t>(k) * N), half));
+    return !hn::AllFalse(d, any);
   }
 
-  // Before the vector step: start realizations in idle lanes and run the
-  // rare slips that start at a reversal (acos, scalar) until every active
-  // lane has an event the vector step handles. Returns whether the lane runs.
+  // Start a realization in an idle lane and run the rare slips that start at
+  // a reversal (acos, scalar) until the lane has an event the vector step
+  // handles (counting each event). Returns whether the lane runs.
   bool prepare(int l) {
     run_[l] = 0.0;
     while (true) {
