@@ -1,5 +1,5 @@
-// See floor.hpp. Compiled with AVX2 + FMA (bench/study.cmake): Highway's
-// static target is then AVX2, and Log runs on 4 doubles at a time.
+// See floor.hpp. Compiled with the SIMD flags of the lane engine
+// (bench/study.cmake): the same static Highway target, AVX-512 or AVX2.
 #include "floor.hpp"
 
 #include <hwy/highway.h>
@@ -23,20 +23,22 @@ namespace {
 // and adds their sum to `sum`.
 std::uint64_t draw_realization(double rate, double window, std::uint64_t seed, std::uint64_t key,
                                std::uint64_t r, double& sum) {
-  const hn::CappedTag<double, 4> d;
+  const hn::ScalableTag<double> d;
   const auto neg_mean = hn::Set(d, -1.0 / rate);
   random_stream rs(seed, key, r, substream::belt_switches);
-  HWY_ALIGN double u[4];
-  HWY_ALIGN double w[4];
+  constexpr int blocks = 8;
+  HWY_ALIGN double w[4 * blocks];
   double t = 0.0;
   std::uint64_t n = 0;
   const std::size_t lanes = hn::Lanes(d);
   while (true) {
-    const auto blk = rs.next_block();
-    for (int j = 0; j < 4; ++j) u[j] = random_stream::open_uniform(blk.v[j]);
-    for (std::size_t j = 0; j < 4; j += lanes)
-      hn::Store(hn::Mul(hn::Log(d, hn::Load(d, u + j)), neg_mean), d, w + j);
-    for (int j = 0; j < 4; ++j) {
+    for (int b = 0; b < blocks; ++b) {
+      const auto blk = rs.next_block();
+      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
+    }
+    for (std::size_t j = 0; j < 4 * blocks; j += lanes)
+      hn::Store(hn::Mul(hn::Log(d, hn::Load(d, w + j)), neg_mean), d, w + j);
+    for (int j = 0; j < 4 * blocks; ++j) {
       t += w[j];
       if (t >= window) return n;
       sum += t;
