@@ -33,6 +33,7 @@
 // reference engine, which throws the same error the reference would.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -59,6 +60,7 @@ constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 4 with A
 constexpr int groups = 4;                          // independent vectors per round
 constexpr int lanes = groups * static_cast<int>(N);  // realizations in flight per thread
 static_assert(lanes <= 32, "lane bit masks are 32 bits");
+static_assert(N <= 8, "lane_bits reads one byte of mask bits per vector");
 constexpr std::size_t ring = 64;  // finished realizations waiting for their turn
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -591,6 +593,13 @@ class lane_engine {
 
 }  // namespace
 
+namespace {
+std::atomic<std::uint64_t> g_reference_reruns{0};
+}
+std::uint64_t lane_reference_reruns() noexcept {
+  return g_reference_reruns.load(std::memory_order_relaxed);
+}
+
 std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
                                                std::uint64_t first_block, std::uint64_t count) {
   const auto p = point_parameters(s, point);
@@ -606,6 +615,7 @@ std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t
     lane_engine(s, p, outs, first_block, first, last).run();
   } catch (const bound_exceeded&) {
     // Rerun on the reference engine, which throws what the reference throws.
+    g_reference_reruns.fetch_add(1, std::memory_order_relaxed);
     for (std::uint64_t b = 0; b < count; ++b)
       outs[b] = simulate_block_reference(s, work_unit{point, first_block + b});
   }

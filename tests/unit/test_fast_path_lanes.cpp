@@ -7,11 +7,13 @@
 // shared kernels (detail/fast_math.hpp) against libm.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/detail/fast_math.hpp"
@@ -102,6 +104,80 @@ TEST(FastPathLanes, SweepIsBitIdenticalForAnyThreadCount) {
     }
   }
   detail::set_fast_variant(before);
+}
+
+// Passes of simulate()'s event loop (what max_events bounds): one segment
+// each.
+struct pass_counter : observer_base {
+  std::int64_t passes = 0;
+  void on_segment(const segment&) noexcept { ++passes; }
+};
+
+std::string error_of(const auto& run) {
+  try {
+    (void)run();
+  } catch (const error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// The event budget at its exact threshold: with max_events = the largest
+// number of passes any realization of the unit needs, the lane engine runs
+// (without handing the unit to the reference engine) and gives the
+// reference's bits; one less, and it reports the reference's error. k = 40
+// has many reversal slips (counted on the scalar path); 45 realizations in
+// blocks of 11 leave lanes idle at the tail.
+TEST(FastPathLanes, WorkBoundAtItsExactThreshold) {
+  for (double mu : {2.0, 7.0}) {
+    auto s = study(40.0, 45, 11);
+    s.axes = {{"lambda", {30.0}}, {"mu", {mu}}};
+    const auto p = point_parameters(s, 0);
+    for (std::uint64_t block = 0; block < 5; ++block) {
+      const work_unit u{0, block};
+      std::int64_t most = 0;
+      for (std::uint64_t r = block * 11; r < std::min<std::uint64_t>(45, block * 11 + 11); ++r) {
+        pass_counter c;
+        auto unbounded = s;
+        unbounded.max_events = default_max_events;
+        (void)simulate_realization(unbounded, p, r, c);
+        most = std::max(most, c.passes);
+      }
+      s.max_events = most;
+      const auto reruns = detail::lane_reference_reruns();
+      const auto ref = simulate_block_reference(s, u);
+      const auto lanes = detail::simulate_block_lanes(s, u);
+      EXPECT_EQ(detail::lane_reference_reruns(), reruns) << "mu " << mu << " block " << block;
+      EXPECT_TRUE(same_bits(ref.stats, lanes.stats)) << "mu " << mu << " block " << block;
+      s.max_events = most - 1;
+      const auto ref_msg = error_of([&] { return simulate_block_reference(s, u); });
+      EXPECT_FALSE(ref_msg.empty());
+      EXPECT_EQ(ref_msg, error_of([&] { return detail::simulate_block_lanes(s, u); }));
+    }
+  }
+}
+
+// Realizations that start with x' = v: inside the band (a stick), on the
+// outward edge (grazing, no stick) and outside it (the slip starts at a
+// reversal, the scalar path), also under a budget that ends inside that
+// first reversal slip.
+TEST(FastPathLanes, StartsOnTheBeltVelocity) {
+  for (double where : {0.3, 1.0, 1.7, -2.5}) {
+    auto s = study(40.0, 23, 23);
+    s.axes = {{"lambda", {0.9, 30.0}}, {"mu", {2.0}}};
+    const double a = point_parameters(s, 0).band_half_width();
+    s.initial.velocity_min = s.initial.velocity_max = s.base.belt_speed;
+    s.initial.belt_start = 1;
+    s.initial.position_min = s.initial.position_max = where * a;
+    expect_units_agree(s);
+    s.max_events = 2;
+    for (std::size_t point : {0u, 1u}) {
+      const work_unit u{point, 0};
+      EXPECT_EQ(error_of([&] { return simulate_block_reference(s, u); }),
+                error_of([&] { return detail::simulate_block_lanes(s, u); }))
+          << where << " " << point;
+    }
+  }
 }
 
 TEST(FastPathLanes, WorkBoundErrorIsTheReferenceOne) {

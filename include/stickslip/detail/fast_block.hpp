@@ -51,4 +51,10 @@ void set_fast_variant(fast_variant v) noexcept;
                                                               std::uint64_t first_block,
                                                               std::uint64_t count);
 
+// How many times the lane engine has handed its units to the reference
+// engine because a realization exceeded max_events (process-wide; tests use
+// it to check that the lane engine does not give up where the reference
+// succeeds, which the rerun would otherwise hide).
+[[nodiscard]] std::uint64_t lane_reference_reruns() noexcept;
+
 }  // namespace stickslip::detail
