@@ -47,8 +47,10 @@ void validate(const sweep_spec& s) {
   if (!(s.histograms.slip_duration_max >= 0) || !std::isfinite(s.histograms.slip_duration_max))
     throw invalid_parameter("slip_duration_max", s.histograms.slip_duration_max,
                             "finite and >= 0 (0 = automatic)");
-  if (s.max_events < 1)
-    throw invalid_parameter("max_events", static_cast<double>(s.max_events), ">= 1");
+  // 2^53: event counts are exact in doubles up to there (the lane engine
+  // keeps them in SIMD registers); no realization comes near it.
+  if (s.max_events < 1 || s.max_events > (std::int64_t{1} << 53))
+    throw invalid_value("max_events", std::to_string(s.max_events), "1 .. 2^53 = 9007199254740992");
   // Product of the axis sizes in floating point: point_count() would wrap.
   double points = 1.0;
   for (const auto& ax : s.axes) points *= static_cast<double>(ax.values.size());

@@ -30,6 +30,7 @@ expect_fail "--block-size|'0'" sweep --block-size 0
 expect_fail "--bins|'0'" sweep --bins 0
 expect_fail "--threads|'two'" sweep --threads two --realizations 10
 expect_fail "lambda * ta|max_events" sweep --lambda 1000 --max-events 100
+expect_fail "max_events|'9007199254740993'|2^53" sweep --max-events 9007199254740993
 # unknown flags; -o is required
 expect_fail "--bogus" sweep --bogus 1
 expect_fail "--lamda" sweep --lamda 1
