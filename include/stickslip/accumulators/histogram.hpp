@@ -3,6 +3,7 @@
 // density(i) = count_i / (total * width): the area equals the fraction of all
 // samples that fell inside [lo, hi].
 #pragma once
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -27,9 +28,9 @@ class histogram {
     }
     // One multiplication (bins / (hi - lo) is fixed): this runs once per
     // episode of every realization.
-    auto i = static_cast<std::size_t>((x - lo_) * scale_);
-    if (i >= counts_.size()) i = counts_.size() - 1;
-    ++counts_[i];
+    const double f = (x - lo_) * scale_;  // >= 0; inf if hi - lo underflows
+    const auto n = counts_.size();
+    ++counts_[f < static_cast<double>(n) ? static_cast<std::size_t>(f) : n - 1];
   }
   // Precondition: same binning.
   histogram& operator+=(const histogram& o) noexcept {
@@ -59,7 +60,9 @@ class histogram {
     const auto n = total();
     return n ? static_cast<double>(counts_[i]) / (static_cast<double>(n) * width()) : 0.0;
   }
+  // Precondition: counts.size() == bins() (the binning is the constructor's).
   void set_raw(std::vector<std::uint64_t> counts, std::uint64_t under, std::uint64_t over) {
+    assert(counts.size() == counts_.size());
     counts_ = std::move(counts);
     underflow_ = under;
     overflow_ = over;
