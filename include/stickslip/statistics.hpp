@@ -84,7 +84,10 @@ class realization_observer : public observer_base {
  public:
   explicit realization_observer(double window) : window_(window) {}
   void reset(std::uint64_t realization, double x0, double xdot0, int belt);
-  // Inline: the engines call it once per episode.
+  // Inline: the engines call it once per episode. It is also compiled into
+  // the SIMD translation unit (fast_lanes.cpp, other -m flags), so it must
+  // stay free of anything a compiler could round differently there (the
+  // core is built with -ffp-contract=off: no fused multiply-adds).
   void on_episode(const episode& e) {
     const double d = e.duration();
     if (e.kind == mode::stick) {

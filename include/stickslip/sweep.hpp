@@ -24,8 +24,9 @@ struct axis {
 
 // Which engine simulates a work unit. Both run the same exact integrator and
 // give bit-identical statistics for a given seed (tests/unit/test_fast_path*.cpp):
-//   fast       the lane engine: 16 realizations per thread advanced together as
-//              AVX2 vectors, one event per lane per round, finished realizations
+//   fast       the lane engine: 32 realizations per thread advanced together as
+//              AVX-512 vectors (16 as AVX2 vectors), one event per lane per
+//              round, finished realizations
 //              added to the statistics in realization order
 //              (src/core/fast_lanes.cpp; docs/performance.md); the default;
 //   reference  poisson_switches + realization_observer + point_statistics::add,

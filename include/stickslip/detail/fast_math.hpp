@@ -37,8 +37,10 @@ inline constexpr double max_direct_phase = 39000.0;
   return std::abs(x) > max_direct_phase ? std::fmod(x, 2.0 * std::numbers::pi) : x;
 }
 
-// Which instruction set the kernels were compiled for ("avx2+fma" or
-// "baseline"): results are reproducible between builds with the same value.
+// Which instruction set the kernels were compiled for: "AVX3" (AVX-512),
+// "avx2+fma", or Highway's name of the baseline target. "AVX3" and
+// "avx2+fma" give the same bits (tests/unit/test_reproducible_bits.cpp);
+// otherwise results are reproducible between builds with the same value.
 [[nodiscard]] const char* target_name() noexcept;
 
 }  // namespace stickslip::detail::fm
