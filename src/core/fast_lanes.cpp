@@ -558,10 +558,14 @@ class lane_engine {
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
-  static std::uint32_t lane_bits(dtag d, hn::Mask<dtag> m) {
+  static std::uint32_t lane_bits([[maybe_unused]] dtag d, hn::Mask<dtag> m) {
+#if HWY_TARGET == HWY_AVX3
+    return static_cast<std::uint32_t>(m.raw);  // the AVX-512 mask register itself
+#else
     std::uint8_t b[8] = {};
     hn::StoreMaskBits(d, m, b);
     return b[0];
+#endif
   }
 
   const sweep_spec& s_;
