@@ -165,28 +165,30 @@ std::optional<shard_spec> parse_shard(const std::string& text) {
   return sh;
 }
 
-// SIGINT/SIGTERM (Ctrl-C, a job scheduler's time limit) stop handing out new
-// units; the units in flight finish and are journaled, so --resume loses
-// nothing. Restores the previous handlers when it goes out of scope.
+// SIGINT/SIGTERM (Ctrl-C, a job scheduler's time limit) and SIGUSR1 stop
+// handing out new units; the units in flight finish and are journaled, so
+// --resume loses nothing. SIGUSR1 is the one to use under mpirun: mpirun
+// forwards it to every rank, while on SIGTERM it kills the ranks itself
+// (`#SBATCH --signal=B:USR1@120`, docs/scaling.md). Restores the previous
+// handlers when it goes out of scope.
 std::atomic<int> stop_signal{0};
 extern "C" void on_stop_signal(int sig) { stop_signal.store(sig); }
+constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGUSR1};
 class stop_on_signals {
  public:
   stop_on_signals() {
     stop_signal.store(0);
-    old_int_ = std::signal(SIGINT, on_stop_signal);
-    old_term_ = std::signal(SIGTERM, on_stop_signal);
+    for (std::size_t i = 0; i < std::size(stop_signals); ++i)
+      old_[i] = std::signal(stop_signals[i], on_stop_signal);
   }
   ~stop_on_signals() {
-    std::signal(SIGINT, old_int_);
-    std::signal(SIGTERM, old_term_);
+    for (std::size_t i = 0; i < std::size(stop_signals); ++i) std::signal(stop_signals[i], old_[i]);
   }
   stop_on_signals(const stop_on_signals&) = delete;
   stop_on_signals& operator=(const stop_on_signals&) = delete;
 
  private:
-  void (*old_int_)(int);
-  void (*old_term_)(int);
+  void (*old_[std::size(stop_signals)])(int) = {};
 };
 
 // What a run needs besides the spec.
@@ -346,7 +348,14 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   std::optional<mpi::session> ses;
   if (mpi::launched_by_mpi()) {
     ses.emplace();
-    if (!ses->is_root()) return mpi::serve(*ses, threads);  // rank 0 reports everything
+    if (!ses->is_root()) {
+      // Rank 0 decides when to stop: on a stop signal (mpirun forwards
+      // SIGUSR1 to every rank) it hands out no more units and tells the
+      // workers to stop once the units they hold are done and journaled. A
+      // worker that died on the signal would make rank 0 abort instead.
+      for (const int sig : stop_signals) std::signal(sig, SIG_IGN);
+      return mpi::serve(*ses, threads);  // rank 0 reports everything
+    }
   }
   const int ranks = ses ? ses->size() : 1;
   auto cancel_workers = [&] {

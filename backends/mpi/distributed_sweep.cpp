@@ -137,7 +137,13 @@ void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
 
   auto take = [&](std::size_t n) {  // call with mu held
     std::vector<std::uint64_t> out;
-    while (!failure.first && out.size() < n && next < todo.size()) out.push_back(todo[next++]);
+    while (!failure.first && out.size() < n && next < todo.size()) {
+      const auto i = todo[next++];
+      // Asked again at hand-out: the caller may have stopped wanting units
+      // since the list was made (SIGTERM: finish what is out, hand out no more).
+      if (hooks.wanted && !hooks.wanted(unit_at(s, i))) continue;
+      out.push_back(i);
+    }
     return out;
   };
   auto merge = [&](const work_unit& u, block_result&& r) {  // call with mu held
