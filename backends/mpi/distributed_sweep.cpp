@@ -157,21 +157,21 @@ void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
     }
   };
 
-  // Local compute threads draw from the same list as the workers.
+  // Local compute threads draw from the same list as the workers, a batch
+  // of consecutive units at a time (simulate_units runs them together).
+  const auto batch = static_cast<std::size_t>(units_per_batch(s));
   auto local = [&] {
     while (true) {
-      std::uint64_t i;
+      std::vector<work_unit> units;
       {
         std::lock_guard lock(mu);
-        auto one = take(1);
-        if (one.empty()) return;
-        i = one[0];
+        for (auto i : take(batch)) units.push_back(unit_at(s, i));
       }
-      const auto u = unit_at(s, i);
+      if (units.empty()) return;
       try {
-        auto r = simulate_block(s, u);
+        auto results = simulate_units(s, units);
         std::lock_guard lock(mu);
-        merge(u, std::move(r));
+        for (std::size_t c = 0; c < units.size(); ++c) merge(units[c], std::move(results[c]));
       } catch (...) {
         std::lock_guard lock(mu);
         failure.set(std::current_exception());
@@ -267,30 +267,36 @@ void serve(const session&, unsigned threads) {
   bool shutdown = false;
   failure_slot failure;
 
+  // Each compute thread takes up to a batch of queued units at a time
+  // (consecutive blocks run together in simulate_units).
+  const auto batch = static_cast<std::size_t>(units_per_batch(s));
   auto compute = [&] {
     std::unique_lock lock(mu);
     while (true) {
       work_cv.wait(lock, [&] { return shutdown || !queue.empty(); });
       if (queue.empty()) return;
-      const auto i = queue.front();
-      queue.pop_front();
-      ++busy;
+      std::vector<work_unit> units;
+      while (!queue.empty() && units.size() < batch) {
+        units.push_back(unit_at(s, queue.front()));
+        queue.pop_front();
+      }
+      busy += static_cast<unsigned>(units.size());
       lock.unlock();
-      std::string out;
+      std::vector<std::string> out;
       std::exception_ptr err;
       try {
-        const auto u = unit_at(s, i);
-        out = serialize(u, simulate_block(s, u));
+        auto results = simulate_units(s, units);
+        for (std::size_t c = 0; c < units.size(); ++c) out.push_back(serialize(units[c], results[c]));
       } catch (...) {
         err = std::current_exception();
       }
       lock.lock();
-      --busy;
+      busy -= static_cast<unsigned>(units.size());
       if (err) {
         failure.set(err);
         queue.clear();
       } else {
-        outbox.push_back(std::move(out));
+        for (auto& m : out) outbox.push_back(std::move(m));
       }
       main_cv.notify_one();
     }
@@ -320,12 +326,13 @@ void serve(const session&, unsigned threads) {
       lock.lock();
       stopped = fail_sent = true;
     }
-    // Keep every thread busy plus one unit queued, so no thread waits for
+    // Keep every thread busy plus one batch queued, so no thread waits for
     // a round trip; not more, so the tail stays balanced.
     const std::size_t outstanding = queue.size() + busy;
-    if (!stopped && outstanding < n_threads + 1) {
+    const std::size_t wanted = (n_threads + 1) * batch;
+    if (!stopped && outstanding < wanted) {
       detail::byte_writer w;
-      w.u32(static_cast<std::uint32_t>(n_threads + 1 - outstanding));
+      w.u32(static_cast<std::uint32_t>(wanted - outstanding));
       lock.unlock();
       send_bytes(w.take(), 0, request_tag);
       MPI_Status st;

@@ -77,6 +77,15 @@ struct block_result {
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
 // The reference engine, whatever s.engine says.
 [[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
+// simulate_block of each unit, in order. Runs of consecutive blocks of one
+// point go to the lane engine together, so its lanes move on to the next
+// block instead of idling at a block's tail (~20 % with blocks of 50); the
+// results are exactly simulate_block's.
+[[nodiscard]] std::vector<block_result> simulate_units(const sweep_spec& s,
+                                                       const std::vector<work_unit>& units);
+// How many consecutive units a scheduler should hand out together for
+// simulate_units to gain from: 20 with the lane engine, else 1.
+[[nodiscard]] std::uint64_t units_per_batch(const sweep_spec& s) noexcept;
 
 // Simulate one realization of one grid point (what `simulate` replays).
 template <class Observer>

@@ -114,6 +114,32 @@ block_result simulate_block(const sweep_spec& s, const work_unit& u) {
              : detail::simulate_block_fast(s, u);
 }
 
+std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
+  const bool lanes = s.engine == sweep_engine::fast &&
+                     detail::get_fast_variant() == detail::fast_variant::lanes;
+  return lanes ? 20 : 1;  // 20 x 50 realizations
+}
+
+std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<work_unit>& units) {
+  const bool lanes = units_per_batch(s) > 1;
+  std::vector<block_result> results;
+  results.reserve(units.size());
+  for (std::size_t a = 0; a < units.size();) {
+    std::size_t b = a + 1;  // units[a, b): consecutive blocks of one point
+    while (b < units.size() && units[b].point == units[a].point &&
+           units[b].block == units[b - 1].block + 1)
+      ++b;
+    if (lanes) {
+      auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
+      for (auto& x : r) results.push_back(std::move(x));
+    } else {
+      for (std::size_t c = a; c < b; ++c) results.push_back(simulate_block(s, units[c]));
+    }
+    a = b;
+  }
+  return results;
+}
+
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
   block_result out;
@@ -207,13 +233,7 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
   auto scheduled = [&](std::uint64_t i) {
     return work_unit{order[static_cast<std::size_t>(i / nb)], i % nb};
   };
-  // With the lane engine a worker takes several consecutive units at once and
-  // simulates the runs of consecutive blocks of one point together (lanes do
-  // not idle at block tails); each unit still gets its own block_result, and
-  // merging stays per unit in block order, so results do not change.
-  const bool lanes = s.engine == sweep_engine::fast &&
-                     detail::get_fast_variant() == detail::fast_variant::lanes;
-  const std::uint64_t batch = lanes ? 20 : 1;  // 20 x 50 realizations
+  const std::uint64_t batch = units_per_batch(s);
   std::atomic<std::uint64_t> next{0};
   std::mutex mu;
   std::exception_ptr failure;
@@ -229,21 +249,8 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
         const auto u = scheduled(i);
         if (!hooks.wanted || hooks.wanted(u)) units.push_back(u);
       }
-      results.clear();
       try {
-        for (std::size_t a = 0; a < units.size();) {
-          std::size_t b = a + 1;  // units[a, b): consecutive blocks of one point
-          while (b < units.size() && units[b].point == units[a].point &&
-                 units[b].block == units[b - 1].block + 1)
-            ++b;
-          if (lanes) {
-            auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
-            for (auto& x : r) results.push_back(std::move(x));
-          } else {
-            for (std::size_t c = a; c < b; ++c) results.push_back(simulate_block(s, units[c]));
-          }
-          a = b;
-        }
+        results = simulate_units(s, units);
       } catch (...) {
         std::lock_guard lock(mu);
         if (!failure) failure = std::current_exception();
