@@ -113,6 +113,17 @@ struct root_angle_args {
   return mirror_return_from_atan(fm::atan(mirror_return_ratio(wy, z)));
 }
 
+// Phase run of a slip that starts at a reversal (x' = v outside the band):
+// the whole arc of the new sigma region up to its other root. With x' = v,
+// B^2 = (w y)^2 + v^2, so the root half-angle alpha = acos(v / B) is
+// atan2(|w y|, v): the same angle without the cancellation of acos near 1
+// (reversals just outside the band edge) and with the shared kernel, not
+// libm. Precondition: wy != 0 (B^2 - v^2 = (w y)^2 > 0).
+[[nodiscard]] inline double reversal_arc_angle(double wy, double v, double sigma) noexcept {
+  const double alpha = fm::atan2(std::abs(wy), v);
+  return sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+}
+
 }  // namespace detail
 
 template <class Switches, class Observer>
@@ -229,9 +240,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       if (mirror) {
         dtheta = detail::mirror_return_angle(wy, z);  // z == -v exactly here
       } else if (after_reversal) {  // we start on the region's first root: all of it
-        const double B = std::sqrt(wy * wy + z * z);
-        const double alpha = std::acos(std::clamp(v / B, -1.0, 1.0));
-        dtheta = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+        dtheta = detail::reversal_arc_angle(wy, v, sigma);  // z == v exactly here
       } else {
         dtheta = detail::root_angle(wy, z, v, sigma, std::sqrt(disc));
       }

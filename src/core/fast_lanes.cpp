@@ -6,7 +6,7 @@
 //
 // Each round, for every lane (= one realization in flight):
 //   1. scalar: start a realization in an idle lane, and run the rare slips
-//      that start at a reversal (acos);
+//      that start at a reversal;
 //   2. vector: both the stick and the slip outcome of every lane: the stick's
 //      end (band edge, switch or t_a), the slip's root by atan (mirror
 //      return) or atan2 (general root), and the sin and cos of the phase
@@ -254,7 +254,7 @@ class lane_engine {
   }
 
   // Start a realization in an idle lane and run the rare slips that start at
-  // a reversal (acos, scalar) until the lane has an event the vector step
+  // a reversal (scalar) until the lane has an event the vector step
   // handles (counting each event). Returns whether the lane runs.
   bool prepare(int l) {
     run_[l] = 0.0;
@@ -282,10 +282,7 @@ class lane_engine {
     const double disc = wy * wy + (z - v) * (z + v);
     double t_root = inf;
     if (grz_[l] == 0.0 && disc > 0.0) {
-      const double B = std::sqrt(wy * wy + z * z);
-      const double alpha = std::acos(std::clamp(v / B, -1.0, 1.0));
-      const double dtheta = sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
-      t_root = t + dtheta / w;
+      t_root = t + reversal_arc_angle(wy, v, sigma) / w;
     }
     const double t_next = std::min(t_root, tsw_[l]);
     arv_[l] = 0.0;
