@@ -169,8 +169,8 @@ std::optional<shard_spec> parse_shard(const std::string& text) {
 // handing out new units; the units in flight finish and are journaled, so
 // --resume loses nothing. SIGUSR1 is the one to use under mpirun: mpirun
 // forwards it to every rank, while on SIGTERM it kills the ranks itself
-// (`#SBATCH --signal=B:USR1@120`, docs/scaling.md). Restores the previous
-// handlers when it goes out of scope.
+// (under srun: `#SBATCH --signal=USR1@120`; docs/scaling.md). Restores the
+// previous handlers when it goes out of scope.
 std::atomic<int> stop_signal{0};
 extern "C" void on_stop_signal(int sig) { stop_signal.store(sig); }
 constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGUSR1};
@@ -248,7 +248,6 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan, const in
       plan.shard ? fmt::format("shard-{}-of-{}", plan.shard->index, plan.shard->count) : "run";
   io::journal_writer journal(plan.dir, spec, out.metadata, tag, plan.checkpoint_interval);
   progress_bar bar;
-  stop_on_signals signals;
   sweep_hooks hooks;
   if (bar.active())
     hooks.progress = [&bar](std::uint64_t d, std::uint64_t total) { bar.update(d, total); };
@@ -341,6 +340,9 @@ void report(const sweep_spec& spec, const run_plan& plan, const run_outcome& out
 void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invocation& inv) {
   // Past `ulimit -f` a write must fail with EFBIG (reported), not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
+  // From here to the end (outputs written): a stop signal sets stop_signal
+  // (no unit starts after it), on every rank until workers ignore it below.
+  stop_on_signals signals;
   const auto threads =
       static_cast<unsigned>(io::parse_unsigned("--threads", o.threads, 0, 1u << 16));
   const unsigned resolved_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());

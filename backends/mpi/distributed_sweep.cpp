@@ -325,6 +325,7 @@ void serve(const session&, unsigned threads) {
       send_bytes(w.take(), 0, failure_tag);
       lock.lock();
       stopped = fail_sent = true;
+      queue.clear();  // units received while failing are not computed
     }
     // Keep every thread busy plus one batch queued, so no thread waits for
     // a round trip; not more, so the tail stays balanced.

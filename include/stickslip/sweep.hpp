@@ -153,7 +153,10 @@ struct sweep_hooks {
   std::function<void(std::uint64_t units_done, std::uint64_t units_total)> progress;
   // Called (serialized) with every unit computed by this process, before merging.
   std::function<void(const work_unit&, const block_result&)> unit_done;
-  // Units to run: default all. Used by --shard and --resume.
+  // Units to run: default all. Used by --shard, --resume and to stop (a
+  // signal makes it false from then on). Asked when a unit is about to be
+  // handed out, possibly more than once per unit and from several threads
+  // (run_units: without a lock), so it must be thread-safe and cheap.
   std::function<bool(const work_unit&)> wanted;
 };
 

@@ -40,20 +40,23 @@ timeout 60 "${launch[@]}" -np 3 "$bin" sweep --lambda 0.05,0.1 --mu 0.5,3 --ta 3
 ((rc == 4)) || fail "work bound under mpirun: exit $rc, expected 4"
 [[ -e $work/bound ]] && fail "work bound under mpirun left $work/bound"
 echo "mpi_cli: errors under mpirun: exit 2 (bad input) and 4 (work bound), no hang"
-# SIGUSR1 to mpirun (what `#SBATCH --signal=B:USR1@...` sends; mpirun
-# forwards it): rank 0 hands out no more units, the units in flight are
-# journaled, every rank exits, and --resume completes the same results.
-long=(sweep --lambda log:0.1:30:40 --mu 0.5,5 --realizations 20000 --checkpoint-interval 0.2)
+# SIGUSR1 to mpirun (mpirun forwards it to every rank; under srun,
+# `#SBATCH --signal=USR1@...` sends it to every task): rank 0 hands out no
+# more units, the units in flight are journaled, every rank exits, and
+# --resume completes the same results. A watchdog ends a hung run.
+long=(sweep --lambda log:0.1:30:40 --mu 0.5,5 --realizations 4000 --checkpoint-interval 0)
 "$bin" "${long[@]}" --threads 2 -o "$work/long-single" 2>/dev/null || fail "single-process long run"
 "${launch[@]}" -np 2 "$bin" "${long[@]}" --threads 1 -o "$work/usr1" 2>"$work/usr1.err" & pid=$!
+( sleep 120; kill -KILL $pid ) >/dev/null 2>&1 & watchdog=$!
 for _ in $(seq 300); do  # signal once the first journal segment is written
   compgen -G "$work/usr1/.journal/seg-*" >/dev/null && break
   sleep 0.05
 done
 kill -USR1 $pid
 wait $pid; rc=$?
+pkill -P $watchdog 2>/dev/null; kill $watchdog 2>/dev/null  # and its sleep
 ((rc != 0)) || fail "SIGUSR1 under mpirun: the sweep finished before the signal (make it longer)"
-grep -q "interrupted by signal 10" "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report"; }
+grep -q "interrupted by signal" "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report (exit $rc)"; }
 "${launch[@]}" -np 2 "$bin" "${long[@]}" --threads 1 --resume -o "$work/usr1" 2>/dev/null \
   || fail "resume after SIGUSR1"
 $compare "$work/long-single" "$work/usr1" >/dev/null || fail "resume after SIGUSR1 differs"

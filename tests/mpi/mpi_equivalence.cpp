@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "stickslip/error.hpp"
 #include "stickslip/mpi/distributed_sweep.hpp"
@@ -51,6 +52,8 @@ int main(int argc, char** argv) {
     mpi::serve(ses, threads);  // case 1
     mpi::serve(ses, threads);  // case 2
     mpi::serve(ses, threads);  // case 3
+    mpi::serve(ses, threads);  // case 4, stopped
+    mpi::serve(ses, threads);  // case 4, resumed
     return 0;
   }
   ordered_merger reference(spec);
@@ -92,7 +95,42 @@ int main(int argc, char** argv) {
   } catch (const error& e) {
     if (e.code() != exit_code::work_bound) return fail(fmt::format("case 3: wrong error: {}", e.what()));
   }
-  fmt::print("mpi_equivalence: {} ranks x {} threads: {} units bit-identical; resume and "
+
+  // 4. a stop (what a signal does: `wanted` turns false) after 10 merged
+  // units: every rank returns, every unit handed out is merged exactly once
+  // and reported to unit_done; then the rest, resumed, completes the run.
+  // Blocks of one realization: many more units than the ranks hold at once
+  // (each asks for batches of 20 per thread).
+  auto small = spec;
+  small.block_size = 1;
+  ordered_merger ref4(small);
+  run_units(small, 1, ref4);
+  const auto want4 = encode(small, ref4);
+  ordered_merger m4(small);
+  std::vector<char> done(unit_count(small), 0);
+  std::uint64_t done4 = 0;
+  bool twice = false;
+  sweep_hooks h4;
+  h4.unit_done = [&](const work_unit& u, const block_result&) {
+    auto& d = done[u.point * blocks_per_point(small) + u.block];
+    twice |= d != 0;
+    d = 1;
+    ++done4;
+  };
+  h4.wanted = [&](const work_unit& u) {
+    return done4 < 10 && !done[u.point * blocks_per_point(small) + u.block];
+  };
+  mpi::coordinate(ses, small, threads, m4, h4);
+  if (twice) return fail("case 4: a unit was merged twice");
+  if (m4.merged_units() != done4 || done4 < 10 || m4.complete())
+    return fail(fmt::format("case 4: {} units reported, {} merged, complete = {}", done4,
+                            m4.merged_units(), m4.complete()));
+  h4.wanted = [&](const work_unit& u) { return !done[u.point * blocks_per_point(small) + u.block]; };
+  mpi::coordinate(ses, small, threads, m4, h4);
+  if (twice || !m4.complete() || encode(small, m4) != want4)
+    return fail("case 4: the stopped and resumed run differs from the single-process run");
+
+  fmt::print("mpi_equivalence: {} ranks x {} threads: {} units bit-identical; resume, stop and "
              "error paths OK\n",
              ses.size(), threads, unit_count(spec));
   return 0;
