@@ -3,6 +3,7 @@
 // spec, and block statistics are merged per point in block order, so the
 // result is bit-identical for any number of threads, ranks or shards.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -171,7 +172,40 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
 [[nodiscard]] result_set run_sweep(const sweep_spec& s, unsigned threads = 0,
                                    const sweep_hooks& hooks = {});
 
-// ---- implementation of the template ----
+namespace detail {
+// One realization at a time with the exact integrator and the belt switch
+// source `Switches` (poisson_switches: the reference engine;
+// batched_poisson_switches: the one-at-a-time fast engine; both give the
+// same switch times), statistics through realization_observer and
+// point_statistics::add in realization order.
+template <class Switches>
+[[nodiscard]] block_result simulate_block_with(const sweep_spec& s, const work_unit& u);
+}  // namespace detail
+
+// ---- implementation of the templates ----
+template <class Switches>
+block_result detail::simulate_block_with(const sweep_spec& s, const work_unit& u) {
+  const auto p = point_parameters(s, u.point);
+  block_result out;
+  out.stats = point_statistics(p, s.histograms);
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  if (s.keep_records) out.records.reserve(last - first);
+  const auto key = point_key(p);
+  realization_observer obs(p.window);
+  for (std::uint64_t r = first; r < last; ++r) {
+    const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
+    Switches sw(p.switch_rate, s.seed, key, r);
+    obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
+    const auto counts = simulate(p, ic, sw, obs, s.max_events);
+    obs.finish();
+    obs.record().events = counts;
+    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    if (s.keep_records) out.records.push_back(obs.record());
+  }
+  return out;
+}
+
 template <class Observer>
 event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
                                   std::uint64_t realization, Observer& obs) {

@@ -314,15 +314,18 @@ class lane_engine {
     root_contact(l, sigma);
   }
 
-  // simulate()'s resolution at a root (x' = v), from the sigma of the slip.
-  void root_contact(int l, double from_sigma) {
+  // simulate()'s resolution at a contact x' = v, from the sigma of the slip:
+  // a stick, a grazing touch on the outward edge, or a reversal (counted as
+  // a slip reversal at a root; simulate() counts none when a belt switch
+  // lands exactly on x' = v: contact_at_switch).
+  void root_contact(int l, double from_sigma, bool count_reversal = true) {
     const double a = a_;
     mir_[l] = 0.0;
     const bool inside = from_sigma > 0 ? x_[l] >= -a : x_[l] <= a;
     if (!inside) {
       sig_[l] = -from_sigma;
       arv_[l] = 1.0;
-      n_rev_[l] += 1.0;
+      if (count_reversal) n_rev_[l] += 1.0;
       return;
     }
     x_[l] = std::clamp(x_[l], -a, a);
@@ -338,25 +341,7 @@ class lane_engine {
   }
 
   // simulate(): a belt switch during a slip landed exactly on x' = v.
-  void contact_at_switch(int l) {
-    const double a = a_;
-    const double from_sigma = x_[l] > 0 ? -1.0 : 1.0;
-    const bool inside = from_sigma > 0 ? x_[l] >= -a : x_[l] <= a;
-    if (!inside) {
-      sig_[l] = -from_sigma;
-      arv_[l] = 1.0;
-      return;
-    }
-    x_[l] = std::clamp(x_[l], -a, a);
-    if (a - (v_[l] > 0 ? x_[l] : -x_[l]) <= 0.0) {
-      sig_[l] = v_[l] > 0 ? 1.0 : -1.0;
-      grz_[l] = 1.0;
-      return;
-    }
-    stk_[l] = 1.0;
-    n_on_[l] += 1.0;
-    close_episode(l, t_[l], mode::stick);
-  }
+  void contact_at_switch(int l) { root_contact(l, x_[l] > 0 ? -1.0 : 1.0, false); }
 
   // ---- the vector step: one event for every lane ----
   // Every expression is simulate()'s, operation for operation, lane-wise.

@@ -141,24 +141,7 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
 }
 
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
-  const auto p = point_parameters(s, u.point);
-  block_result out;
-  out.stats = point_statistics(p, s.histograms);
-  const std::uint64_t first = u.block * s.block_size;
-  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
-  const auto key = point_key(p);
-  realization_observer obs(p.window);
-  for (std::uint64_t r = first; r < last; ++r) {
-    const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
-    poisson_switches sw(p.switch_rate, s.seed, key, r);
-    obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
-    const auto counts = simulate(p, ic, sw, obs, s.max_events);
-    obs.finish();
-    obs.record().events = counts;
-    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
-    if (s.keep_records) out.records.push_back(obs.record());
-  }
-  return out;
+  return detail::simulate_block_with<poisson_switches>(s, u);
 }
 
 ordered_merger::ordered_merger(const sweep_spec& s)

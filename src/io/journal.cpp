@@ -37,20 +37,24 @@ void remove_journal(const std::string& dir) {
 
 namespace detail {
 
+// magic, format version, payload size, CRC-32 of the payload, payload.
+bytes framed(std::string_view magic, const bytes& payload) {
+  byte_writer w;
+  w.raw(magic);
+  w.u32(serial_format_version);
+  w.u64(payload.size());
+  w.u32(crc32(payload));
+  w.raw(payload);
+  return w.take();
+}
+
 bytes encode_header(const sweep_spec& spec, const run_metadata& meta) {
   byte_writer body;
   body.str(serialize(spec));
   for (const auto* f : {&meta.command_line, &meta.resolved_config, &meta.version,
                         &meta.git_revision, &meta.created_utc})
     body.str(*f);
-  const bytes payload = body.take();
-  byte_writer w;
-  w.raw(header_magic);
-  w.u32(serial_format_version);
-  w.u64(payload.size());
-  w.u32(crc32(payload));
-  w.raw(payload);
-  return w.take();
+  return framed(header_magic, body.take());
 }
 
 bytes encode_segment_header(std::uint64_t fingerprint, double elapsed, const std::string& run_id,
@@ -60,14 +64,7 @@ bytes encode_segment_header(std::uint64_t fingerprint, double elapsed, const std
   body.f64(elapsed);
   body.str(run_id);
   body.u64(records);
-  const bytes b = body.take();
-  byte_writer w;
-  w.raw(segment_magic);
-  w.u32(serial_format_version);
-  w.u64(b.size());
-  w.u32(crc32(b));
-  w.raw(b);
-  return w.take();
+  return framed(segment_magic, body.take());
 }
 
 // write(2) all of `data` to a fresh file `tmp`, fsync, close, rename to
