@@ -18,12 +18,11 @@
 #include "commands.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/journal.hpp"
+#include "stickslip/run/merge.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 
 namespace stickslip::app {
-[[noreturn]] void exit_after_failed_write(const error& e);  // cmd_sweep.cpp
-
 namespace {
 
 struct merge_options {
@@ -33,62 +32,6 @@ struct merge_options {
 
 void print_problem(const std::string& p) { fmt::print(stderr, "stickslip: journal: {}\n", p); }
 
-// The configuration of the first input whose journal header is readable.
-sweep_spec configuration_of(const std::vector<std::string>& dirs) {
-  for (const auto& d : dirs) {
-    if (!io::journal_exists(d))
-      throw invalid_value("merge input", d,
-                          "an output directory of `stickslip sweep --shard` holding a journal (" +
-                              io::journal_path(d) + ")");
-  }
-  for (const auto& d : dirs) {
-    const auto j = io::read_journal(d, nullptr, print_problem);
-    if (j.spec) return *j.spec;
-  }
-  throw error(exit_code::io_failure, "merge: no input journal has a readable header");
-}
-
-struct combined {
-  std::map<work_unit, block_result> units;
-  std::optional<io::run_metadata> metadata;
-  double elapsed = 0;
-  std::uint64_t duplicates = 0;
-};
-
-combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs) {
-  combined all;
-  for (const auto& d : dirs) {
-    auto j = io::read_journal(d, &spec, print_problem);  // throws resume_mismatch on another config
-    if (!all.metadata && j.metadata) all.metadata = j.metadata;
-    all.elapsed += j.elapsed_seconds;
-    for (auto& [u, r] : j.units) {
-      auto [it, fresh] = all.units.emplace(u, std::move(r));
-      if (fresh) continue;
-      if (serialize(u, it->second) != serialize(u, r))
-        throw error(exit_code::io_failure,
-                    fmt::format("merge: point {} block {} differs between two journals (one "
-                                "of them is from another program version or damaged); '{}'",
-                                u.point, u.block, d));
-      ++all.duplicates;
-    }
-  }
-  return all;
-}
-
-void check_coverage(const sweep_spec& spec, const combined& all) {
-  const auto total = unit_count(spec);
-  if (all.units.size() == total) return;
-  std::vector<std::string> first;
-  for (std::uint64_t i = 0; i < total && first.size() < 5; ++i)
-    if (!all.units.count(unit_at(spec, i))) first.push_back(std::to_string(i));
-  throw error(exit_code::invalid_input,
-              fmt::format("merge: {} of {} work units are missing (unit indices {}{}); run the "
-                          "missing shards (`stickslip sweep ... --shard i/n --resume -o DIR`) "
-                          "and merge again",
-                          total - all.units.size(), total, fmt::join(first, ", "),
-                          total - all.units.size() > first.size() ? ", ..." : ""));
-}
-
 void run_merge(const merge_options& o) {
   std::signal(SIGXFSZ, SIG_IGN);  // past `ulimit -f`: EFBIG, reported
   {
@@ -97,24 +40,17 @@ void run_merge(const merge_options& o) {
     if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
       throw invalid_value("-o (output directory)", o.out_dir, "a directory or a new path");
   }
-  const sweep_spec spec = configuration_of(o.inputs);
-  validate(spec);
-  combined all = combine(spec, o.inputs);
-  check_coverage(spec, all);
-  if (all.duplicates)
+  auto merged = run::merge_shards(o.inputs, print_problem);
+  if (merged.duplicates)
     fmt::print(stderr, "stickslip: merge: {} units were in more than one journal (identical; "
-                       "used once)\n", all.duplicates);
-  ordered_merger merger(spec);
-  for (auto& [u, r] : all.units) merger.add(u, std::move(r));
-  if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
-  auto rs = make_result_set(spec, std::move(merger));
-  rs.elapsed_seconds = all.elapsed;
+                       "used once)\n", merged.duplicates);
   try {
-    io::write_all(rs, *all.metadata, o.out_dir);
+    io::write_all(merged.results, merged.metadata, o.out_dir);
   } catch (const error& e) {
-    if (e.code() == exit_code::io_failure) exit_after_failed_write(e);  // see cmd_sweep.cpp
+    if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
     throw;
   }
+  const auto& spec = merged.results.spec;
   fmt::print(stderr, "merged {} units from {} journals ({} grid points) -> {}\n",
              unit_count(spec), o.inputs.size(), point_count(spec), o.out_dir);
 }

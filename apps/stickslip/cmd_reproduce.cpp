@@ -3,18 +3,28 @@
 // figures (gnuplot) and a claim-by-claim report. See docs/reproduction.md.
 //
 //   (a) options -> io::study_options (validated before anything runs)
-//   (b) io::run_paper_study: main sweeps, refinements of the maximum, candidates
-//   (c) io::write_reproduction: sweep outputs, figures, report.md, report.html
+//   (b) io::run_paper_study: main sweeps, refinements of the maximum,
+//       candidates; every sweep is a journaled run of the run layer in
+//       OUT/.runs/<sweep>, so a killed reproduce continues with --resume,
+//       `--shard i/n` runs one slice of the main sweeps, and under mpirun the
+//       work is spread over the ranks
+//   (c) io::write_reproduction: sweep outputs, figures, report.md,
+//       report.html; then OUT/.runs is removed
 #include <fmt/format.h>
 
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "commands.hpp"
+#include "execution.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
 #include "stickslip/io/figures.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/report.hpp"
+#include "stickslip/run/journaled_run.hpp"
 
 namespace stickslip::app {
 namespace {
@@ -26,6 +36,8 @@ struct reproduce_flags {
   std::uint64_t seed = 0;                 // 0: the study's documented seed
   unsigned threads = 0;
   bool quick = false, no_candidates = false, no_figures = false;
+  bool resume = false, keep_journal = false;
+  std::string shard;  // "i/n"
 };
 
 io::study_options resolve(const reproduce_flags& f) {
@@ -44,18 +56,77 @@ io::study_options resolve(const reproduce_flags& f) {
   return o;
 }
 
+// OUT/.runs/<sweep>: the journal of each of the study's sweeps until the
+// report is written.
+std::string runs_dir(const std::string& out_dir) { return out_dir + "/.runs"; }
+
+void print_journal_note(const std::string& line) {
+  fmt::print(stderr, "stickslip: journal: {}\n", line);
+}
+
+run::run_plan plan_for(const std::string& dir, const run::stop_token& stop) {
+  run::run_plan p;
+  p.dir = dir;
+  p.resume = io::journal_exists(dir);  // the command checked --resume for all of OUT/.runs
+  p.stop = &stop;
+  p.report = print_journal_note;
+  return p;
+}
+
+// --shard i/n: this process runs its slice of every main sweep (the
+// refinements need their results) and journals it.
+void run_shard(const io::study_options& options, const run::shard& slice, const std::string& out,
+               const run::stop_token& stop, run::runner& r, const invocation& inv) {
+  for (const auto& [id, spec] : io::main_sweeps(options)) {
+    auto plan = plan_for(runs_dir(out) + "/" + id, stop);
+    plan.slice = slice;
+    const auto done = run::run_journaled(
+        spec, plan, io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)), r);
+    fmt::print(stderr, "reproduce: shard {}/{} of {}: {} units journaled\n", slice.index,
+               slice.count, id, done.computed_units + done.resumed_units);
+  }
+  fmt::print(stderr, "reproduce: when every shard is done, finish with the same command "
+                     "without --shard and with --resume -o {}\n", out);
+}
+
 void run(const reproduce_flags& f, const invocation& inv) {
-  const auto options = resolve(f);
+  std::signal(SIGXFSZ, SIG_IGN);  // past `ulimit -f`: EFBIG, reported
+  run::stop_token stop;
+  run::stop_on_signals signals(stop);
+  execution exec(f.threads);
+  if (exec.is_worker()) return exec.serve();  // rank 0 runs the study
+
+  auto options = resolve(f);
+  const auto slice = run::parse_shard(f.shard);
+  const std::string runs = runs_dir(f.out_dir);
+  if (std::filesystem::exists(runs) && !f.resume && !slice)
+    throw invalid_value("-o (output folder)", f.out_dir,
+                        "a folder without the journals of an unfinished reproduce (found " + runs +
+                            "): add --resume to continue it, or remove " + runs);
   auto log = [](const std::string& line) {
     fmt::print(stderr, "reproduce: {}\n", line);
+  };
+  if (slice) return run_shard(options, *slice, f.out_dir, stop, exec.runner(), inv);
+
+  options.execute = [&](const sweep_spec& spec, const std::string& id) {
+    auto out = run::run_journaled(spec, plan_for(runs + "/" + id, stop),
+                                  io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
+                                  exec.runner());
+    return std::move(*out.results);
   };
   const bool render = !f.no_figures && io::gnuplot_available();
   if (!f.no_figures && !render)
     log("gnuplot (with pngcairo and svg) not found: writing data and scripts only");
-  const auto study = io::run_paper_study(options, log);
+  auto study = io::run_paper_study(options, log);
+  study.threads = exec.runner().threads();
+  study.ranks = exec.runner().ranks();
   const auto meta = io::make_metadata(inv.argc, inv.argv, "");
   log(fmt::format("study done in {:.1f} s; writing {}", study.seconds, f.out_dir));
   const auto files = io::write_reproduction(study, meta, f.out_dir, render);
+  if (!f.keep_journal) {
+    std::error_code ec;
+    std::filesystem::remove_all(runs, ec);
+  }
   log(fmt::format("report: {} and {} ({} figures{})", files.markdown, files.html,
                   files.figures.size(), files.rendered ? "" : ", not rendered"));
 }
@@ -83,6 +154,15 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
                 "skip the other candidate parameter sets (k=40/g=10, k=4/g=1, k=4/V=10)");
   cmd->add_flag("--no-figures", flags->no_figures,
                 "write figure data and gnuplot scripts but do not run gnuplot");
+  cmd->add_flag("--resume", flags->resume,
+                "continue a reproduce that was killed or stopped (its sweeps are journaled in "
+                "OUT/.runs); refused if the settings changed");
+  cmd->add_option("--shard", flags->shard,
+                  "run only units with index % n == i of every main sweep and journal them in "
+                  "OUT/.runs; then finish with --resume (docs/scaling.md)")
+      ->type_name("i/n");
+  cmd->add_flag("--keep-journal", flags->keep_journal,
+                "keep OUT/.runs (the journals of the study's sweeps) after the report");
   cmd->callback([flags, inv] { run(*flags, inv); });
 }
 

@@ -1,17 +1,15 @@
 // `stickslip sweep`: the paper's statistics over a parameter grid, on all
 // cores, bit-identical for any thread count, written to DIR.
 //
-// Three steps, each its own function:
+// This file only parses and prints:
 //   (a) build_sweep_spec: TOML file (--config) + flags -> validated sweep_spec.
 //       Nothing is touched on disk before this has succeeded.
-//   (b) run_journaled: every finished unit goes to the checkpoint journal
-//       DIR/.journal (io/journal.hpp); --resume reloads it first and runs
-//       only what is missing; --shard i/n runs one slice; under mpirun the
-//       units are spread over the ranks (backends/mpi). A progress bar on
-//       stderr when it is a terminal.
-//   (c) write_results: io::write_all(results.nc, summary.json, summary.csv,
-//       records.csv) with the first run's metadata (kept in the journal), then
-//       the journal is removed unless --keep-journal.
+//   (b) run::sweep_into (the run layer, stickslip/run/journaled_run.hpp): the
+//       checkpoint journal DIR/.journal, --resume, --shard i/n, stop signals,
+//       then the outputs (results.nc, summary.json, summary.csv, records.csv)
+//       with the first run's metadata; under mpirun the units are spread over
+//       the ranks (execution.hpp, backends/mpi). A progress bar on stderr
+//       when it is a terminal.
 // docs/scaling.md explains resume, shards and MPI.
 #include <fmt/format.h>
 
@@ -33,6 +31,7 @@
 
 #include "commands.hpp"
 #include "model_flags.hpp"
+#include "execution.hpp"
 #include "progress.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
@@ -41,9 +40,7 @@
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
-#ifdef STICKSLIP_HAVE_MPI
-#include "stickslip/mpi/distributed_sweep.hpp"
-#endif
+#include "stickslip/run/journaled_run.hpp"
 
 namespace stickslip::app {
 namespace {
@@ -145,190 +142,16 @@ void check_result_memory(const sweep_spec& spec) {
                     ram / (1u << 30)));
 }
 
-// --shard i/n: this process runs the units whose index (point-major, as
-// unit_at numbers them) is i modulo n.
-struct shard_spec {
-  std::uint64_t index = 0, count = 1;
-  [[nodiscard]] bool owns(const sweep_spec& s, const work_unit& u) const {
-    return (u.point * blocks_per_point(s) + u.block) % count == index;
-  }
-};
-
-std::optional<shard_spec> parse_shard(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  const auto slash = text.find('/');
-  if (slash == std::string::npos)
-    throw invalid_value("--shard", text, "i/n with 0 <= i < n, e.g. 3/16");
-  shard_spec sh;
-  sh.count = io::parse_unsigned("--shard (n)", text.substr(slash + 1), 1, 1u << 20);
-  sh.index = io::parse_unsigned("--shard (i)", text.substr(0, slash), 0, sh.count - 1);
-  return sh;
-}
-
-// SIGINT/SIGTERM (Ctrl-C, a job scheduler's time limit) and SIGUSR1 stop
-// handing out new units; the units in flight finish and are journaled, so
-// --resume loses nothing. SIGUSR1 is the one to use under mpirun: mpirun
-// forwards it to every rank, while on SIGTERM it kills the ranks itself
-// (under srun: `#SBATCH --signal=USR1@120`; docs/scaling.md). Restores the
-// previous handlers when it goes out of scope.
-std::atomic<int> stop_signal{0};
-extern "C" void on_stop_signal(int sig) { stop_signal.store(sig); }
-constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGUSR1};
-class stop_on_signals {
- public:
-  stop_on_signals() {
-    stop_signal.store(0);
-    for (std::size_t i = 0; i < std::size(stop_signals); ++i)
-      old_[i] = std::signal(stop_signals[i], on_stop_signal);
-  }
-  ~stop_on_signals() {
-    for (std::size_t i = 0; i < std::size(stop_signals); ++i) std::signal(stop_signals[i], old_[i]);
-  }
-  stop_on_signals(const stop_on_signals&) = delete;
-  stop_on_signals& operator=(const stop_on_signals&) = delete;
-
- private:
-  void (*old_[std::size(stop_signals)])(int) = {};
-};
-
-// What a run needs besides the spec.
-struct run_plan {
-  std::string dir;
-  unsigned threads = 0;
-  std::optional<shard_spec> shard;
-  bool resume = false;
-  std::chrono::duration<double> checkpoint_interval{2.0};
-};
-
-struct run_outcome {
-  std::optional<result_set> results;  // absent for a shard
-  io::run_metadata metadata;          // the first run's, from the journal if resumed
-  std::uint64_t resumed_units = 0, computed_units = 0;
-  double elapsed_this_run = 0;
-};
-
-// (b) Journal, resume, shard, and the run itself (threads, or MPI ranks when
-// `coordinate` is given: it runs the units instead of run_units).
-using unit_runner = std::function<void(const sweep_spec&, ordered_merger&, const sweep_hooks&)>;
-run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan, const invocation& inv,
-                          const unit_runner& runner) {
-  const auto t0 = std::chrono::steady_clock::now();
-  run_outcome out;
-  io::journal_contents loaded;
-  if (io::journal_exists(plan.dir)) {
-    if (!plan.resume)
-      throw invalid_value("-o (output directory)", plan.dir,
-                          "a directory without the journal of an unfinished sweep (found " +
-                              io::journal_path(plan.dir) +
-                              "): add --resume to continue that sweep, or remove the journal");
-    loaded = io::read_journal(plan.dir, &spec, [](const std::string& problem) {
-      fmt::print(stderr, "stickslip: journal: {}\n", problem);
-    });
-    if (loaded.damaged)
-      fmt::print(stderr, "stickslip: journal: {} damaged file(s) or record(s) skipped; their "
-                         "units are recomputed\n", loaded.damaged);
-  } else if (plan.resume) {
-    fmt::print(stderr, "stickslip: no journal in {}: starting the sweep from the beginning\n",
-               plan.dir);
-  }
-  out.metadata = loaded.metadata ? *loaded.metadata
-                                 : io::make_metadata(inv.argc, inv.argv, io::to_toml(spec));
-
-  ordered_merger merger(spec);
-  if (plan.shard) merger.discard_results();  // a shard only journals (merge combines them)
-  std::vector<char> done(unit_count(spec), 0);
-  for (auto& [u, r] : loaded.units) {
-    done[u.point * blocks_per_point(spec) + u.block] = 1;
-    merger.add(u, std::move(r));
-    ++out.resumed_units;
-  }
-  loaded.units.clear();
-
-  const std::string tag =
-      plan.shard ? fmt::format("shard-{}-of-{}", plan.shard->index, plan.shard->count) : "run";
-  io::journal_writer journal(plan.dir, spec, out.metadata, tag, plan.checkpoint_interval);
-  progress_bar bar;
-  sweep_hooks hooks;
-  if (bar.active())
-    hooks.progress = [&bar](std::uint64_t d, std::uint64_t total) { bar.update(d, total); };
-  hooks.unit_done = [&](const work_unit& u, const block_result& r) { journal.add(u, r); };
-  hooks.wanted = [&](const work_unit& u) {
-    return stop_signal.load() == 0 && !done[u.point * blocks_per_point(spec) + u.block] &&
-           (!plan.shard || plan.shard->owns(spec, u));
-  };
-  runner(spec, merger, hooks);
-  journal.flush();
-  bar.finish();
-  out.computed_units = journal.units_written();
-  out.elapsed_this_run = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (const int sig = stop_signal.load())
-    throw error(static_cast<exit_code>(128 + sig),
-                fmt::format("interrupted by signal {}: {} finished units are journaled in {}; "
-                            "continue with the same command and --resume",
-                            sig, merger.merged_units(), io::journal_path(plan.dir)));
-  if (plan.shard) return out;
-  if (!merger.complete())
-    throw error(exit_code::internal, "sweep ended with units missing from the merge");
-  out.results = make_result_set(spec, std::move(merger));
-  out.results->elapsed_seconds = loaded.elapsed_seconds + out.elapsed_this_run;
-  return out;
-}
-
-}  // namespace
-
-// After a failed NetCDF write (disk full, `ulimit -f`), HDF5 1.10 keeps a
-// half-closed file and segfaults in its atexit teardown (H5_term_library ->
-// H5F__close_cb). The error is already known and the outputs are already
-// rolled back, so report it the way main() does and leave without running
-// the library's exit handlers: a clear error, not a crash.
-[[noreturn]] void exit_after_failed_write(const error& e) {
-  std::fflush(stdout);
-  fmt::print(stderr, "stickslip: error: {}\n", e.what());
-  std::fflush(stderr);
-  std::_Exit(static_cast<int>(e.code()));
-}
-
-namespace {
-
-// (c) All outputs, atomically, with the first run's metadata; then the
-// journal has served its purpose.
-void write_results(const result_set& rs, const io::run_metadata& meta, const std::string& dir,
-                   bool keep_journal) {
-  try {
-    io::write_all(rs, meta, dir);
-  } catch (const error& e) {
-    if (e.code() == exit_code::io_failure)
-      exit_after_failed_write(error(e.code(), std::string(e.what()) +
-                                                  "; the finished units stay in the journal: "
-                                                  "rerun with --resume to write the outputs"));
-    throw;
-  }
-  if (!keep_journal) io::remove_journal(dir);
-}
-
-// A deterministic failure (work bound, invalid input) cannot be fixed by
-// --resume: remove what this run created so a failed sweep leaves nothing.
-// Other failures (disk full, I/O, signals) keep the journal for --resume.
-void clean_up_after_failure(const error& e, const std::string& dir, bool dir_existed,
-                            bool journal_existed) {
-  if (e.code() != exit_code::work_bound && e.code() != exit_code::invalid_input) return;
-  std::error_code ec;
-  if (!dir_existed)
-    std::filesystem::remove_all(dir, ec);
-  else if (!journal_existed)
-    io::remove_journal(dir);
-}
-
-void report(const sweep_spec& spec, const run_plan& plan, const run_outcome& out,
-            unsigned threads, int ranks) {
-  const std::string where = ranks > 1 ? fmt::format("{} ranks x {} threads", ranks, threads)
-                                      : fmt::format("{} threads", threads);
+void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_outcome& out,
+            const run::runner& r) {
+  const std::string where = r.ranks() > 1 ? fmt::format("{} ranks x {} threads", r.ranks(), r.threads())
+                                          : fmt::format("{} threads", r.threads());
   const std::string resumed =
       out.resumed_units ? fmt::format(", {} units from the journal", out.resumed_units) : "";
-  if (plan.shard) {
+  if (plan.slice) {
     fmt::print(stderr, "shard {}/{}: {} units in {:.3g} s ({}{}) journaled in {}; combine the "
                        "shards with `stickslip merge`\n",
-               plan.shard->index, plan.shard->count, out.computed_units, out.elapsed_this_run,
+               plan.slice->index, plan.slice->count, out.computed_units, out.elapsed_this_run,
                where, resumed, io::journal_path(plan.dir));
     return;
   }
@@ -337,91 +160,47 @@ void report(const sweep_spec& spec, const run_plan& plan, const run_outcome& out
              out.elapsed_this_run, point_count(spec), where, resumed, plan.dir);
 }
 
+void print_journal_note(const std::string& line) {
+  fmt::print(stderr, "stickslip: journal: {}\n", line);
+}
+
 void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invocation& inv) {
   // Past `ulimit -f` a write must fail with EFBIG (reported), not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
-  // From here to the end (outputs written): a stop signal sets stop_signal
-  // (no unit starts after it), on every rank until workers ignore it below.
-  stop_on_signals signals;
+  // From here to the end (outputs written): a stop signal requests a stop (no
+  // unit starts after it), on every rank until the workers ignore it.
+  run::stop_token stop;
+  run::stop_on_signals signals(stop);
   const auto threads =
       static_cast<unsigned>(io::parse_unsigned("--threads", o.threads, 0, 1u << 16));
-  const unsigned resolved_threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-#ifdef STICKSLIP_HAVE_MPI
-  std::optional<mpi::session> ses;
-  if (mpi::launched_by_mpi()) {
-    ses.emplace();
-    if (!ses->is_root()) {
-      // Rank 0 decides when to stop: on a stop signal (mpirun forwards
-      // SIGUSR1 to every rank) it hands out no more units and tells the
-      // workers to stop once the units they hold are done and journaled. A
-      // worker that died on the signal would make rank 0 abort instead.
-      for (const int sig : stop_signals) std::signal(sig, SIG_IGN);
-      return mpi::serve(*ses, threads);  // rank 0 reports everything
-    }
-  }
-  const int ranks = ses ? ses->size() : 1;
-  auto cancel_workers = [&] {
-    if (ses) mpi::cancel(*ses);
-  };
-#else
-  const int ranks = 1;
-  auto cancel_workers = [] {};
-#endif
+  execution exec(threads);
+  if (exec.is_worker()) return exec.serve();  // rank 0 reports everything
 
-  sweep_spec spec;
-  run_plan plan;
-  bool dir_existed = false, journal_existed = false;
-  try {
-    spec = build_sweep_spec(cmd, o);
-    check_result_memory(spec);
-    check_output_dir(o.out_dir);
-    plan.dir = o.out_dir;
-    plan.threads = threads;
-    plan.shard = parse_shard(o.shard);
-    plan.resume = o.resume;
-    const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);
-    if (!(interval >= 0) || interval > 86400)
-      throw invalid_parameter("--checkpoint-interval", interval, "0 .. 86400 seconds");
-    plan.checkpoint_interval = std::chrono::duration<double>(interval);
-    dir_existed = std::filesystem::exists(plan.dir);
-    journal_existed = io::journal_exists(plan.dir);
-  } catch (...) {
-    cancel_workers();
-    throw;
-  }
+  const sweep_spec spec = build_sweep_spec(cmd, o);
+  check_result_memory(spec);
+  check_output_dir(o.out_dir);
+  run::run_plan plan;
+  plan.dir = o.out_dir;
+  plan.slice = run::parse_shard(o.shard);
+  plan.resume = o.resume;
+  const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);
+  if (!(interval >= 0) || interval > 86400)
+    throw invalid_parameter("--checkpoint-interval", interval, "0 .. 86400 seconds");
+  plan.checkpoint_interval = std::chrono::duration<double>(interval);
+  plan.stop = &stop;
+  plan.report = print_journal_note;
+  progress_bar bar;
+  if (bar.active())
+    plan.progress = [&bar](std::uint64_t d, std::uint64_t total) { bar.update(d, total); };
 
-  unit_runner runner = [threads](const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) {
-    run_units(s, threads, m, h);
-  };
-#ifdef STICKSLIP_HAVE_MPI
-  if (ses)
-    runner = [&](const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) {
-      mpi::coordinate(*ses, s, threads, m, h);
-    };
-  bool coordinated = false;
-  auto inner = runner;
-  runner = [&](const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) {
-    coordinated = true;
-    inner(s, m, h);
-  };
-#endif
   try {
-    auto out = run_journaled(spec, plan, inv, runner);
-    if (out.results) {
-      out.results->threads = resolved_threads;
-      write_results(*out.results, out.metadata, plan.dir, o.keep_journal);
-    }
-    report(spec, plan, out, resolved_threads, ranks);
+    const auto out = run::sweep_into(spec, plan, io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
+                                     exec.runner(), o.keep_journal);
+    bar.finish();
+    report(spec, plan, out, exec.runner());
   } catch (const error& e) {
-#ifdef STICKSLIP_HAVE_MPI
-    if (!coordinated) cancel_workers();
-#endif
-    clean_up_after_failure(e, plan.dir, dir_existed, journal_existed);
-    throw;
-  } catch (...) {
-#ifdef STICKSLIP_HAVE_MPI
-    if (!coordinated) cancel_workers();
-#endif
+    bar.finish();
+    if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
     throw;
   }
 }

@@ -250,10 +250,10 @@ void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
 }
 
 // ---------------------------------------------------------------- workers
-void serve(const session&, unsigned threads) {
+bool serve(const session&, unsigned threads) {
   std::uint64_t len = 0;
   check(MPI_Bcast(&len, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
-  if (len == 0) return;  // rank 0 gave up before starting
+  if (len == 0) return false;  // rank 0 is done (or gave up before starting)
   std::string spec_bytes(len, '\0');
   check(MPI_Bcast(spec_bytes.data(), checked_size(len), MPI_BYTE, 0, MPI_COMM_WORLD), "MPI_Bcast");
   const sweep_spec s = deserialize_sweep_spec(spec_bytes);
@@ -352,6 +352,12 @@ void serve(const session&, unsigned threads) {
   work_cv.notify_all();
   lock.unlock();
   for (auto& th : pool) th.join();
+  return true;
+}
+
+void serve_all(const session& ses, unsigned threads) {
+  while (serve(ses, threads)) {
+  }
 }
 
 }  // namespace stickslip::mpi

@@ -136,7 +136,8 @@ struct result_set {
   std::vector<point_result> points;
   std::vector<std::vector<realization_record>> records;  // per point, when kept
   double elapsed_seconds = 0.0;
-  unsigned threads = 1;
+  unsigned threads = 1;  // per process (rank)
+  int ranks = 1;         // MPI processes that ran it
 };
 
 [[nodiscard]] result_set make_result_set(const sweep_spec& s, ordered_merger&& m);

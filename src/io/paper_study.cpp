@@ -145,6 +145,12 @@ sweep_spec base_spec(const parameter_set& set, const study_options& o) {
   return s;
 }
 
+// Every sweep of the study goes through the caller's executor (the command
+// line's is journaled: resume, MPI), else through run_sweep.
+result_set execute(const study_options& o, const sweep_spec& s, const std::string& id) {
+  return o.execute ? o.execute(s, id) : run_sweep(s, o.threads);
+}
+
 mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, double mu,
                         const study_options& o, std::uint64_t realizations) {
   mu_refinement r;
@@ -164,7 +170,7 @@ mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, doubl
   s.realizations = realizations;
   s.axes = {axis{"lambda", refinement_grid(r.grid_max_lambda, o.refine_log_half_width,
                                            o.refine_points)}};
-  r.fine = run_sweep(s, o.threads);
+  r.fine = execute(o, s, fmt::format("{}-refine-mu-{}", set.id, mu));
   std::vector<double> lam, mean, se;
   for (const auto& p : r.fine.points) {
     lam.push_back(p.parameters.switch_rate);
@@ -177,40 +183,78 @@ mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, doubl
   return r;
 }
 
-set_study run_design(const parameter_set& set, const study_options& o,
-                     const std::vector<double>& lambda, const std::vector<double>& mu,
-                     const std::vector<double>& refine, std::uint64_t realizations,
-                     std::uint64_t refine_realizations, const study_log& log) {
+// One parameter set's part of the study: its main sweep over (mu, lambda),
+// then a refinement of the maximum of mean R for each mu of `refine`.
+struct design {
+  parameter_set set;
+  std::vector<double> lambda, mu, refine;
+  std::uint64_t realizations = 0, refine_realizations = 0;
+  bool candidate = false;  // one of the other candidate sets (reduced design)
+};
+
+std::vector<design> study_designs(const study_options& o) {
+  const auto lambda =
+      !o.lambda.empty() ? o.lambda : (o.quick ? quick_lambda_grid() : paper_lambda_grid());
+  const auto mu = !o.mu.empty() ? o.mu : (o.quick ? quick_mu_grid() : paper_mu_grid());
+  const auto refine = !o.refine_mu.empty() ? o.refine_mu : mu;
+  std::vector<design> out;
+  for (const auto& set : {printed_parameters(), concluded_parameters()})
+    out.push_back({set, lambda, mu, refine, o.realizations, o.refine_realizations, false});
+  if (o.candidates) {
+    // The other candidates on a reduced design: the three mu the paper
+    // quotes, the same lambda grid, fewer realizations.
+    const std::vector<double> mu3{0.5, 5, 7};
+    for (const auto& c : candidate_parameter_sets()) {
+      if (c.id == "printed" || c.id == "concluded") continue;
+      out.push_back({c, lambda, mu3, mu3, o.candidate_realizations,
+                     o.candidate_refine_realizations, true});
+    }
+  }
+  return out;
+}
+
+std::pair<std::string, sweep_spec> main_sweep_of(const design& d, const study_options& o) {
+  sweep_spec s = base_spec(d.set, o);
+  s.realizations = d.realizations;
+  s.axes = {axis{"mu", d.mu}, axis{"lambda", d.lambda}};
+  return {d.set.id + "-sweep", s};
+}
+
+set_study run_design(const design& d, const study_options& o, const study_log& log) {
   const auto t0 = clock::now();
   set_study st;
-  st.set = set;
-  sweep_spec s = base_spec(set, o);
-  s.realizations = realizations;
-  s.axes = {axis{"mu", mu}, axis{"lambda", lambda}};
+  st.set = d.set;
+  const auto [id, s] = main_sweep_of(d, o);
   if (log)
-    log(fmt::format("[{}] sweep: {} mu x {} lambda x {} realizations", set.id, mu.size(),
-                    lambda.size(), realizations));
-  st.sweep = run_sweep(s, o.threads);
+    log(fmt::format("[{}] sweep: {} mu x {} lambda x {} realizations", d.set.id, d.mu.size(),
+                    d.lambda.size(), d.realizations));
+  st.sweep = execute(o, s, id);
   st.sweep_seconds = st.sweep.elapsed_seconds;
-  for (double m : refine) {
+  for (double m : d.refine) {
     if (log)
       log(fmt::format("[{}] refining the maximum of mean R for mu = {} ({} lambda x {})",
-                      set.id, m, o.refine_points, refine_realizations));
-    st.refinements.push_back(refine_mu(set, st.sweep, m, o, refine_realizations));
+                      d.set.id, m, o.refine_points, d.refine_realizations));
+    st.refinements.push_back(refine_mu(d.set, st.sweep, m, o, d.refine_realizations));
   }
   st.seconds = seconds_since(t0);
-  if (log) log(fmt::format("[{}] done in {:.1f} s", set.id, st.seconds));
+  if (log) log(fmt::format("[{}] done in {:.1f} s", d.set.id, st.seconds));
   return st;
 }
 
 }  // namespace
 
 set_study run_set_study(const parameter_set& set, const study_options& o, const study_log& log) {
-  const auto lambda =
-      !o.lambda.empty() ? o.lambda : (o.quick ? quick_lambda_grid() : paper_lambda_grid());
-  const auto mu = !o.mu.empty() ? o.mu : (o.quick ? quick_mu_grid() : paper_mu_grid());
-  const auto refine = !o.refine_mu.empty() ? o.refine_mu : mu;
-  return run_design(set, o, lambda, mu, refine, o.realizations, o.refine_realizations, log);
+  for (const auto& d : study_designs(o))
+    if (d.set.id == set.id) return run_design(d, o, log);
+  auto d = study_designs(o).front();
+  d.set = set;
+  return run_design(d, o, log);
+}
+
+std::vector<std::pair<std::string, sweep_spec>> main_sweeps(const study_options& o) {
+  std::vector<std::pair<std::string, sweep_spec>> out;
+  for (const auto& d : study_designs(o)) out.push_back(main_sweep_of(d, o));
+  return out;
 }
 
 study_result run_paper_study(const study_options& o, const study_log& log) {
@@ -218,20 +262,8 @@ study_result run_paper_study(const study_options& o, const study_log& log) {
   study_result r;
   r.options = o;
   r.threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
-  r.sets.push_back(run_set_study(printed_parameters(), o, log));
-  r.sets.push_back(run_set_study(concluded_parameters(), o, log));
-  if (o.candidates) {
-    // The other candidates on a reduced design: the three mu the paper
-    // quotes, the same lambda grid, fewer realizations.
-    const auto lambda =
-        !o.lambda.empty() ? o.lambda : (o.quick ? quick_lambda_grid() : paper_lambda_grid());
-    const std::vector<double> mu{0.5, 5, 7};
-    for (const auto& c : candidate_parameter_sets()) {
-      if (c.id == "printed" || c.id == "concluded") continue;
-      r.candidates.push_back(run_design(c, o, lambda, mu, mu, o.candidate_realizations,
-                                        o.candidate_refine_realizations, log));
-    }
-  }
+  for (const auto& d : study_designs(o))
+    (d.candidate ? r.candidates : r.sets).push_back(run_design(d, o, log));
   r.seconds = seconds_since(t0);
   return r;
 }

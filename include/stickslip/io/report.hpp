@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "stickslip/io/metadata.hpp"
@@ -83,6 +84,12 @@ struct peak_estimate {
 
 // ------------------------------------------------------------- the study ---
 
+// How the study runs one of its sweeps; `id` names it uniquely within the
+// study and can name a file ("printed-sweep", "concluded-refine-mu-5").
+// Default (empty): run_sweep on `threads` threads. The command line passes a
+// journaled run from the run layer (resume, MPI).
+using sweep_executor = std::function<result_set(const sweep_spec&, const std::string& id)>;
+
 struct study_options {
   std::uint64_t realizations = 2000;         // per grid point of the main sweep
   std::uint64_t refine_realizations = 10000; // per lambda of the refinement
@@ -96,6 +103,7 @@ struct study_options {
   bool candidates = true;  // compare the other candidate parameter sets too
   std::vector<double> lambda, mu;  // empty: paper (or quick) grids
   std::vector<double> refine_mu;   // empty: every mu of the grid
+  sweep_executor execute;          // empty: run_sweep
 };
 
 // The --quick settings: 8 lambda x 3 mu x 200 realizations, refinement with
@@ -124,7 +132,8 @@ struct study_result {
   std::vector<set_study> sets;        // printed, concluded
   std::vector<set_study> candidates;  // reduced designs of the other sets
   double seconds = 0;                 // total wall time
-  unsigned threads = 1;
+  unsigned threads = 1;               // per process
+  int ranks = 1;                      // MPI processes
 };
 
 // Progress is reported as a line of text per stage (the app prints it).
@@ -135,6 +144,10 @@ using study_log = std::function<void(const std::string&)>;
                                       const study_log& log = {});
 // The whole reproduction: printed and concluded sets, then the candidates.
 [[nodiscard]] study_result run_paper_study(const study_options& o, const study_log& log = {});
+// The main sweep of every parameter set (id, spec), in the order the study
+// runs them: what can run before any result is known (`reproduce --shard`).
+// The refinements depend on the main sweeps' results.
+[[nodiscard]] std::vector<std::pair<std::string, sweep_spec>> main_sweeps(const study_options& o);
 
 // Access to a result_set with axes (mu, lambda).
 [[nodiscard]] std::vector<const point_result*> points_at_mu(const result_set& rs, double mu);

@@ -44,11 +44,16 @@ class session {
 void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
                 ordered_merger& merger, const sweep_hooks& hooks = {});
 
-// Ranks > 0: receive the spec and compute units until told to stop. Returns
-// normally when rank 0 cancelled (see cancel) or after sending a failure.
-void serve(const session& ses, unsigned threads);
+// Ranks > 0: receive the spec of one sweep and compute its units until told
+// to stop. Returns true after a sweep (also after sending a failure), false
+// when rank 0 released the workers (see cancel) instead of sending a sweep.
+bool serve(const session& ses, unsigned threads);
+// Ranks > 0: serve every sweep rank 0 coordinates (a command may run several,
+// as `reproduce` does) until rank 0 releases the workers.
+void serve_all(const session& ses, unsigned threads);
 
-// Rank 0, when it fails before coordinate(): lets the workers return.
+// Rank 0, when it has no more sweeps (finished, or failed before or between
+// them): releases the workers from serve / serve_all.
 void cancel(const session& ses);
 
 }  // namespace stickslip::mpi

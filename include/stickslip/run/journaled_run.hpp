@@ -1,0 +1,77 @@
+// The run layer's one way to run a sweep that must survive: every finished
+// unit goes to the checkpoint journal DIR/.journal (io/journal.hpp); a resume
+// reloads it and runs only what is missing; a shard runs one slice and only
+// journals it; a stop request (signal, KeyboardInterrupt) ends the run with
+// every finished unit journaled. `sweep`, `merge`, `reproduce` and the Python
+// package all go through here; the command line only parses and prints.
+//
+//   run_journaled   journal + resume + shard + stop around a runner
+//   write_outputs   io::write_all with the first run's metadata, then the
+//                   journal is removed (unless kept)
+//   sweep_into      both, and on a deterministic failure (bad input, work
+//                   bound) removes what this run created
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "stickslip/io/journal.hpp"
+#include "stickslip/io/metadata.hpp"
+#include "stickslip/run/runner.hpp"
+#include "stickslip/run/shard.hpp"
+#include "stickslip/run/stop.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::run {
+
+struct run_plan {
+  std::string dir;                  // the output directory; the journal is DIR/.journal
+  std::optional<shard> slice;       // --shard i/n: run and journal only this slice
+  bool resume = false;              // continue the journal in DIR (refused without it)
+  std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
+  const stop_token* stop = nullptr;  // no unit starts once a stop is requested
+  // Units merged so far (resumed ones included) of the total; serialized.
+  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+  // Problems found in the journal and notes on the resume, one line each.
+  io::journal_report report;
+};
+
+struct run_outcome {
+  std::optional<result_set> results;  // absent for a shard
+  io::run_metadata metadata;          // the first run's (from the journal when resumed)
+  std::uint64_t resumed_units = 0, computed_units = 0;
+  double elapsed_this_run = 0;        // seconds
+};
+
+// Journal, resume, shard and stop around `r`. `fresh` is the metadata a new
+// journal records. Throws: invalid_input when DIR holds an unfinished journal
+// and plan.resume is false; resume_mismatch when the journal was made with
+// another spec; error(128 + signal) when stopped (every finished unit is
+// journaled; the message says how to continue).
+[[nodiscard]] run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
+                                        const io::run_metadata& fresh, runner& r);
+
+// io::write_all(results, metadata, dir), then removes the journal unless
+// keep_journal. An io_failure says that the units stay in the journal.
+void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal);
+
+// What DIR held before a run, so that a failed run can remove what it created.
+struct directory_state {
+  bool existed = false, journal_existed = false;
+  [[nodiscard]] static directory_state of(const std::string& dir);
+};
+// A deterministic failure (work bound, invalid input) cannot be fixed by a
+// resume: remove what this run created (DIR if it is new, else its journal if
+// that is new). Other failures (I/O, signals) keep the journal for a resume.
+void clean_up_after_failure(const error& e, const std::string& dir, const directory_state& before);
+
+// run_journaled, then (unless a shard) write_outputs into plan.dir; the
+// result set records the runner's ranks and threads. Cleans up after a
+// deterministic failure and rethrows.
+[[nodiscard]] run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan,
+                                     const io::run_metadata& fresh, runner& r,
+                                     bool keep_journal = false);
+
+}  // namespace stickslip::run

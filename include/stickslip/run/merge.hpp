@@ -1,0 +1,29 @@
+// Combining the journals that shard runs (`sweep --shard i/n -o DIR`) left in
+// their directories into the results of one run, bit-identical to an
+// unsharded sweep. Checks: every journal was made with the same
+// configuration, every unit is present, and a unit found in several journals
+// is identical in each. The input journals are only read, never changed.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stickslip/io/journal.hpp"
+#include "stickslip/io/metadata.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::run {
+
+struct merged_shards {
+  result_set results;
+  io::run_metadata metadata;     // the first journal's run
+  std::uint64_t duplicates = 0;  // units found (identical) in more than one journal
+};
+
+// Throws invalid_input for a directory without a journal or missing units,
+// resume_mismatch for journals of different configurations, io_failure for
+// differing duplicates or unreadable headers.
+[[nodiscard]] merged_shards merge_shards(const std::vector<std::string>& dirs,
+                                         const io::journal_report& report = {});
+
+}  // namespace stickslip::run

@@ -1,0 +1,35 @@
+// Runners execute the work units of a sweep and merge them (the SUNDIALS
+// pattern: interchangeable backends behind one interface). The thread runner
+// is here; the MPI runner is in backends/mpi (stickslip/mpi/mpi_runner.hpp).
+// Every runner merges with ordered_merger, so results do not depend on the
+// runner, the thread count or the rank count.
+#pragma once
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::run {
+
+class runner {
+ public:
+  virtual ~runner() = default;
+  // Runs the units hooks.wanted selects into `merger`; hooks run serialized.
+  virtual void run(const sweep_spec& s, ordered_merger& merger, const sweep_hooks& hooks) = 0;
+  // What the outputs record: processes (MPI ranks) and threads per process.
+  [[nodiscard]] virtual int ranks() const noexcept { return 1; }
+  [[nodiscard]] virtual unsigned threads() const noexcept = 0;
+};
+
+// All units in this process on `threads` threads (0 = all cores): run_units.
+class thread_runner final : public runner {
+ public:
+  explicit thread_runner(unsigned threads) noexcept;
+  void run(const sweep_spec& s, ordered_merger& merger, const sweep_hooks& hooks) override;
+  [[nodiscard]] unsigned threads() const noexcept override { return threads_; }
+
+ private:
+  unsigned threads_;
+};
+
+// Threads that `threads` = 0 means on this machine (all cores, at least 1).
+[[nodiscard]] unsigned resolve_threads(unsigned threads) noexcept;
+
+}  // namespace stickslip::run
