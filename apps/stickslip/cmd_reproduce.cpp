@@ -12,6 +12,7 @@
 //       report.html; then OUT/.runs is removed
 #include <fmt/format.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -38,6 +39,7 @@ struct reproduce_flags {
   bool quick = false, no_candidates = false, no_figures = false;
   bool resume = false, keep_journal = false;
   std::string shard;  // "i/n"
+  double checkpoint_interval = 2.0;  // seconds between journal segments
 };
 
 io::study_options resolve(const reproduce_flags& f) {
@@ -64,9 +66,10 @@ void print_journal_note(const std::string& line) {
   fmt::print(stderr, "stickslip: journal: {}\n", line);
 }
 
-run::run_plan plan_for(const std::string& dir, const run::stop_token& stop) {
+run::run_plan plan_for(const std::string& dir, const run::stop_token& stop, double interval) {
   run::run_plan p;
   p.dir = dir;
+  p.checkpoint_interval = std::chrono::duration<double>(interval);
   p.resume = io::journal_exists(dir);  // the command checked --resume for all of OUT/.runs
   p.stop = &stop;
   p.report = print_journal_note;
@@ -76,9 +79,11 @@ run::run_plan plan_for(const std::string& dir, const run::stop_token& stop) {
 // --shard i/n: this process runs its slice of every main sweep (the
 // refinements need their results) and journals it.
 void run_shard(const io::study_options& options, const run::shard& slice, const std::string& out,
-               const run::stop_token& stop, run::runner& r, const invocation& inv) {
+               const run::run_plan& base, run::runner& r, const invocation& inv) {
   for (const auto& [id, spec] : io::main_sweeps(options)) {
-    auto plan = plan_for(runs_dir(out) + "/" + id, stop);
+    auto plan = base;
+    plan.dir = runs_dir(out) + "/" + id;
+    plan.resume = io::journal_exists(plan.dir);
     plan.slice = slice;
     const auto done = run::run_journaled(
         spec, plan, io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)), r);
@@ -106,12 +111,19 @@ void run(const reproduce_flags& f, const invocation& inv) {
   auto log = [](const std::string& line) {
     fmt::print(stderr, "reproduce: {}\n", line);
   };
-  if (slice) return run_shard(options, *slice, f.out_dir, stop, exec.runner(), inv);
+  if (!(f.checkpoint_interval >= 0) || f.checkpoint_interval > 86400)
+    throw invalid_parameter("--checkpoint-interval", f.checkpoint_interval, "0 .. 86400 seconds");
+  if (slice)
+    return run_shard(options, *slice, f.out_dir, plan_for("", stop, f.checkpoint_interval),
+                     exec.runner(), inv);
 
   options.execute = [&](const sweep_spec& spec, const std::string& id) {
-    auto out = run::run_journaled(spec, plan_for(runs + "/" + id, stop),
+    auto out = run::run_journaled(spec, plan_for(runs + "/" + id, stop, f.checkpoint_interval),
                                   io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
                                   exec.runner());
+    if (out.resumed_units)
+      log(fmt::format("{}: {} units from the journal, {} computed", id, out.resumed_units,
+                      out.computed_units));
     return std::move(*out.results);
   };
   const bool render = !f.no_figures && io::gnuplot_available();
@@ -161,6 +173,10 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
                   "run only units with index % n == i of every main sweep and journal them in "
                   "OUT/.runs; then finish with --resume (docs/scaling.md)")
       ->type_name("i/n");
+  cmd->add_option("--checkpoint-interval", flags->checkpoint_interval,
+                  "seconds between journal segments (each is fsynced); 0 = after every unit")
+      ->type_name("SECONDS")
+      ->capture_default_str();
   cmd->add_flag("--keep-journal", flags->keep_journal,
                 "keep OUT/.runs (the journals of the study's sweeps) after the report");
   cmd->callback([flags, inv] { run(*flags, inv); });

@@ -28,6 +28,18 @@ done
   || fail "mpirun --resume"
 $compare "$work/single" "$work/resume" >/dev/null || fail "MPI resume differs"
 echo "mpi_cli: mpirun -np 3 --resume of a half-journaled sweep == single process"
+# reproduce under mpirun: the ranks share every sweep of the study (rank 0
+# coordinates, the others serve), the report records 2 ranks, and it equals
+# the single-process reproduction.
+rargs=(reproduce --quick --no-figures --realizations 300 --refine-realizations 300 --seed 5)
+"$bin" "${rargs[@]}" --threads 1 -o "$work/repro-single" 2>/dev/null || fail "single-process reproduce"
+"${launch[@]}" -np 2 "$bin" "${rargs[@]}" --threads 1 -o "$work/repro-np2" 2>"$work/repro.err" \
+  || { cat "$work/repro.err"; fail "mpirun -np 2 reproduce"; }
+/usr/bin/python3 "$here/../resume/compare_reproductions.py" "$work/repro-single" "$work/repro-np2" \
+  >/dev/null || fail "mpirun -np 2 reproduce differs from the single-process reproduction"
+grep -q "^| MPI ranks | 2 |" "$work/repro-np2/report.md" || fail "the report does not record 2 MPI ranks"
+(($(grep -c "study done" "$work/repro.err") == 1)) || fail "the study ran more than once under mpirun"
+echo "mpi_cli: mpirun -np 2 reproduce == single process, 2 ranks recorded, the study ran once"
 # A bad configuration is reported by rank 0 and every rank exits.
 timeout 60 "${launch[@]}" -np 2 "$bin" sweep --lambda 0.1,nan --realizations 10 -o "$work/bad" \
   2>"$work/bad.err"; rc=$?
