@@ -1,0 +1,46 @@
+// One realization, replayed exactly as a sweep draws it, or with any of its
+// random inputs fixed: what `stickslip simulate` and the Python
+// stickslip.simulate() compute. By default realization r of the point with
+// these parameters is drawn from the Philox streams keyed by
+// (seed, point_key(params), r), so any sweep realization can be replayed
+// alone; fixing x0, x'0 or the belt start keeps the other draws; given switch
+// times replace the Poisson switches.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "stickslip/episode.hpp"
+#include "stickslip/initial_conditions.hpp"
+#include "stickslip/integrator.hpp"
+#include "stickslip/parameters.hpp"
+#include "stickslip/statistics.hpp"
+
+namespace stickslip {
+
+struct replay_request {
+  model_parameters parameters;
+  std::uint64_t seed = 1, realization = 0;
+  initial_condition_law initial;                  // the sweep's law (paper default)
+  std::int64_t max_events = default_max_events;
+  std::optional<double> x0, xdot0;                // fix the initial state
+  std::optional<int> belt_start;                  // +1 or -1
+  std::optional<std::vector<double>> switch_times;  // replace the Poisson switches
+  bool keep_events = true, keep_segments = true;
+};
+
+struct realization_trace {
+  initial_conditions initial;
+  std::vector<episode> episodes;  // tile [0, t_a]
+  std::vector<event> events;      // when kept
+  std::vector<segment> segments;  // closed-form pieces, when kept (evaluate())
+  realization_record record;      // S_T, S_L, R, D_1, event counts
+};
+
+// Throws stickslip::error for invalid parameters, initial state or switch
+// times (naming the parameter, the value and the allowed range), and when the
+// realization exceeds max_events. With given switch times the switch rate is
+// not used and may be anything positive.
+[[nodiscard]] realization_trace replay(const replay_request& r);
+
+}  // namespace stickslip

@@ -1,0 +1,104 @@
+"""stickslip.simulate(): one realization, exactly as the CLI's `simulate`."""
+import numpy as np
+import pandas as pd
+
+from . import _stickslip
+from ._parameters import describe, model_arguments
+
+
+class Realization:
+    """One realization on [0, t_a].
+
+    Attributes:
+      episodes    pandas.DataFrame: mode ("stick"/"slip"), start, end [s],
+                  x_start [m], belt_velocity [m/s], censored (cut off by t_a);
+                  the very numbers of `stickslip simulate`'s episodes.csv.
+      events      pandas.DataFrame: kind (belt_switch, stick_onset,
+                  stick_break, slip_reversal), time [s], x [m], xdot [m/s],
+                  belt_velocity [m/s] just after the event.
+      record      dict: S_T, S_L, R, first stick, event counts.
+      x0, xdot0, belt_start: the initial state used.
+      parameters  dict of the model parameters (paper symbols).
+    """
+
+    def __init__(self, parameters, seed, realization, raw):
+        self.parameters = parameters
+        self.seed = seed
+        self.realization = realization
+        self.x0, self.xdot0, self.belt_start = raw["x0"], raw["xdot0"], raw["belt_start"]
+        self.record = dict(raw["record"])
+        self.episodes = pd.DataFrame(
+            raw["episodes"], columns=["mode", "start", "end", "x_start", "belt_velocity", "censored"])
+        self.events = pd.DataFrame(raw["events"], columns=["kind", "time", "x", "xdot", "belt_velocity"])
+        self._segments = raw["segments"]
+
+    def __repr__(self):
+        r = self.record
+        return (f"<stickslip.Realization seed={self.seed} realization={self.realization}: "
+                f"{r['S_T']} sticks, R = {r['R']:.6g}, {len(self.episodes)} episodes>")
+
+    def trajectory(self, dt):
+        """x, x' and v sampled every `dt` seconds and at every event instant:
+        a pandas.DataFrame with columns t [s], x [m], xdot [m/s], v [m/s],
+        evaluated from the exact closed form of each piece of motion."""
+        if not (dt > 0 and np.isfinite(dt)):
+            raise _stickslip.Error(f"dt = {dt} is not allowed (allowed: a finite number > 0 s)")
+        rows = _stickslip.sample_trajectory(self._segments, float(dt))
+        return pd.DataFrame(rows, columns=["t", "x", "xdot", "v"])
+
+    def plot(self, dt=0.01, ax=None):
+        """x, x' and the belt velocity against time, with sticks shaded
+        (matplotlib). Returns the Axes."""
+        import matplotlib.pyplot as plt
+        if ax is None:
+            _, ax = plt.subplots(figsize=(9, 4))
+        tr = self.trajectory(dt)
+        ax.plot(tr.t, tr.x, label="x [m]")
+        ax.plot(tr.t, tr.xdot, label="x' [m/s]")
+        ax.step(tr.t, tr.v, where="post", label="v [m/s]", color="0.4")
+        for e in self.episodes.itertuples():
+            if e.mode == "stick":
+                ax.axvspan(e.start, e.end, color="tab:green", alpha=0.15, lw=0)
+        ax.set_xlabel("t [s]")
+        ax.legend(loc="upper right")
+        ax.set_title(f"seed {self.seed}, realization {self.realization} (sticks shaded)")
+        return ax
+
+
+def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, switch_times=None,
+             max_events=None, **model):
+    """One realization of the stick-slip oscillator, exactly as
+    `stickslip simulate` computes it: realization `realization` of the sweep
+    point with these parameters and `seed`, unless x0, xdot0, belt_start or
+    switch_times fix those inputs.
+
+    Model parameters (keyword arguments, any subset):
+{params}
+    seed: master seed (default 1); realization: index of the realization (default 0).
+    x0: initial position [m]; xdot0: initial velocity [m/s]; default: drawn
+        from U[-1, 1] as in the sweep.
+    belt_start: +1 or -1 (v(0) = +V or -V); default: drawn with equal odds.
+    switch_times: belt switch times [s], strictly increasing, replacing the
+        Poisson switches (then lam plays no role).
+    max_events: bound on the events of the realization (default 1e8).
+
+    Returns a Realization. Raises stickslip.Error for bad input.
+    """
+    params = model_arguments(model)
+    if model:
+        raise TypeError(f"simulate() got unexpected keyword arguments: {', '.join(model)}")
+    params = {k: float(v) for k, v in params.items()}
+    if belt_start is not None:
+        belt_start = {"+1": 1, "1": 1, "-1": -1}.get(str(belt_start).strip(), belt_start)
+        if belt_start in ("random", "stationary"):
+            belt_start = None
+    times = None if switch_times is None else [float(t) for t in switch_times]
+    raw = _stickslip.replay(params, int(seed), int(realization),
+                            None if x0 is None else float(x0),
+                            None if xdot0 is None else float(xdot0),
+                            belt_start, times,
+                            _stickslip.default_max_events if max_events is None else int(max_events))
+    return Realization(params, seed, realization, raw)
+
+
+simulate.__doc__ = simulate.__doc__.format(params=describe())

@@ -1,0 +1,100 @@
+"""stickslip.sweep() and stickslip.open(): the CLI's `sweep`, as xarray."""
+import builtins
+import os
+import tempfile
+
+import numpy as np
+import xarray as xr
+
+from . import _stickslip
+from ._parameters import describe, model_arguments
+
+
+def _axes_and_base(params):
+    base, axes = {}, []
+    for sym, value in params.items():
+        if np.ndim(value) == 0:
+            base[sym] = float(value)
+        else:
+            values = [float(v) for v in np.asarray(value, dtype=float).ravel()]
+            axes.append((sym, values))
+    return base, axes
+
+
+def _progress_bar(enabled):
+    if not enabled:
+        return None, None
+    from tqdm.auto import tqdm
+    bar = tqdm(total=1, unit="unit", desc="stickslip sweep")
+
+    def update(done, total):
+        if bar.total != total:
+            bar.total = total
+        bar.n = done
+        bar.refresh()
+    return update, bar
+
+
+def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
+    """Reads a results.nc written by `stickslip sweep` (or by sweep(output=...))
+    into memory as an xarray.Dataset; `path` may be the file or its folder."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "results.nc")
+    if not os.path.exists(path):
+        raise _stickslip.Error(f"{path} does not exist (expected a results.nc or a folder holding one)")
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50, bins=50,
+          records=False, engine="fast", max_events=None, output=None, resume=False,
+          keep_journal=False, checkpoint_interval=2.0, **model):
+    """The paper's statistics over a grid of model parameters, exactly as
+    `stickslip sweep` computes them (bit-identical for any thread count).
+
+    Model parameters: a number fixes the parameter; a list or array makes it a
+    dimension of the grid, in the order the keywords are given
+    (e.g. lam=np.logspace(-1, np.log10(30), 40), mu=[0.5, 5]).
+{params}
+    realizations: realizations per grid point (default 2000).
+    seed: master seed (default 1). threads: worker threads, 0 = all cores.
+    progress: show a tqdm progress bar.
+    block_size: realizations per work unit (default 50; part of the result's
+        identity). bins: histogram bins (default 50).
+    records: keep per-realization records (records.csv with output=).
+    engine: "fast" (default) or "reference"; the results are identical.
+    max_events: bound on the events of one realization (default 1e8).
+    output: a folder: also write results.nc, summary.json, summary.csv
+        (records.csv) there, journaling every finished unit.
+    resume: with output, continue an interrupted sweep from its journal.
+    keep_journal: with output, keep the journal after the outputs are written.
+    checkpoint_interval: with output, seconds between journal segments
+        (default 2; 0 = after every unit).
+
+    Returns an xarray.Dataset with the variables, coordinates and attributes of
+    the results.nc the CLI writes for the same arguments. Ctrl-C stops within
+    a second (KeyboardInterrupt); with output the journal stays resumable.
+    Raises stickslip.Error for bad input.
+    """
+    params = model_arguments(model)
+    if model:
+        raise TypeError(f"sweep() got unexpected keyword arguments: {', '.join(model)}")
+    base, axes = _axes_and_base(params)
+    given = ", ".join(f"{k}={v!r}" for k, v in params.items())
+    command = f"python: stickslip.sweep({given}, realizations={realizations}, seed={seed})"
+    update, bar = _progress_bar(progress)
+    max_events = _stickslip.default_max_events if max_events is None else int(max_events)
+    try:
+        with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:
+            nc = os.path.join(tmp, "results.nc")
+            _stickslip.run_sweep(base, axes, int(realizations), int(seed), int(block_size), int(bins),
+                                 bool(records), str(engine), max_events, int(threads),
+                                 "" if output is None else builtins.str(output), bool(resume),
+                                 bool(keep_journal), float(checkpoint_interval), nc, command, update)
+            return open(output if output is not None else nc)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
+sweep.__doc__ = sweep.__doc__.format(params=describe())

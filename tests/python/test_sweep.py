@@ -1,0 +1,166 @@
+"""stickslip.sweep() against the CLI's `sweep`: the same Dataset as its
+results.nc, the statistics of summary.json, output=DIR, resume, Ctrl-C,
+progress, the GIL, errors."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import stickslip
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+COMPARE = os.path.join(HERE, "..", "resume", "compare_outputs.py")
+# Global attributes that name the run rather than its results.
+RUN_ATTRIBUTES = {"history", "command_line", "created_utc", "elapsed_seconds", "threads", "ranks"}
+
+GRID = dict(lam=[0.1, 0.9, 3.8, 30.0], mu=[0.5, 5.0], k=40.0)
+CLI_GRID = ["--lambda", "0.1,0.9,3.8,30", "--mu", "0.5,5", "--k", "40"]
+
+
+def assert_same_dataset(a, b):
+    assert list(a.dims) == list(b.dims) and dict(a.sizes) == dict(b.sizes)
+    assert set(a.coords) == set(b.coords)
+    assert set(a.data_vars) == set(b.data_vars)
+    for name in list(a.coords) + list(a.data_vars):
+        va, vb = a[name], b[name]
+        assert va.dims == vb.dims, name
+        assert va.dtype == vb.dtype, name
+        assert va.values.tobytes() == vb.values.tobytes(), name
+        assert va.attrs == vb.attrs, name
+    ka = {k: v for k, v in a.attrs.items() if k not in RUN_ATTRIBUTES}
+    kb = {k: v for k, v in b.attrs.items() if k not in RUN_ATTRIBUTES}
+    assert ka.keys() == kb.keys()
+    for k in ka:
+        assert np.array_equal(np.asarray(ka[k]), np.asarray(kb[k])), k
+
+
+@pytest.fixture(scope="module")
+def cli_sweep(tmp_path_factory, cli):
+    out = tmp_path_factory.mktemp("cli") / "sweep"
+    cli("sweep", *CLI_GRID, "--realizations", 300, "--seed", 7, "--records", "-o", out)
+    return out
+
+
+def test_dataset_equals_the_cli_results_nc(cli_sweep):
+    ours = stickslip.sweep(**GRID, realizations=300, seed=7, records=True)
+    with xr.open_dataset(cli_sweep / "results.nc") as theirs:
+        assert_same_dataset(ours, theirs.load())
+    assert list(ours.dims)[:2] == ["lambda", "mu"]  # in the order the keywords were given
+
+
+def test_statistics_equal_summary_json(cli_sweep):
+    ours = stickslip.sweep(**GRID, realizations=300, seed=7)
+    summary = json.load(open(cli_sweep / "summary.json"))
+    checked = 0
+    for p in summary["points"]:
+        sel = ours.sel({"lambda": p["lambda"], "mu": p["mu"]})
+        for key, value in p.items():
+            if isinstance(value, dict) and "mean" in value:
+                name = "stick_fraction" if key == "R" else key
+                assert float(sel[name + "_mean"]) == value["mean"], key
+                assert float(sel[name + "_std"]) == value["std"], key
+                checked += 1
+    assert checked == 6 * len(summary["points"])
+
+
+def test_open_reads_results_nc(cli_sweep):
+    ds = stickslip.open(cli_sweep)
+    with xr.open_dataset(cli_sweep / "results.nc") as theirs:
+        assert_same_dataset(ds, theirs.load())
+    with pytest.raises(stickslip.Error, match="does not exist"):
+        stickslip.open(cli_sweep / "nope.nc")
+
+
+def test_output_dir_writes_the_cli_files(cli_sweep, tmp_path):
+    out = tmp_path / "py"
+    stickslip.sweep(**GRID, realizations=300, seed=7, records=True, output=str(out))
+    for f in ("results.nc", "summary.json", "summary.csv", "records.csv"):
+        assert (out / f).exists(), f
+    assert not (out / ".journal").exists()
+    p = subprocess.run(["/usr/bin/python3", COMPARE, str(cli_sweep), str(out)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+
+
+def test_bad_input_raises_error_with_the_cli_message(cli, tmp_path):
+    p = cli("sweep", "--lambda", "-2", "--mu", "0.5,5", "--realizations", 10, "-o", tmp_path / "bad",
+            check=False)
+    assert p.returncode == 2
+    with pytest.raises(stickslip.Error) as e:
+        stickslip.sweep(lam=-2.0, mu=[0.5, 5], realizations=10)
+    assert p.stderr.strip() == f"stickslip: error: {e.value}"
+    with pytest.raises(stickslip.Error, match="lambda"):
+        stickslip.sweep(lam=[0.1, -2.0], realizations=10)
+    with pytest.raises(stickslip.Error):
+        stickslip.sweep(lam=1, realizations=0)
+    assert not (tmp_path / "bad").exists()
+
+
+def test_progress_bar_reaches_the_total(capsys):
+    stickslip.sweep(lam=[0.5, 2.0], realizations=200, progress=True)
+    err = capsys.readouterr().err
+    assert "8/8" in err  # 2 points x 4 blocks of 50
+
+
+def test_the_gil_is_released_while_simulating():
+    ticks = []
+    stop = threading.Event()
+
+    def ticker():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+    t = threading.Thread(target=ticker)
+    t.start()
+    before = len(ticks)
+    stickslip.sweep(lam=np.logspace(-1, np.log10(30), 8), mu=[0.5, 5], realizations=3000)
+    during = len(ticks) - before
+    stop.set()
+    t.join()
+    assert during > 20  # the other Python thread ran while the sweep did
+
+
+INTERRUPTED = textwrap.dedent("""
+    import sys, stickslip
+    try:
+        stickslip.sweep(lam=[0.1, 1, 5, 20], mu=[0.5, 5], ta=400, realizations=8000,
+                        threads=1, output=sys.argv[1], checkpoint_interval=0)
+    except KeyboardInterrupt:
+        print("KeyboardInterrupt", flush=True)
+        sys.exit(42)
+    sys.exit(0)
+""")
+
+
+def test_ctrl_c_stops_and_resume_completes_identically(tmp_path):
+    out = tmp_path / "interrupted"
+    env = dict(os.environ)
+    p = subprocess.Popen([sys.executable, "-c", INTERRUPTED, str(out)], env=env,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    def has_segment():
+        j = out / ".journal"
+        return j.exists() and any(j.glob("seg-*"))
+    deadline = time.time() + 60
+    while time.time() < deadline and not has_segment() and p.poll() is None:
+        time.sleep(0.02)
+    assert p.poll() is None, "the sweep finished before it could be interrupted (make it longer)"
+    p.send_signal(signal.SIGINT)
+    try:
+        stdout, stderr = p.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        pytest.fail("Ctrl-C did not stop the sweep")
+    assert p.returncode == 42, stderr
+    assert "KeyboardInterrupt" in stdout
+    assert (out / ".journal").exists() and not (out / "results.nc").exists()
+    resumed = stickslip.sweep(lam=[0.1, 1, 5, 20], mu=[0.5, 5], ta=400, realizations=8000,
+                              output=str(out), resume=True)
+    whole = stickslip.sweep(lam=[0.1, 1, 5, 20], mu=[0.5, 5], ta=400, realizations=8000)
+    assert_same_dataset(resumed, whole)
