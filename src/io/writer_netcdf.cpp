@@ -250,8 +250,8 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
       for (std::size_t i = 0; i < row.size(); ++i)
         row[i] = i < hh.bins() ? 0.5 * (bin_edge(hh, i) + bin_edge(hh, i + 1)) : nan;
     });
-    auto bounds = f.addVar(n + "_bin_bounds", nc::ncDouble, with(dims, l.bounds));
-    bounds.setFill(true, nan);
+    auto bounds = add_double(f, n + "_bin_bounds", with(dims, l.bounds), q.units,
+                             "bin bounds of " + sym, "lower and upper edge of each bin");
     put_rows<double>(bounds, rs, 2 * l.bins, [&](const point_result& p, std::vector<double>& row) {
       const auto& hh = hist(p);
       for (std::size_t i = 0; i < l.bins; ++i) {
