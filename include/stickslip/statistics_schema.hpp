@@ -69,8 +69,9 @@ struct counter_info {
 [[nodiscard]] std::span<const counter_info> counters() noexcept;
 
 // A 64-bit identity of the schema (FNV-1a over every row's names, sampling
-// and range, in order). Serialized data carries it, so data written with
-// another list of statistics is refused instead of misread.
+// and range, in order). Serialized data carries it (in serialize.hpp's
+// layout_id), so data written with another list of statistics is refused
+// instead of misread.
 [[nodiscard]] std::uint64_t statistics_schema_id() noexcept;
 
 // The upper end of a quantity's histogram interval at a grid point (the lower

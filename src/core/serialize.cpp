@@ -26,16 +26,13 @@ using writer = detail::byte_writer;
 using reader = detail::byte_reader;
 
 // ---- pieces ----
+// In the order of parameter_names (the layout id covers that list).
 void put(writer& w, const model_parameters& p) {
-  for (double v : {p.mass, p.stiffness, p.gravity, p.friction_coefficient, p.belt_speed,
-                   p.switch_rate, p.window})
-    w.f64(v);
+  for (const char* name : parameter_names) w.f64(parameter_by_name(p, name));
 }
 model_parameters get_parameters(reader& r) {
   model_parameters p;
-  for (double* v : {&p.mass, &p.stiffness, &p.gravity, &p.friction_coefficient, &p.belt_speed,
-                    &p.switch_rate, &p.window})
-    *v = r.f64("model parameter");
+  for (const char* name : parameter_names) parameter_by_name(p, name) = r.f64("model parameter");
   return p;
 }
 
@@ -172,6 +169,24 @@ work_unit get_unit(reader& r) {
 }
 
 }  // namespace
+
+std::uint64_t layout_id() noexcept {
+  static const std::uint64_t id = [] {
+    std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
+    const auto byte = [&h](unsigned char c) {
+      h ^= c;
+      h *= 0x100000001b3ULL;
+    };
+    const auto schema = statistics_schema_id();
+    for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(schema >> (8 * i)));
+    for (const char* name : parameter_names) {
+      for (const char* c = name; *c; ++c) byte(static_cast<unsigned char>(*c));
+      byte(0);
+    }
+    return h;
+  }();
+  return id;
+}
 
 // ---- sweep spec ----
 bytes serialize(const sweep_spec& s) {

@@ -224,7 +224,7 @@ TEST(Journal, UnwritableDirectoryIsAClearError) {
   }
 }
 
-// Format version 2 put the statistics schema id into every message header
+// Format version 2 put the layout id (statistics and parameters) into every message header
 // (after the 4-byte tag and the 4-byte version): data from another version or
 // another list of statistics is refused by name, never misread.
 TEST(Serialize, AnotherFormatVersionOrStatisticsSchemaIsRefusedByName) {
@@ -243,8 +243,8 @@ TEST(Serialize, AnotherFormatVersionOrStatisticsSchemaIsRefusedByName) {
   v1[4] = 1;  // little-endian u32 version
   expect_refused(v1, "format version 1 (this program reads version 2)");
   auto other_schema = bytes;
-  other_schema[8] ^= 0x01;  // first byte of the u64 schema id
-  expect_refused(other_schema, "another list of statistics");
+  other_schema[8] ^= 0x01;  // first byte of the u64 layout id
+  expect_refused(other_schema, "another list of statistics or model parameters");
 }
 
 TEST(Journal, AJournalOfFormatVersion1IsReportedAndRecomputed) {
