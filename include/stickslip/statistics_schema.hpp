@@ -1,9 +1,10 @@
 // The one list of per-point statistics. Everything that handles statistics
 // iterates over it: point_statistics (the histogram ranges, add, merge), the
 // binary serialization (MPI messages, the journal), and every writer (NetCDF,
-// JSON, CSV); the Python layer reads it too. Adding a statistic is one entry
-// in src/core/statistics_schema.cpp plus its accumulator member in
-// point_statistics (statistics.hpp), and its tests.
+// JSON, CSV); the Python layer reads it too. Adding a statistic is one row
+// in the table below plus its accumulator member in point_statistics
+// (statistics.hpp), and its tests. The order of the rows is the order of the
+// serialized accumulators and of the output columns.
 //
 // Two kinds of rows:
 //   quantity  a value of a realization (R, S_T/t_a, S_L/t_a, D_i, D_1, H_i),
@@ -12,6 +13,7 @@
 //             censored first sticks, events by kind).
 // The paper's definitions are in statistics.hpp and docs/model.md.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -65,8 +67,80 @@ struct counter_info {
   }
 };
 
-[[nodiscard]] std::span<const quantity_info> quantities() noexcept;
-[[nodiscard]] std::span<const counter_info> counters() noexcept;
+namespace detail::schema {
+using ps = point_statistics;
+using rec = const realization_record&;
+
+inline constexpr std::array<quantity_info, 6> quantity_table{{
+    {"stick_fraction", "R", "R", "1", "stick fraction",
+     "total stick time in [0, t_a] divided by t_a, one value per realization", "realizations",
+     sampling::per_realization, [](rec r, double) noexcept { return r.stick_fraction; },
+     &ps::stick_fraction, &ps::stick_fraction_hist, histogram_range::unit_interval},
+    {"sticks_per_time", "sticks_per_time", "S_T/t_a", "1/s", "stick rate",
+     "number of sticks of positive length beginning in [0, t_a) (a stick cut off by t_a "
+     "counts), divided by t_a, one value per realization",
+     "realizations", sampling::per_realization,
+     [](rec r, double window) noexcept { return r.sticks / window; }, &ps::sticks_per_time,
+     nullptr, histogram_range::none},
+    {"slips_per_time", "slips_per_time", "S_L/t_a", "1/s", "slip rate",
+     "number of slips beginning after the first stick (the slip before the first stick is "
+     "not counted), divided by t_a, one value per realization",
+     "realizations", sampling::per_realization,
+     [](rec r, double window) noexcept { return r.slips / window; }, &ps::slips_per_time,
+     nullptr, histogram_range::none},
+    {"stick_duration", "stick_duration", "D", "s", "stick duration",
+     "duration D_i of every stick, pooled over all sticks of all realizations (a stick cut "
+     "off by t_a enters clipped)",
+     "sticks, over all realizations", sampling::per_stick, nullptr, &ps::stick_duration,
+     &ps::stick_duration_hist, histogram_range::stick_duration},
+    {"first_stick_duration", "first_stick_duration", "D_1", "s", "first stick duration",
+     "duration of the first stick, over the realizations that have a stick (see "
+     "no_stick_count); it may be censored by t_a (see first_stick_censored_count)",
+     "realizations with at least one stick", sampling::per_realization_with_stick,
+     [](rec r, double) noexcept { return r.first_stick_duration; }, &ps::first_stick_duration,
+     &ps::first_stick_duration_hist, histogram_range::stick_duration},
+    {"slip_duration", "slip_duration", "H", "s", "slip duration",
+     "duration H_i of every counted slip (those beginning after the first stick), pooled "
+     "over all realizations",
+     "counted slips, over all realizations", sampling::per_counted_slip, nullptr,
+     &ps::slip_duration, &ps::slip_duration_hist, histogram_range::slip_duration},
+}};
+
+inline constexpr std::array<counter_info, 6> counter_table{{
+    {"no_stick_count", "no_stick", nullptr, "no-stick realizations",
+     "realizations with no stick of positive length in [0, t_a) (no D_1)",
+     [](rec r) noexcept -> std::uint64_t { return r.sticks == 0; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.no_stick; }},
+    {"first_stick_censored_count", "first_stick_censored", nullptr, "censored first sticks",
+     "realizations whose first stick was still going on at t_a (D_1 clipped)",
+     [](rec r) noexcept -> std::uint64_t { return r.sticks > 0 && r.first_stick_censored; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.first_stick_censored; }},
+    {"belt_switches", "belt_switches", "events", "belt switches",
+     "belt direction switches, summed over realizations",
+     [](rec r) noexcept { return r.events.belt_switches; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.belt_switches; }},
+    {"stick_onsets", "stick_onsets", "events", "stick onsets",
+     "transitions slip -> stick, summed over realizations",
+     [](rec r) noexcept { return r.events.stick_onsets; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.stick_onsets; }},
+    {"stick_breaks", "stick_breaks", "events", "stick breaks",
+     "transitions stick -> slip, summed over realizations",
+     [](rec r) noexcept { return r.events.stick_breaks; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.stick_breaks; }},
+    {"slip_reversals", "slip_reversals", "events", "slip reversals",
+     "reversals of the slip direction without sticking, summed over realizations",
+     [](rec r) noexcept { return r.events.slip_reversals; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.slip_reversals; }},
+}};
+
+}  // namespace detail::schema
+
+// The rows. The tables are constexpr so that point_statistics::add can
+// iterate them at compile time (no indirect call per realization).
+inline constexpr const auto& quantity_table = detail::schema::quantity_table;
+inline constexpr const auto& counter_table = detail::schema::counter_table;
+[[nodiscard]] inline std::span<const quantity_info> quantities() noexcept { return quantity_table; }
+[[nodiscard]] inline std::span<const counter_info> counters() noexcept { return counter_table; }
 
 // A 64-bit identity of the schema (FNV-1a over every row's names, sampling
 // and range, in order). Serialized data carries it (in serialize.hpp's

@@ -2,6 +2,8 @@
 
 #include "stickslip/statistics_schema.hpp"
 
+#include <utility>
+
 namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
@@ -10,6 +12,34 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
     if (q.density) this->*q.density = histogram(0.0, histogram_upper(q.range, p, h), h.bins);
 }
 
+namespace {
+
+// One row of the schema, resolved at compile time (the row's value function
+// is inlined: this runs once per realization).
+template <std::size_t I>
+void add_quantity(point_statistics& s, const realization_record& r,
+                  const std::vector<double>& sticks, const std::vector<double>& slips,
+                  double window) noexcept {
+  constexpr const quantity_info& q = quantity_table[I];
+  mean_variance& moments = s.*q.moments;
+  if constexpr (q.sampled == sampling::per_realization ||
+                q.sampled == sampling::per_realization_with_stick) {
+    if constexpr (q.sampled == sampling::per_realization_with_stick) {
+      if (r.sticks == 0) return;
+    }
+    const double x = q.value(r, window);
+    moments.add(x);
+    if constexpr (q.density != nullptr) (s.*q.density).add(x);
+  } else {
+    const auto& xs = q.sampled == sampling::per_stick ? sticks : slips;
+    moments.add_batch(xs.data(), xs.data() + xs.size());
+    if constexpr (q.density != nullptr)
+      for (double x : xs) (s.*q.density).add(x);
+  }
+}
+
+}  // namespace
+
 // Each quantity's samples go to its own accumulators in realization order, so
 // the bits depend only on the samples' order, not on the order of the rows.
 // Per-realization values go in one at a time (Welford); the pooled D_i and
@@ -17,30 +47,12 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
 void point_statistics::add(const realization_record& r, const std::vector<double>& sticks,
                            const std::vector<double>& slips, double window) {
   ++realizations;
-  for (const auto& q : quantities()) {
-    mean_variance& moments = this->*q.moments;
-    histogram* density = q.density ? &(this->*q.density) : nullptr;
-    switch (q.sampled) {
-      case sampling::per_realization_with_stick:
-        if (r.sticks == 0) break;
-        [[fallthrough]];
-      case sampling::per_realization: {
-        const double x = q.value(r, window);
-        moments.add(x);
-        if (density) density->add(x);
-        break;
-      }
-      case sampling::per_stick:
-      case sampling::per_counted_slip: {
-        const auto& xs = q.sampled == sampling::per_stick ? sticks : slips;
-        moments.add_batch(xs.data(), xs.data() + xs.size());
-        if (density)
-          for (double x : xs) density->add(x);
-        break;
-      }
-    }
-  }
-  for (const auto& c : counters()) c.of(*this) += c.increment(r);
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (add_quantity<I>(*this, r, sticks, slips, window), ...);
+  }(std::make_index_sequence<quantity_table.size()>{});
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
+  }(std::make_index_sequence<counter_table.size()>{});
 }
 
 point_statistics& point_statistics::operator+=(const point_statistics& o) {
