@@ -3,7 +3,12 @@
 //
 // Format: little-endian; doubles travel as their IEEE-754 bit patterns, so a
 // round trip is bit-exact (NaN payloads and -0 included). Every message starts
-// with a 4-byte tag and the format version; vectors carry their length.
+// with a 4-byte tag, the format version and the layout id (layout_id(): the
+// list of statistics a block result holds and of model parameters a spec
+// holds); vectors carry their length. Both lists are laid out by iterating
+// them (statistics_schema.hpp, parameter_names), so adding a statistic or a
+// parameter changes the layout id, and data from before is refused, never
+// misread.
 // Deserialization never trusts its input: every length is checked against
 // the bytes that remain, every count against a sane bound, and histogram
 // binnings against their invariants. Any problem throws stickslip::error
@@ -19,13 +24,18 @@
 #include <utility>
 
 #include "stickslip/error.hpp"
+#include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip {
 
 // Bumped whenever the layout of anything below changes. Readers refuse other
 // versions (a journal from another version is recomputed, never misread).
-inline constexpr std::uint32_t serial_format_version = 1;
+// Version 2: the layout id follows the version.
+inline constexpr std::uint32_t serial_format_version = 2;
+
+// FNV-1a over statistics_schema_id() and the parameter names, in order.
+[[nodiscard]] std::uint64_t layout_id() noexcept;
 
 // A byte string holds the encoded bytes (std::string: contiguous, cheap to move).
 using bytes = std::string;
@@ -53,6 +63,7 @@ class byte_writer {
   void header(std::string_view tag) {
     raw(tag);
     u32(serial_format_version);
+    u64(layout_id());
   }
   [[nodiscard]] bytes take() { return std::move(out_); }
 
@@ -107,8 +118,14 @@ class byte_reader {
     if (t != tag) throw corrupt(fmt::format("expected a '{}' message", tag));
     const auto v = u32("format version");
     if (v != serial_format_version)
-      throw corrupt(fmt::format("format version {} (this program reads version {})", v,
-                                serial_format_version));
+      throw corrupt(fmt::format("format version {} (this program reads version {}): written "
+                                "by another version of stickslip",
+                                v, serial_format_version));
+    const auto layout = u64("layout id");
+    if (layout != layout_id())
+      throw corrupt(fmt::format("layout {:016x} (this program's is {:016x}): written by a "
+                                "build with another list of statistics or model parameters",
+                                layout, layout_id()));
   }
   [[nodiscard]] std::size_t remaining() const noexcept { return in_.size() - pos_; }
   void finish(std::string_view what) const {

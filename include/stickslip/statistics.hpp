@@ -9,6 +9,9 @@
 //   R    total stick time / t_a
 // Per grid point: mergeable accumulators of these, with densities and a
 // convergence trace. Memory is independent of the number of realizations.
+// Every accumulator of point_statistics has a row in the statistics schema
+// (statistics_schema.hpp), which says how it is sampled, binned, merged,
+// serialized and written.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -61,6 +64,7 @@ class point_statistics {
   point_statistics& operator+=(const point_statistics& o);
   void record_convergence();
 
+  // The accumulators; each one has a row in statistics_schema.cpp.
   mean_variance stick_fraction;        // R
   mean_variance sticks_per_time;       // S_T / t_a
   mean_variance slips_per_time;        // S_L / t_a

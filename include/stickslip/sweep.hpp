@@ -136,8 +136,8 @@ struct result_set {
   std::vector<point_result> points;
   std::vector<std::vector<realization_record>> records;  // per point, when kept
   double elapsed_seconds = 0.0;
-  unsigned threads = 1;  // per process (rank)
-  int ranks = 1;         // MPI processes that ran it
+  unsigned threads = 1;  // worker threads (per rank)
+  unsigned ranks = 1;    // MPI ranks the sweep ran on (1 without MPI)
 };
 
 [[nodiscard]] result_set make_result_set(const sweep_spec& s, ordered_merger&& m);

@@ -230,7 +230,7 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
           rs.elapsed_seconds =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           rs.threads = runner.threads();
-          rs.ranks = runner.ranks();
+          rs.ranks = static_cast<unsigned>(runner.ranks());
         } catch (const error& e) {
           if (!output.empty()) run::clean_up_after_failure(e, output, before);
           throw;

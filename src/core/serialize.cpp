@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "stickslip/error.hpp"
+#include "stickslip/statistics_schema.hpp"
 
 namespace stickslip {
 
@@ -25,16 +26,13 @@ using writer = detail::byte_writer;
 using reader = detail::byte_reader;
 
 // ---- pieces ----
+// In the order of parameter_names (the layout id covers that list).
 void put(writer& w, const model_parameters& p) {
-  for (double v : {p.mass, p.stiffness, p.gravity, p.friction_coefficient, p.belt_speed,
-                   p.switch_rate, p.window})
-    w.f64(v);
+  for (const char* name : parameter_names) w.f64(parameter_by_name(p, name));
 }
 model_parameters get_parameters(reader& r) {
   model_parameters p;
-  for (double* v : {&p.mass, &p.stiffness, &p.gravity, &p.friction_coefficient, &p.belt_speed,
-                    &p.switch_rate, &p.window})
-    *v = r.f64("model parameter");
+  for (const char* name : parameter_names) parameter_by_name(p, name) = r.f64("model parameter");
   return p;
 }
 
@@ -89,17 +87,15 @@ histogram get_histogram(reader& r) {
   return h;
 }
 
+// The accumulators in schema order (statistics_schema.cpp): every quantity's
+// moments, every binned quantity's histogram, the realization count, every
+// counter; then the convergence trace.
 void put(writer& w, const point_statistics& s) {
-  for (const auto* m : {&s.stick_fraction, &s.sticks_per_time, &s.slips_per_time,
-                        &s.stick_duration, &s.first_stick_duration, &s.slip_duration})
-    put(w, *m);
-  for (const auto* h : {&s.stick_fraction_hist, &s.stick_duration_hist,
-                        &s.first_stick_duration_hist, &s.slip_duration_hist})
-    put(w, *h);
+  for (const auto& q : quantities()) put(w, s.*q.moments);
+  for (const auto& q : quantities())
+    if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
-  w.u64(s.no_stick);
-  w.u64(s.first_stick_censored);
-  put(w, s.events);
+  for (const auto& c : counters()) w.u64(c.value(s));
   w.u64(s.convergence.size());
   for (const auto& c : s.convergence) {
     w.u64(c.realizations);
@@ -111,16 +107,11 @@ void put(writer& w, const point_statistics& s) {
 }
 point_statistics get_statistics(reader& r) {
   point_statistics s;
-  for (auto* m : {&s.stick_fraction, &s.sticks_per_time, &s.slips_per_time, &s.stick_duration,
-                  &s.first_stick_duration, &s.slip_duration})
-    *m = get_mean_variance(r);
-  for (auto* h : {&s.stick_fraction_hist, &s.stick_duration_hist, &s.first_stick_duration_hist,
-                  &s.slip_duration_hist})
-    *h = get_histogram(r);
+  for (const auto& q : quantities()) s.*q.moments = get_mean_variance(r);
+  for (const auto& q : quantities())
+    if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
-  s.no_stick = r.u64("no-stick count");
-  s.first_stick_censored = r.u64("censored count");
-  s.events = get_counts(r);
+  for (const auto& c : counters()) c.of(s) = r.u64(c.name);
   const auto n = r.count("convergence trace", 40);
   s.convergence.resize(n);
   for (auto& c : s.convergence) {
@@ -178,6 +169,24 @@ work_unit get_unit(reader& r) {
 }
 
 }  // namespace
+
+std::uint64_t layout_id() noexcept {
+  static const std::uint64_t id = [] {
+    std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
+    const auto byte = [&h](unsigned char c) {
+      h ^= c;
+      h *= 0x100000001b3ULL;
+    };
+    const auto schema = statistics_schema_id();
+    for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(schema >> (8 * i)));
+    for (const char* name : parameter_names) {
+      for (const char* c = name; *c; ++c) byte(static_cast<unsigned char>(*c));
+      byte(0);
+    }
+    return h;
+  }();
+  return id;
+}
 
 // ---- sweep spec ----
 bytes serialize(const sweep_spec& s) {
@@ -294,13 +303,9 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   if (b.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", b.stats.realizations, expected));
   const point_statistics fresh(point_parameters(s, u.point), s.histograms);
-  const std::pair<const histogram*, const histogram*> hists[] = {
-      {&b.stats.stick_fraction_hist, &fresh.stick_fraction_hist},
-      {&b.stats.stick_duration_hist, &fresh.stick_duration_hist},
-      {&b.stats.first_stick_duration_hist, &fresh.first_stick_duration_hist},
-      {&b.stats.slip_duration_hist, &fresh.slip_duration_hist}};
-  for (const auto& [got, want] : hists)
-    if (!got->same_binning(*want)) throw bad("histogram binning differs");
+  for (const auto& q : quantities())
+    if (q.density && !(b.stats.*q.density).same_binning(fresh.*q.density))
+      throw bad(fmt::format("histogram binning of {} differs", q.name));
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))
     throw bad(fmt::format("{} raw records", b.records.size()));

@@ -1,55 +1,67 @@
 #include "stickslip/statistics.hpp"
 
-#include <algorithm>
+#include "stickslip/statistics_schema.hpp"
+
+#include <utility>
 
 namespace stickslip {
 
+// The histogram of each binned quantity on [0, upper end of its range rule].
 point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h) {
-  const double dmax = h.stick_duration_max > 0 ? h.stick_duration_max : p.max_stick_duration();
-  const double hmax =
-      h.slip_duration_max > 0 ? h.slip_duration_max : std::min(p.window, 5.0 / p.switch_rate);
-  stick_fraction_hist = histogram(0.0, 1.0, h.bins);
-  stick_duration_hist = histogram(0.0, dmax, h.bins);
-  first_stick_duration_hist = histogram(0.0, dmax, h.bins);
-  slip_duration_hist = histogram(0.0, hmax, h.bins);
+  for (const auto& q : quantities())
+    if (q.density) this->*q.density = histogram(0.0, histogram_upper(q.range, p, h), h.bins);
 }
 
+namespace {
+
+// One row of the schema, resolved at compile time (the row's value function
+// is inlined: this runs once per realization).
+template <std::size_t I>
+void add_quantity(point_statistics& s, const realization_record& r,
+                  const std::vector<double>& sticks, const std::vector<double>& slips,
+                  double window) noexcept {
+  constexpr const quantity_info& q = quantity_table[I];
+  mean_variance& moments = s.*q.moments;
+  if constexpr (q.sampled == sampling::per_realization ||
+                q.sampled == sampling::per_realization_with_stick) {
+    if constexpr (q.sampled == sampling::per_realization_with_stick) {
+      if (r.sticks == 0) return;
+    }
+    const double x = q.value(r, window);
+    moments.add(x);
+    if constexpr (q.density != nullptr) (s.*q.density).add(x);
+  } else {
+    const auto& xs = q.sampled == sampling::per_stick ? sticks : slips;
+    moments.add_batch(xs.data(), xs.data() + xs.size());
+    if constexpr (q.density != nullptr)
+      for (double x : xs) (s.*q.density).add(x);
+  }
+}
+
+}  // namespace
+
+// Each quantity's samples go to its own accumulators in realization order, so
+// the bits depend only on the samples' order, not on the order of the rows.
+// Per-realization values go in one at a time (Welford); the pooled D_i and
+// H_i of a realization as one batch (mean_variance::add_batch).
 void point_statistics::add(const realization_record& r, const std::vector<double>& sticks,
                            const std::vector<double>& slips, double window) {
   ++realizations;
-  stick_fraction.add(r.stick_fraction);
-  stick_fraction_hist.add(r.stick_fraction);
-  sticks_per_time.add(r.sticks / window);
-  slips_per_time.add(r.slips / window);
-  stick_duration.add_batch(sticks.data(), sticks.data() + sticks.size());
-  for (double d : sticks) stick_duration_hist.add(d);
-  slip_duration.add_batch(slips.data(), slips.data() + slips.size());
-  for (double h : slips) slip_duration_hist.add(h);
-  if (r.sticks == 0) {
-    ++no_stick;
-  } else {
-    first_stick_duration.add(r.first_stick_duration);
-    first_stick_duration_hist.add(r.first_stick_duration);
-    if (r.first_stick_censored) ++first_stick_censored;
-  }
-  events += r.events;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (add_quantity<I>(*this, r, sticks, slips, window), ...);
+  }(std::make_index_sequence<quantity_table.size()>{});
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
+  }(std::make_index_sequence<counter_table.size()>{});
 }
 
 point_statistics& point_statistics::operator+=(const point_statistics& o) {
-  stick_fraction += o.stick_fraction;
-  sticks_per_time += o.sticks_per_time;
-  slips_per_time += o.slips_per_time;
-  stick_duration += o.stick_duration;
-  first_stick_duration += o.first_stick_duration;
-  slip_duration += o.slip_duration;
-  stick_fraction_hist += o.stick_fraction_hist;
-  stick_duration_hist += o.stick_duration_hist;
-  first_stick_duration_hist += o.first_stick_duration_hist;
-  slip_duration_hist += o.slip_duration_hist;
+  for (const auto& q : quantities()) {
+    this->*q.moments += o.*q.moments;
+    if (q.density) this->*q.density += o.*q.density;
+  }
   realizations += o.realizations;
-  no_stick += o.no_stick;
-  first_stick_censored += o.first_stick_censored;
-  events += o.events;
+  for (const auto& c : counters()) c.of(*this) += c.value(o);
   return *this;
 }
 

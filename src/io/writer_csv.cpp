@@ -11,29 +11,34 @@
 namespace stickslip::io {
 namespace detail {
 
+// Columns: the point's parameters, realizations, then for every quantity of
+// the schema its mean, std and 95% CI, then the sample counts of the
+// quantities not sampled once per realization, then every counter.
 void fill_summary_csv(text_sink& out, const result_set& rs) {
   check_shape(rs);
   const auto symbols = point_parameter_symbols(rs.spec);
+  const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
   for (const auto& sym : symbols) out.print("{},", sym);
   out.write("realizations");
-  for (const auto& st : statistics_table())
-    out.print(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", st.short_name);
-  out.write(
-      ",stick_duration_count,first_stick_duration_count,slip_duration_count,no_stick,"
-      "first_stick_censored,belt_switches,stick_onsets,stick_breaks,slip_reversals\n");
+  for (const auto& q : quantities())
+    out.print(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", q.summary_name);
+  for (const auto& q : quantities())
+    if (pooled(q)) out.print(",{}_count", q.name);
+  for (const auto& c : counters()) out.print(",{}", c.summary_name);
+  out.put('\n');
   for (const auto& p : rs.points) {
     const auto& s = p.stats;
     for (const auto& sym : symbols) out.print("{},", parameter_by_name(p.parameters, sym));
     out.print("{}", s.realizations);
-    for (const auto& st : statistics_table()) {
-      const auto& mv = s.*st.member;
+    for (const auto& q : quantities()) {
+      const auto& mv = s.*q.moments;
       const double half = mv.ci95_half_width();
       out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
     }
-    out.print(",{},{},{},{},{},{},{},{},{}\n", s.stick_duration.count(),
-              s.first_stick_duration.count(), s.slip_duration.count(), s.no_stick,
-              s.first_stick_censored, s.events.belt_switches, s.events.stick_onsets,
-              s.events.stick_breaks, s.events.slip_reversals);
+    for (const auto& q : quantities())
+      if (pooled(q)) out.print(",{}", (s.*q.moments).count());
+    for (const auto& c : counters()) out.print(",{}", c.value(s));
+    out.put('\n');
   }
 }
 

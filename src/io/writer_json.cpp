@@ -11,6 +11,10 @@
 // }
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <string_view>
+#include <vector>
+
 #include "json_emitter.hpp"
 #include "stickslip/io/writers.hpp"
 #include "writers_detail.hpp"
@@ -32,32 +36,39 @@ void emit_statistic(json_emitter& j, const mean_variance& mv) {
   j.end_object();
 }
 
+// The point's parameters and realizations, every quantity of the schema,
+// the counters that belong to no group, the sample counts of the quantities
+// not sampled once per realization ("samples"), then each group of counters
+// ("events") as an object.
 void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) {
   const auto& s = p.stats;
   j.begin_object();
   for (const auto& sym : point_parameter_symbols(spec))
     j.member(sym, parameter_by_name(p.parameters, sym));
   j.member("realizations", s.realizations);
-  for (const auto& st : statistics_table()) {
-    j.key(st.short_name);
-    emit_statistic(j, s.*st.member);
+  for (const auto& q : quantities()) {
+    j.key(q.summary_name);
+    emit_statistic(j, s.*q.moments);
   }
   // Extras after the required keys.
-  j.member("no_stick", s.no_stick);
-  j.member("first_stick_censored", s.first_stick_censored);
+  for (const auto& c : counters())
+    if (!c.group) j.member(c.summary_name, c.value(s));
   j.key("samples");  // how many values entered the pooled statistics
   j.begin_object();
-  j.member("stick_duration", s.stick_duration.count());
-  j.member("first_stick_duration", s.first_stick_duration.count());
-  j.member("slip_duration", s.slip_duration.count());
+  for (const auto& q : quantities())
+    if (q.sampled != sampling::per_realization) j.member(q.summary_name, (s.*q.moments).count());
   j.end_object();
-  j.key("events");
-  j.begin_object();
-  j.member("belt_switches", s.events.belt_switches);
-  j.member("stick_onsets", s.events.stick_onsets);
-  j.member("stick_breaks", s.events.stick_breaks);
-  j.member("slip_reversals", s.events.slip_reversals);
-  j.end_object();
+  std::vector<std::string_view> groups;
+  for (const auto& c : counters())
+    if (c.group && std::find(groups.begin(), groups.end(), c.group) == groups.end())
+      groups.emplace_back(c.group);
+  for (const auto group : groups) {
+    j.key(group);
+    j.begin_object();
+    for (const auto& c : counters())
+      if (c.group && group == c.group) j.member(c.summary_name, c.value(s));
+    j.end_object();
+  }
   j.end_object();
 }
 
@@ -70,10 +81,26 @@ void emit_points(json_emitter& j, const result_set& rs) {
 void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& meta) {
   const auto& s = rs.spec;
   j.begin_object(layout::multi_line);
+  // A swept parameter has no single value: null in "base", named in "swept".
+  const auto swept = swept_symbols(s);
+  const auto is_swept = [&](const char* sym) {
+    return std::find(swept.begin(), swept.end(), sym) != swept.end();
+  };
   j.key("base");
   j.begin_object();
-  for (const char* sym : parameter_names) j.member(sym, parameter_by_name(s.base, sym));
+  for (const char* sym : parameter_names) {
+    if (is_swept(sym)) {
+      j.key(sym);
+      j.null();
+    } else {
+      j.member(sym, parameter_by_name(s.base, sym));
+    }
+  }
   j.end_object();
+  j.key("swept");
+  j.begin_array();
+  for (const auto& sym : swept) j.value(sym);
+  j.end_array();
   j.key("axes");
   j.begin_array(layout::multi_line);
   for (const auto& ax : s.axes) {
@@ -92,7 +119,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("position_max", s.initial.position_max);
   j.member("velocity_min", s.initial.velocity_min);
   j.member("velocity_max", s.initial.velocity_max);
-  j.member("belt_start", s.initial.belt_start);
+  j.member("belt_start", belt_start_name(s.initial.belt_start));
   j.end_object();
   j.member("seed", s.seed);
   j.member("realizations", s.realizations);
@@ -106,6 +133,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("slip_duration_max", s.histograms.slip_duration_max);
   j.end_object();
   j.member("threads", static_cast<std::uint64_t>(rs.threads));
+  j.member("ranks", static_cast<std::uint64_t>(rs.ranks));
   j.member("version", meta.version);
   j.member("git_revision", meta.git_revision);
   j.member("command_line", meta.command_line);

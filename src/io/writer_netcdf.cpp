@@ -1,9 +1,13 @@
 // results.nc: NetCDF-4 (HDF5) file, self-describing (CF-1.8 conventions).
 // Dimensions: one per swept axis, in the spec's axis order and named after
 // the parameter symbol (or `point` of length 1 when nothing is swept), then
-// `bin` (histogram bins) and `trace` (convergence trace entries).
+// `bin` (histogram bins), `nv` (the 2 ends of a bin) and `trace` (convergence
+// trace entries).
 // Point i of the result set sits at rs.points[i].index on the grid dims,
 // which is row-major order of the dims (first axis outermost).
+// The statistics come from the schema (statistics_schema.hpp). long_name
+// values stay within the 30 characters xarray puts on one line of a plot
+// label (with " [units]"); the full definition is in `description`.
 #include <netcdf>
 
 #include <fmt/format.h>
@@ -23,11 +27,10 @@ namespace {
 
 namespace nc = netCDF;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-constexpr long long no_realizations = -1;  // fill of convergence_realizations
 
 struct layout_info {
   std::vector<nc::NcDim> grid;  // grid dims
-  nc::NcDim bin, trace;
+  nc::NcDim bin, bounds, trace;
   std::size_t bins = 0, trace_length = 0;
 };
 
@@ -60,6 +63,14 @@ nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc
   auto v = f.addVar(name, nc::ncInt64, dims);
   describe(v, "1", long_name, description);
   return v;
+}
+
+// A parameter's long_name: its long alias in words and its symbol
+// ("switch rate lambda").
+std::string parameter_long_name(const parameter_info& info) {
+  std::string n = info.long_name;
+  std::replace(n.begin(), n.end(), '-', ' ');
+  return n + " " + info.symbol;
 }
 
 // One value per grid point, computed by `value(point)`.
@@ -125,13 +136,14 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
       auto dim = f.addDim(info.symbol, ax.values.size());
       l.grid.push_back(dim);
       auto v = f.addVar(info.symbol, nc::ncDouble, dim);
-      describe(v, info.units, info.description,
-               fmt::format("swept model parameter {} ({})", info.symbol, info.long_name));
+      describe(v, info.units, parameter_long_name(info),
+               fmt::format("swept model parameter {}: {}", info.symbol, info.description));
       v.putVar(ax.values.data());
     }
   }
   l.bins = std::max<std::size_t>(1, spec.histograms.bins);
   l.bin = f.addDim("bin", l.bins);
+  l.bounds = f.addDim("nv", 2);
   for (const auto& p : rs.points) l.trace_length = std::max(l.trace_length, p.stats.convergence.size());
   l.trace_length = std::max<std::size_t>(1, l.trace_length);
   l.trace = f.addDim("trace", l.trace_length);
@@ -141,137 +153,144 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
 void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   for (const char* sym : parameter_names) {
     const auto& info = info_for(sym);
-    auto v = add_double(f, parameter_variable_name(sym), l.grid, info.units, info.description,
-                        fmt::format("model parameter {} at each grid point", sym), false);
+    auto v = add_double(f, parameter_variable_name(sym), l.grid, info.units,
+                        parameter_long_name(info),
+                        fmt::format("model parameter {} at each grid point: {}", sym,
+                                    info.description),
+                        false);
     v.putAtt("symbol", sym);
     put_grid<double>(v, rs, [&](const point_result& p) { return parameter_by_name(p.parameters, sym); });
   }
   auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
                       "a = mu m g / k: the mass can stick only while |x| <= a", false);
   put_grid<double>(a, rs, [](const point_result& p) { return p.parameters.band_half_width(); });
-  auto w = add_double(f, "natural_frequency", l.grid, "rad/s", "natural frequency omega",
+  auto w = add_double(f, "natural_frequency", l.grid, "rad/s", "natural frequency",
                       "omega = sqrt(k / m)", false);
   put_grid<double>(w, rs, [](const point_result& p) { return p.parameters.natural_frequency(); });
-  auto d = add_double(f, "max_stick_duration", l.grid, "s", "longest possible stick d_max",
+  auto d = add_double(f, "max_stick_duration", l.grid, "s", "longest stick d_max",
                       "d_max = 2 a / V: a stick that crosses the whole band", false);
   put_grid<double>(d, rs, [](const point_result& p) { return p.parameters.max_stick_duration(); });
 }
 
 void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  for (const auto& st : statistics_table()) {
-    const std::string n = st.name;
-    const auto mv = [&](const point_result& p) -> const mean_variance& { return p.stats.*st.member; };
-    auto mean = add_double(f, n + "_mean", l.grid, st.units, std::string("mean ") + st.long_name,
-                           st.description);
+  for (const auto& q : quantities()) {
+    const std::string n = q.name, sym = q.symbol;
+    const auto mv = [&](const point_result& p) -> const mean_variance& { return p.stats.*q.moments; };
+    auto mean = add_double(f, n + "_mean", l.grid, q.units, std::string("mean ") + q.long_name,
+                           fmt::format("{} {}: {}", q.long_name, sym, q.description));
+    mean.putAtt("symbol", sym);
     put_grid<double>(mean, rs, [&](const point_result& p) { return mv(p).mean(); });
-    auto sd = add_double(f, n + "_std", l.grid, st.units,
-                         std::string("standard deviation of ") + st.long_name,
-                         "sample standard deviation (n - 1 in the denominator)");
+    auto sd = add_double(f, n + "_std", l.grid, q.units, std::string("std ") + q.long_name,
+                         "sample standard deviation (n - 1 in the denominator) of " + sym);
     put_grid<double>(sd, rs, [&](const point_result& p) { return mv(p).std_dev(); });
-    auto lo = add_double(f, n + "_ci95_low", l.grid, st.units,
-                         std::string("95% confidence interval of the mean ") + st.long_name +
-                             ", lower end",
-                         "mean - 1.959963984540054 std / sqrt(count) (normal approximation)");
+    auto lo = add_double(f, n + "_ci95_low", l.grid, q.units, "lower 95% CI of " + sym,
+                         "lower end of the 95% confidence interval of the mean of " + sym +
+                             ": mean - 1.959963984540054 std / sqrt(count) (normal "
+                             "approximation)");
     put_grid<double>(lo, rs, [&](const point_result& p) {
       return mv(p).mean() - mv(p).ci95_half_width();
     });
-    auto hi = add_double(f, n + "_ci95_high", l.grid, st.units,
-                         std::string("95% confidence interval of the mean ") + st.long_name +
-                             ", upper end",
-                         "mean + 1.959963984540054 std / sqrt(count) (normal approximation)");
+    auto hi = add_double(f, n + "_ci95_high", l.grid, q.units, "upper 95% CI of " + sym,
+                         "upper end of the 95% confidence interval of the mean of " + sym +
+                             ": mean + 1.959963984540054 std / sqrt(count) (normal "
+                             "approximation)");
     put_grid<double>(hi, rs, [&](const point_result& p) {
       return mv(p).mean() + mv(p).ci95_half_width();
     });
-    auto count = add_count(f, n + "_count", l.grid,
-                           std::string("number of samples of ") + st.long_name,
-                           std::string("number of ") + st.counted);
+    auto count = add_count(f, n + "_count", l.grid, "samples of " + sym,
+                           std::string("number of ") + q.counted);
     put_grid<long long>(count, rs, [&](const point_result& p) { return mv(p).count(); });
   }
 }
 
 void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  struct item {
-    const char* name;
-    const char* long_name;
-    const char* description;
-    std::uint64_t (*get)(const point_statistics&);
-  };
-  static const item items[] = {
-      {"realizations", "number of realizations", "independent realizations simulated at the point",
-       [](const point_statistics& s) { return s.realizations; }},
-      {"no_stick_count", "realizations without a stick",
-       "realizations with no stick of positive length in [0, t_a) (no D_1)",
-       [](const point_statistics& s) { return s.no_stick; }},
-      {"first_stick_censored_count", "realizations whose first stick was censored",
-       "realizations whose first stick was still going on at t_a (D_1 clipped)",
-       [](const point_statistics& s) { return s.first_stick_censored; }},
-      {"belt_switches", "belt switch events", "belt direction switches, summed over realizations",
-       [](const point_statistics& s) { return s.events.belt_switches; }},
-      {"stick_onsets", "stick onset events", "transitions slip -> stick, summed over realizations",
-       [](const point_statistics& s) { return s.events.stick_onsets; }},
-      {"stick_breaks", "stick break events", "transitions stick -> slip, summed over realizations",
-       [](const point_statistics& s) { return s.events.stick_breaks; }},
-      {"slip_reversals", "slip reversal events",
-       "reversals of the slip direction without sticking, summed over realizations",
-       [](const point_statistics& s) { return s.events.slip_reversals; }},
-  };
-  for (const auto& it : items) {
-    auto v = add_count(f, it.name, l.grid, it.long_name, it.description);
-    put_grid<long long>(v, rs, [&](const point_result& p) { return it.get(p.stats); });
+  auto n = add_count(f, "realizations", l.grid, "realizations",
+                     "independent realizations simulated at the point");
+  put_grid<long long>(n, rs, [](const point_result& p) { return p.stats.realizations; });
+  for (const auto& c : counters()) {
+    auto v = add_count(f, c.name, l.grid, c.long_name, c.description);
+    put_grid<long long>(v, rs, [&](const point_result& p) { return c.value(p.stats); });
   }
 }
 
+// Bin i of histogram h: [edge(h, i), edge(h, i + 1)], the last edge exactly hi.
+double bin_edge(const histogram& h, std::size_t i) {
+  return i == h.bins() ? h.hi()
+                       : h.lo() + (h.hi() - h.lo()) * static_cast<double>(i) /
+                                      static_cast<double>(h.bins());
+}
+
+// Per binned quantity X: X_density and X_counts over (grid, bin), with the
+// auxiliary coordinate X_bin (bin centres; CF `bounds` = X_bin_bounds over
+// (grid, bin, nv)), so xarray plots a histogram against its own bins:
+//   ds.X_density.sel(lambda=1, mu=5).plot(x="X_bin")
+// X_bin_low and X_bin_high repeat the two ends of each bin as plain variables.
 void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto dims = with(l.grid, l.bin);
-  for (const auto& h : histograms_table()) {
-    const std::string n = h.name;
-    const auto hist = [&](const point_result& p) -> const histogram& { return p.stats.*h.member; };
+  for (const auto& q : quantities()) {
+    if (!q.density) continue;
+    const std::string n = q.name, sym = q.symbol;
+    const std::string density_units =
+        std::string(q.units) == "1" ? "1" : fmt::format("1/{}", q.units);
+    const auto hist = [&](const point_result& p) -> const histogram& { return p.stats.*q.density; };
+    const auto edges = [&](std::size_t shift) {
+      return [&, shift](const point_result& p, std::vector<double>& row) {
+        const auto& hh = hist(p);
+        for (std::size_t i = 0; i < row.size(); ++i)
+          row[i] = i < hh.bins() ? bin_edge(hh, i + shift) : nan;
+      };
+    };
+    auto centre = add_double(f, n + "_bin", dims, q.units, q.long_name,
+                             fmt::format("centre of each histogram bin of {} {}; the bin "
+                                         "ranges differ between grid points",
+                                         q.long_name, sym));
+    centre.putAtt("bounds", n + "_bin_bounds");
+    put_rows<double>(centre, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
+      const auto& hh = hist(p);
+      for (std::size_t i = 0; i < row.size(); ++i)
+        row[i] = i < hh.bins() ? 0.5 * (bin_edge(hh, i) + bin_edge(hh, i + 1)) : nan;
+    });
+    auto bounds = add_double(f, n + "_bin_bounds", with(dims, l.bounds), q.units,
+                             "bin bounds of " + sym, "lower and upper edge of each bin");
+    put_rows<double>(bounds, rs, 2 * l.bins, [&](const point_result& p, std::vector<double>& row) {
+      const auto& hh = hist(p);
+      for (std::size_t i = 0; i < l.bins; ++i) {
+        row[2 * i] = i < hh.bins() ? bin_edge(hh, i) : nan;
+        row[2 * i + 1] = i < hh.bins() ? bin_edge(hh, i + 1) : nan;
+      }
+    });
     auto density = add_double(
-        f, n + "_density", dims, h.density_units,
-        std::string("probability density of ") + h.long_name,
-        fmt::format("count / (total * bin width) on [{0}_bin_low, {0}_bin_high); total includes "
-                    "{0}_underflow and {0}_overflow, so the density integrates to the fraction "
-                    "of samples inside the binned range. The last bin is closed on the right.",
-                    n));
+        f, n + "_density", dims, density_units, "density of " + sym,
+        fmt::format("probability density of {0} {1}: count / (total * bin width) on "
+                    "[{2}_bin_low, {2}_bin_high); total includes {2}_underflow and "
+                    "{2}_overflow, so the density integrates to the fraction of samples inside "
+                    "the binned range. The last bin is closed on the right.",
+                    q.long_name, sym, n));
+    density.putAtt("coordinates", n + "_bin");
     put_rows<double>(density, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
       const auto& hh = hist(p);
       for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < hh.bins() ? hh.density(i) : nan;
     });
-    auto low = add_double(f, n + "_bin_low", dims, h.units,
-                          std::string("lower edge of the histogram bin of ") + h.long_name,
-                          "bin ranges differ between grid points");
-    put_rows<double>(low, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
-      const auto& hh = hist(p);
-      for (std::size_t i = 0; i < row.size(); ++i)
-        row[i] = i < hh.bins() ? hh.lo() + (hh.hi() - hh.lo()) * static_cast<double>(i) /
-                                               static_cast<double>(hh.bins())
-                               : nan;
-    });
-    auto high = add_double(f, n + "_bin_high", dims, h.units,
-                           std::string("upper edge of the histogram bin of ") + h.long_name,
-                           "bin ranges differ between grid points");
-    put_rows<double>(high, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
-      const auto& hh = hist(p);
-      for (std::size_t i = 0; i < row.size(); ++i)
-        row[i] = i < hh.bins() ? (i + 1 == hh.bins() ? hh.hi()
-                                                      : hh.lo() + (hh.hi() - hh.lo()) *
-                                                                      static_cast<double>(i + 1) /
-                                                                      static_cast<double>(hh.bins()))
-                               : nan;
-    });
-    auto counts = add_count(f, n + "_counts", dims,
-                            std::string("histogram counts of ") + h.long_name,
-                            "samples in each bin");
+    auto low = add_double(f, n + "_bin_low", dims, q.units, "lower bin edge of " + sym,
+                          "lower edge of each histogram bin; bin ranges differ between grid "
+                          "points");
+    put_rows<double>(low, rs, l.bins, edges(0));
+    auto high = add_double(f, n + "_bin_high", dims, q.units, "upper bin edge of " + sym,
+                           "upper edge of each histogram bin; bin ranges differ between grid "
+                           "points");
+    put_rows<double>(high, rs, l.bins, edges(1));
+    auto counts = add_count(f, n + "_counts", dims, "bin counts of " + sym, "samples in each bin");
+    counts.putAtt("coordinates", n + "_bin");
     put_rows<long long>(counts, rs, l.bins, [&](const point_result& p, std::vector<long long>& row) {
       const auto& hh = hist(p);
       for (std::size_t i = 0; i < row.size(); ++i)
         row[i] = i < hh.bins() ? static_cast<long long>(hh.count(i)) : 0;
     });
-    auto under = add_count(f, n + "_underflow", l.grid,
-                           std::string("samples of ") + h.long_name + " below the first bin", "");
+    auto under = add_count(f, n + "_underflow", l.grid, "samples of " + sym + " below bins",
+                           "samples below the lower edge of the first bin");
     put_grid<long long>(under, rs, [&](const point_result& p) { return hist(p).underflow(); });
-    auto over = add_count(f, n + "_overflow", l.grid,
-                          std::string("samples of ") + h.long_name + " above the last bin", "");
+    auto over = add_count(f, n + "_overflow", l.grid, "samples of " + sym + " above bins",
+                          "samples above the upper edge of the last bin");
     put_grid<long long>(over, rs, [&](const point_result& p) { return hist(p).overflow(); });
   }
 }
@@ -279,37 +298,41 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
 void write_convergence(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto dims = with(l.grid, l.trace);
   const std::string when = fmt::format(
-      "recorded after each block of block_size = {} realizations was merged, in block order; "
-      "entries past the point's trace length are fill values",
+      "recorded after each block of block_size = {} realizations was merged, in block order",
       rs.spec.block_size);
-  auto n = f.addVar("convergence_realizations", nc::ncInt64, dims);
-  n.setFill(true, no_realizations);
-  describe(n, "1", "realizations merged at this trace entry", when);
+  // No _FillValue, so that xarray keeps it an integer: every point of a
+  // complete sweep has the same trace length, and 0 would mark an entry past
+  // a shorter trace.
+  auto n = add_count(f, "convergence_realizations", dims, "realizations merged",
+                     when + "; 0 past the end of a point's trace (the double-valued traces "
+                            "hold NaN there)");
   put_rows<long long>(n, rs, l.trace_length, [](const point_result& p, std::vector<long long>& row) {
     const auto& c = p.stats.convergence;
     for (std::size_t i = 0; i < row.size(); ++i)
-      row[i] = i < c.size() ? static_cast<long long>(c[i].realizations) : no_realizations;
+      row[i] = i < c.size() ? static_cast<long long>(c[i].realizations) : 0;
   });
   struct item {
     const char* name;
     const char* units;
     const char* long_name;
+    const char* description;
     double convergence_point::*member;
   };
   static const item items[] = {
-      {"convergence_R_mean", "1", "running mean of the stick fraction R",
+      {"convergence_R_mean", "1", "running mean of R", "running mean of the stick fraction R",
        &convergence_point::R_mean},
-      {"convergence_R_ci95_half_width", "1",
+      {"convergence_R_ci95_half_width", "1", "running CI half-width, R",
        "running half-width of the 95% confidence interval of the mean of R",
        &convergence_point::R_ci95_half_width},
-      {"convergence_stick_duration_mean", "s", "running mean of the stick duration D",
-       &convergence_point::stick_duration_mean},
-      {"convergence_stick_duration_ci95_half_width", "s",
+      {"convergence_stick_duration_mean", "s", "running mean of D",
+       "running mean of the stick duration D", &convergence_point::stick_duration_mean},
+      {"convergence_stick_duration_ci95_half_width", "s", "running CI half-width, D",
        "running half-width of the 95% confidence interval of the mean of D",
        &convergence_point::stick_duration_ci95_half_width},
   };
   for (const auto& it : items) {
-    auto v = add_double(f, it.name, dims, it.units, it.long_name, when);
+    auto v = add_double(f, it.name, dims, it.units, it.long_name,
+                        std::string(it.description) + "; " + when);
     put_rows<double>(v, rs, l.trace_length, [&](const point_result& p, std::vector<double>& row) {
       const auto& c = p.stats.convergence;
       for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < c.size() ? c[i].*it.member : nan;
@@ -325,11 +348,18 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   f.putAtt("Conventions", "CF-1.8");
   f.putAtt("source", fmt::format("stickslip {} (git {})", meta.version, meta.git_revision));
   f.putAtt("history", fmt::format("{}: {}", meta.created_utc, meta.command_line));
+  std::string symbols, binned;
+  for (const auto& q : quantities()) {
+    symbols += fmt::format("{}{}", symbols.empty() ? "" : ", ", q.symbol);
+    if (q.density) binned += fmt::format("{}{}", binned.empty() ? "" : ", ", q.symbol);
+  }
   f.putAtt("comment",
-           "Exact event-driven simulation. Per grid point: mean, std and 95% CI of R, S_T/t_a, "
-           "S_L/t_a, D (pooled), D_1 and H; histograms (densities) over dimension bin; "
-           "convergence traces over dimension trace. Parameters that are not swept are global "
-           "attributes named by their symbol; every parameter is also a variable over the grid.");
+           fmt::format("Exact event-driven simulation. Per grid point: mean, std and 95% CI of "
+                       "{}; histograms (densities) of {} over dimension bin, with bin "
+                       "coordinates and bounds; convergence traces over dimension trace. "
+                       "Parameters that are not swept are global attributes named by their "
+                       "symbol; every parameter is also a variable over the grid.",
+                       symbols, binned));
   f.putAtt("version", meta.version);
   f.putAtt("git_revision", meta.git_revision);
   f.putAtt("command_line", meta.command_line);
@@ -347,7 +377,7 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   f.putAtt("initial_position_max", nc::ncDouble, s.initial.position_max);
   f.putAtt("initial_velocity_min", nc::ncDouble, s.initial.velocity_min);
   f.putAtt("initial_velocity_max", nc::ncDouble, s.initial.velocity_max);
-  f.putAtt("initial_belt_start", nc::ncInt, s.initial.belt_start);
+  f.putAtt("initial_belt_start", belt_start_name(s.initial.belt_start));
   std::string swept;
   for (const auto& sym : swept_symbols(s)) swept += (swept.empty() ? "" : " ") + sym;
   f.putAtt("swept_parameters", swept);
@@ -356,6 +386,7 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     if (std::find(sw.begin(), sw.end(), sym) == sw.end())
       f.putAtt(sym, nc::ncDouble, parameter_by_name(s.base, sym));
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
+  f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
 }
 

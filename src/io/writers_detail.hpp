@@ -1,36 +1,18 @@
-// What the writers share: the list of per-point statistics and histograms
-// with their names, units and descriptions (one table, so results.nc,
-// summary.json and summary.csv name things the same way), and the writers'
-// "write the temporary, do not rename yet" halves that write_all composes.
+// What the writers share: the names of parameters and axes, the shape check,
+// and the writers' "write the temporary, do not rename yet" halves that
+// write_all composes. The statistics they write, with names, units and
+// descriptions, come from one table in the core (statistics_schema.hpp), so
+// results.nc, summary.json and summary.csv name things the same way.
 #pragma once
 #include <string>
 #include <vector>
 
 #include "atomic_file.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::io::detail {
-
-struct statistic_info {
-  const char* short_name;  // summary.json / summary.csv: "R", "stick_duration", ...
-  const char* name;        // results.nc prefix: "stick_fraction", "stick_duration", ...
-  mean_variance point_statistics::*member;
-  const char* units;
-  const char* long_name;
-  const char* description;
-  const char* counted;  // what <name>_count counts
-};
-[[nodiscard]] const std::vector<statistic_info>& statistics_table();
-
-struct histogram_info {
-  const char* name;  // results.nc prefix: "<name>_density", ...
-  histogram point_statistics::*member;
-  const char* units;          // of the binned quantity
-  const char* density_units;  // of the density
-  const char* long_name;      // of the binned quantity
-};
-[[nodiscard]] const std::vector<histogram_info>& histograms_table();
 
 // The canonical symbols of the swept axes, in the spec's axis order.
 [[nodiscard]] std::vector<std::string> swept_symbols(const sweep_spec& s);
@@ -39,6 +21,8 @@ struct histogram_info {
 [[nodiscard]] std::vector<std::string> point_parameter_symbols(const sweep_spec& s);
 // A parameter's NetCDF variable name: its long alias with '_' ("switch_rate").
 [[nodiscard]] std::string parameter_variable_name(const std::string& symbol);
+// How the initial belt direction law is written: "random", "+1" or "-1".
+[[nodiscard]] const char* belt_start_name(int belt_start) noexcept;
 
 // How many values results.nc's writer buffers per call for the (grid, bin)
 // and (grid, trace) variables. Tests lower it to exercise the slab-wise and

@@ -79,7 +79,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   out.results = make_result_set(spec, std::move(merger));
   out.results->elapsed_seconds = loaded.elapsed_seconds + out.elapsed_this_run;
   out.results->threads = r.threads();
-  out.results->ranks = r.ranks();
+  out.results->ranks = static_cast<unsigned>(r.ranks());
   return out;
 }
 

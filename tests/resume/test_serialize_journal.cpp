@@ -223,3 +223,41 @@ TEST(Journal, UnwritableDirectoryIsAClearError) {
     EXPECT_EQ(e.code(), exit_code::io_failure);
   }
 }
+
+// Format version 2 put the layout id (statistics and parameters) into every message header
+// (after the 4-byte tag and the 4-byte version): data from another version or
+// another list of statistics is refused by name, never misread.
+TEST(Serialize, AnotherFormatVersionOrStatisticsSchemaIsRefusedByName) {
+  const auto s = small_spec();
+  const auto bytes = serialize(work_unit{0, 1}, simulate_block(s, work_unit{0, 1}));
+  auto expect_refused = [](const std::string& data, const std::string& what) {
+    try {
+      (void)deserialize_unit_result(data);
+      FAIL() << "no error for " << what;
+    } catch (const error& e) {
+      EXPECT_EQ(e.code(), exit_code::io_failure);
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  auto v1 = bytes;
+  v1[4] = 1;  // little-endian u32 version
+  expect_refused(v1, "format version 1 (this program reads version 2)");
+  auto other_schema = bytes;
+  other_schema[8] ^= 0x01;  // first byte of the u64 layout id
+  expect_refused(other_schema, "another list of statistics or model parameters");
+}
+
+TEST(Journal, AJournalOfFormatVersion1IsReportedAndRecomputed) {
+  temp_dir d;
+  const auto s = small_spec();
+  journal_everything(s, d.path);
+  // What stickslip 0.1.0 wrote: the same frames with version 1.
+  rewrite(d.path / io::journal_directory / "header.bin", [](std::string& x) { x[4] = 1; });
+  for (const auto& seg : segments(d.path)) rewrite(seg, [](std::string& x) { x[4] = 1; });
+  std::vector<std::string> problems;
+  const auto j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+  EXPECT_TRUE(j.units.empty());
+  ASSERT_FALSE(problems.empty());
+  for (const auto& p : problems)
+    EXPECT_NE(p.find("format version 1 (this program reads 2)"), std::string::npos) << p;
+}

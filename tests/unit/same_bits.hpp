@@ -4,7 +4,7 @@
 #include <bit>
 #include <cstdint>
 
-#include "stickslip/statistics.hpp"
+#include "stickslip/statistics_schema.hpp"
 
 namespace stickslip::testing_support {
 
@@ -19,19 +19,15 @@ inline bool same_bits(const event_counts& a, const event_counts& b) {
   return a.belt_switches == b.belt_switches && a.stick_onsets == b.stick_onsets &&
          a.stick_breaks == b.stick_breaks && a.slip_reversals == b.slip_reversals;
 }
+// Every accumulator of the statistics schema, the realization count and the
+// convergence trace.
 inline bool same_bits(const point_statistics& a, const point_statistics& b) {
-  bool ok = same_bits(a.stick_fraction, b.stick_fraction) &&
-            same_bits(a.sticks_per_time, b.sticks_per_time) &&
-            same_bits(a.slips_per_time, b.slips_per_time) &&
-            same_bits(a.stick_duration, b.stick_duration) &&
-            same_bits(a.first_stick_duration, b.first_stick_duration) &&
-            same_bits(a.slip_duration, b.slip_duration) &&
-            a.stick_fraction_hist == b.stick_fraction_hist &&
-            a.stick_duration_hist == b.stick_duration_hist &&
-            a.first_stick_duration_hist == b.first_stick_duration_hist &&
-            a.slip_duration_hist == b.slip_duration_hist && a.realizations == b.realizations &&
-            a.no_stick == b.no_stick && a.first_stick_censored == b.first_stick_censored &&
-            same_bits(a.events, b.events) && a.convergence.size() == b.convergence.size();
+  bool ok = a.realizations == b.realizations && a.convergence.size() == b.convergence.size();
+  for (const auto& q : quantities()) {
+    ok = ok && same_bits(a.*q.moments, b.*q.moments);
+    if (q.density) ok = ok && a.*q.density == b.*q.density;
+  }
+  for (const auto& c : counters()) ok = ok && c.value(a) == c.value(b);
   for (std::size_t i = 0; ok && i < a.convergence.size(); ++i) {
     const auto &x = a.convergence[i], &y = b.convergence[i];
     ok = x.realizations == y.realizations && same_bits(x.R_mean, y.R_mean) &&

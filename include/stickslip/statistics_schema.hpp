@@ -1,0 +1,156 @@
+// The one list of per-point statistics. Everything that handles statistics
+// iterates over it: point_statistics (the histogram ranges, add, merge), the
+// binary serialization (MPI messages, the journal), and every writer (NetCDF,
+// JSON, CSV); the Python layer reads it too. Adding a statistic is one row
+// in the table below plus its accumulator member in point_statistics
+// (statistics.hpp), and its tests. The order of the rows is the order of the
+// serialized accumulators and of the output columns.
+//
+// Two kinds of rows:
+//   quantity  a value of a realization (R, S_T/t_a, S_L/t_a, D_i, D_1, H_i),
+//             accumulated as mean/variance and, when binned, as a histogram;
+//   counter   an integer summed over realizations (no-stick realizations,
+//             censored first sticks, events by kind).
+// The paper's definitions are in statistics.hpp and docs/model.md.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "stickslip/statistics.hpp"
+
+namespace stickslip {
+
+// Which values of one realization a quantity takes.
+enum class sampling : unsigned char {
+  per_realization,             // one value per realization: value(record, t_a)
+  per_realization_with_stick,  // one value per realization with a stick: value(record, t_a)
+  per_stick,                   // the duration of every stick, pooled over realizations
+  per_counted_slip,            // the duration of every counted slip, pooled
+};
+
+// The interval a quantity's histogram bins, per grid point.
+enum class histogram_range : unsigned char {
+  none,            // not binned
+  unit_interval,   // [0, 1]
+  stick_duration,  // [0, d_max], d_max = 2 mu m g / (k V) (or histogram_spec::stick_duration_max)
+  slip_duration,   // [0, min(t_a, 5 / lambda)] (or histogram_spec::slip_duration_max)
+};
+
+struct quantity_info {
+  const char* name;          // results.nc prefix: "<name>_mean", "<name>_density", ...
+  const char* summary_name;  // summary.json key and summary.csv column prefix
+  const char* symbol;        // the paper's symbol
+  const char* units;         // UDUNITS ("1" for a pure number)
+  const char* long_name;     // a few words, short enough for a plot label
+  const char* description;   // the full definition
+  const char* counted;       // what "<name>_count" counts
+  sampling sampled;
+  // The value of one realization, for the per_realization* samplings (else nullptr).
+  double (*value)(const realization_record& r, double window) noexcept;
+  mean_variance point_statistics::*moments;
+  histogram point_statistics::*density;  // nullptr when range == none
+  histogram_range range;
+};
+
+struct counter_info {
+  const char* name;          // results.nc variable
+  const char* summary_name;  // summary.json key and summary.csv column
+  const char* group;         // summary.json object holding it ("events"), or nullptr
+  const char* long_name;     // a few words, short enough for a plot label
+  const char* description;
+  // How much one realization adds.
+  std::uint64_t (*increment)(const realization_record& r) noexcept;
+  std::uint64_t& (*of)(point_statistics& s) noexcept;
+  [[nodiscard]] std::uint64_t value(const point_statistics& s) const noexcept {
+    return of(const_cast<point_statistics&>(s));
+  }
+};
+
+namespace detail::schema {
+using ps = point_statistics;
+using rec = const realization_record&;
+
+inline constexpr std::array<quantity_info, 6> quantity_table{{
+    {"stick_fraction", "R", "R", "1", "stick fraction",
+     "total stick time in [0, t_a] divided by t_a, one value per realization", "realizations",
+     sampling::per_realization, [](rec r, double) noexcept { return r.stick_fraction; },
+     &ps::stick_fraction, &ps::stick_fraction_hist, histogram_range::unit_interval},
+    {"sticks_per_time", "sticks_per_time", "S_T/t_a", "1/s", "stick rate",
+     "number of sticks of positive length beginning in [0, t_a) (a stick cut off by t_a "
+     "counts), divided by t_a, one value per realization",
+     "realizations", sampling::per_realization,
+     [](rec r, double window) noexcept { return r.sticks / window; }, &ps::sticks_per_time,
+     nullptr, histogram_range::none},
+    {"slips_per_time", "slips_per_time", "S_L/t_a", "1/s", "slip rate",
+     "number of slips beginning after the first stick (the slip before the first stick is "
+     "not counted), divided by t_a, one value per realization",
+     "realizations", sampling::per_realization,
+     [](rec r, double window) noexcept { return r.slips / window; }, &ps::slips_per_time,
+     nullptr, histogram_range::none},
+    {"stick_duration", "stick_duration", "D", "s", "stick duration",
+     "duration D_i of every stick, pooled over all sticks of all realizations (a stick cut "
+     "off by t_a enters clipped)",
+     "sticks, over all realizations", sampling::per_stick, nullptr, &ps::stick_duration,
+     &ps::stick_duration_hist, histogram_range::stick_duration},
+    {"first_stick_duration", "first_stick_duration", "D_1", "s", "first stick duration",
+     "duration of the first stick, over the realizations that have a stick (see "
+     "no_stick_count); it may be censored by t_a (see first_stick_censored_count)",
+     "realizations with at least one stick", sampling::per_realization_with_stick,
+     [](rec r, double) noexcept { return r.first_stick_duration; }, &ps::first_stick_duration,
+     &ps::first_stick_duration_hist, histogram_range::stick_duration},
+    {"slip_duration", "slip_duration", "H", "s", "slip duration",
+     "duration H_i of every counted slip (those beginning after the first stick), pooled "
+     "over all realizations",
+     "counted slips, over all realizations", sampling::per_counted_slip, nullptr,
+     &ps::slip_duration, &ps::slip_duration_hist, histogram_range::slip_duration},
+}};
+
+inline constexpr std::array<counter_info, 6> counter_table{{
+    {"no_stick_count", "no_stick", nullptr, "no-stick realizations",
+     "realizations with no stick of positive length in [0, t_a) (no D_1)",
+     [](rec r) noexcept -> std::uint64_t { return r.sticks == 0; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.no_stick; }},
+    {"first_stick_censored_count", "first_stick_censored", nullptr, "censored first sticks",
+     "realizations whose first stick was still going on at t_a (D_1 clipped)",
+     [](rec r) noexcept -> std::uint64_t { return r.sticks > 0 && r.first_stick_censored; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.first_stick_censored; }},
+    {"belt_switches", "belt_switches", "events", "belt switches",
+     "belt direction switches, summed over realizations",
+     [](rec r) noexcept { return r.events.belt_switches; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.belt_switches; }},
+    {"stick_onsets", "stick_onsets", "events", "stick onsets",
+     "transitions slip -> stick, summed over realizations",
+     [](rec r) noexcept { return r.events.stick_onsets; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.stick_onsets; }},
+    {"stick_breaks", "stick_breaks", "events", "stick breaks",
+     "transitions stick -> slip, summed over realizations",
+     [](rec r) noexcept { return r.events.stick_breaks; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.stick_breaks; }},
+    {"slip_reversals", "slip_reversals", "events", "slip reversals",
+     "reversals of the slip direction without sticking, summed over realizations",
+     [](rec r) noexcept { return r.events.slip_reversals; },
+     [](ps& s) noexcept -> std::uint64_t& { return s.events.slip_reversals; }},
+}};
+
+}  // namespace detail::schema
+
+// The rows. The tables are constexpr so that point_statistics::add can
+// iterate them at compile time (no indirect call per realization).
+inline constexpr const auto& quantity_table = detail::schema::quantity_table;
+inline constexpr const auto& counter_table = detail::schema::counter_table;
+[[nodiscard]] inline std::span<const quantity_info> quantities() noexcept { return quantity_table; }
+[[nodiscard]] inline std::span<const counter_info> counters() noexcept { return counter_table; }
+
+// A 64-bit identity of the schema (FNV-1a over every row's names, sampling
+// and range, in order). Serialized data carries it (in serialize.hpp's
+// layout_id), so data written with another list of statistics is refused
+// instead of misread.
+[[nodiscard]] std::uint64_t statistics_schema_id() noexcept;
+
+// The upper end of a quantity's histogram interval at a grid point (the lower
+// end is 0). Precondition: range != none.
+[[nodiscard]] double histogram_upper(histogram_range range, const model_parameters& p,
+                                     const histogram_spec& h) noexcept;
+
+}  // namespace stickslip
