@@ -54,11 +54,10 @@ std::string flag_label(const std::string& symbol) {
   return fmt::format("--{} ({})", symbol, info_for(symbol).description);
 }
 
-model_parameters resolve_scalar_model(const CLI::App& cmd, const model_flags& f,
-                                      model_parameters base) {
+model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
+                                    model_parameters base) {
   for (const auto* flag : given_model_flags(cmd, f))
     parameter_by_name(base, flag->symbol) = io::parse_number(flag_label(flag->symbol), flag->text);
-  validate(base);
   return base;
 }
 

@@ -41,10 +41,9 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
 // Flag name with its meaning, for messages: "--mu (friction coefficient)".
 [[nodiscard]] std::string flag_label(const std::string& symbol);
 
-// `base` with every given flag applied as one number; then validate(). Throws
-// stickslip::error (exit code 2) naming the parameter, value and allowed range.
-[[nodiscard]] model_parameters resolve_scalar_model(const CLI::App& cmd, const model_flags& f,
-                                                    model_parameters base);
+// `base` with every given flag applied as one number, not validated.
+[[nodiscard]] model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
+                                                  model_parameters base);
 
 // --seed and --max-events if given, otherwise the fallbacks.
 [[nodiscard]] std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback);

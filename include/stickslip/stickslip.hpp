@@ -12,3 +12,4 @@
 #include "stickslip/random_stream.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/sweep.hpp"
+#include "stickslip/trajectory.hpp"

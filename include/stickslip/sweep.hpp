@@ -37,6 +37,14 @@ inline constexpr const char* to_string(sweep_engine e) noexcept {
   return e == sweep_engine::fast ? "fast" : "reference";
 }
 
+// The limits validate() enforces, in one place (flags, TOML and messages use
+// these): realization indices must fit the 40-bit counter field of the random
+// streams; a unit's block and the histograms must stay small enough to hold.
+inline constexpr std::uint64_t max_realizations = std::uint64_t{1} << 40;
+inline constexpr std::uint64_t max_block_size = std::uint64_t{1} << 24;
+inline constexpr std::uint64_t max_histogram_bins = 100'000;
+inline constexpr std::int64_t max_event_bound = std::int64_t{1} << 53;
+
 struct sweep_spec {
   model_parameters base;           // values of the parameters not swept
   initial_condition_law initial;
@@ -52,7 +60,8 @@ struct sweep_spec {
 };
 
 // Throws stickslip::error naming the first problem (unknown or repeated axis,
-// empty axis, invalid point, zero realizations, absurd size).
+// empty axis, a value given twice on one axis, invalid point, zero
+// realizations, absurd size).
 void validate(const sweep_spec& s);
 
 [[nodiscard]] std::size_t point_count(const sweep_spec& s) noexcept;

@@ -6,6 +6,7 @@
 
 #include "figures_common.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/trajectory.hpp"
 
 namespace stickslip::io {
 
@@ -15,12 +16,6 @@ using detail::gp_string;
 using detail::num;
 
 namespace {
-
-// Segments of one realization, kept for sampling.
-struct segment_collector : observer_base {
-  std::vector<segment> segments;
-  void on_segment(const segment& s) { segments.push_back(s); }
-};
 
 constexpr const char* lambda_label = "λ, belt switch rate [1/s]";
 
@@ -425,21 +420,11 @@ figure refinement(const set_study& s, const std::string& dir, bool render) {
 
 std::vector<trace_point> sample_realization(const sweep_spec& spec, const model_parameters& p,
                                             std::uint64_t realization, double dt, double t_end) {
-  segment_collector c;
+  segment_recorder c;
   (void)simulate_realization(spec, p, realization, c);
   std::vector<trace_point> out;
-  for (const auto& sg : c.segments) {
-    if (sg.start >= t_end) break;
-    const double end = std::min(sg.end, t_end);
-    // Samples at the segment start, every dt inside, and at its end, so the
-    // kinks at events are drawn exactly.
-    const auto steps = static_cast<std::size_t>(std::ceil((end - sg.start) / dt));
-    for (std::size_t i = 0; i <= steps; ++i) {
-      const double t = std::min(sg.start + static_cast<double>(i) * dt, end);
-      const auto q = evaluate(sg, t);
-      out.push_back({t, q.position, q.velocity, sg.belt_velocity, sg.kind == mode::stick});
-    }
-  }
+  for (const auto& q : sample_trajectory(c.segments, dt, t_end))
+    out.push_back({q.time, q.position, q.velocity, q.belt_velocity, q.kind == mode::stick});
   return out;
 }
 

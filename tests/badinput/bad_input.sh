@@ -60,7 +60,7 @@ expect 2 "raw records" o -- sweep --lambda lin:0.1:10:1000 --realizations 100000
 expect 2 "realizations.*2\^40" o -- sweep --realizations 1099511627777 -o o
 expect 2 "lambda \* ta" o -- sweep --lambda 1e6 --ta 1e6 -o o
 expect 2 "bins.*100000" o -- sweep --bins 1000000 -o o
-expect 2 "block_size" o -- sweep --block-size 99999999 -o o
+expect 2 "--block-size.*2\^24" o -- sweep --block-size 99999999 -o o
 expect 2 "--threads" o -- sweep --threads 100000 -o o
 expect 2 "records" o -- sweep --lambda lin:0.1:1:1000 --realizations 100000 --records -o o
 expect 4 "bound on events" o -- sweep --lambda 0.05,0.1 --ta 30 --realizations 50 --max-events 10 -o o
