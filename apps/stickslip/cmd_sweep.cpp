@@ -251,13 +251,22 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan, const in
   io::journal_writer journal(plan.dir, spec, out.metadata, tag, plan.checkpoint_interval);
   progress_bar bar;
   sweep_hooks hooks;
-  if (bar.active())
-    hooks.progress = [&bar](std::uint64_t d, std::uint64_t total) { bar.update(d, total); };
-  hooks.unit_done = [&](const work_unit& u, const block_result& r) { journal.add(u, r); };
-  hooks.wanted = [&](const work_unit& u) {
-    return stop_signal.load() == 0 && !done[u.point * blocks_per_point(spec) + u.block] &&
+  auto to_run = [&](const work_unit& u) {
+    return !done[u.point * blocks_per_point(spec) + u.block] &&
            (!plan.shard || plan.shard->owns(spec, u));
   };
+  std::optional<work_meter> work;  // the ETA weighs units by their expected work
+  if (bar.active()) {
+    work.emplace(spec, to_run);
+    hooks.progress = [&](std::uint64_t d, std::uint64_t total) {
+      bar.update(d, total, work->fraction());
+    };
+  }
+  hooks.unit_done = [&](const work_unit& u, const block_result& r) {
+    journal.add(u, r);
+    if (work) work->add(u);
+  };
+  hooks.wanted = [&](const work_unit& u) { return stop_signal.load() == 0 && to_run(u); };
   runner(spec, merger, hooks);
   journal.flush();
   bar.finish();

@@ -1,9 +1,16 @@
 // A small progress bar with an ETA on stderr, drawn with '\r' and only when
 // stderr is a terminal (bookworm packages no C++ progress-bar library).
 // Plug it into sweep_hooks::progress; calls are serialized by the sweep.
+// The ETA extrapolates from the fraction of the expected work done
+// (work_meter, expected_unit_cost), not from the unit count: the costliest
+// units run first, so a count-based ETA starts far too high.
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "stickslip/sweep.hpp"
 
 namespace stickslip::app {
 
@@ -15,8 +22,9 @@ class progress_bar {
   progress_bar& operator=(const progress_bar&) = delete;
   ~progress_bar();
 
-  // At most ~10 redraws per second, and always the last one.
-  void update(std::uint64_t done, std::uint64_t total);
+  // At most ~10 redraws per second, and always the last one. `work_done`
+  // is the fraction of the expected work finished (0 .. 1).
+  void update(std::uint64_t done, std::uint64_t total, double work_done);
   // Ends the bar's line (if one was drawn).
   void finish();
   [[nodiscard]] bool active() const noexcept { return active_; }
@@ -28,6 +36,25 @@ class progress_bar {
   clock::time_point start_ = clock::now();
   clock::time_point last_draw_{};
 };
+
+// The expected work of the units this run computes, and how much of it is
+// done. Calls to add() must be serialized (sweep_hooks::unit_done is).
+class work_meter {
+ public:
+  // `to_run`: the units this run will compute (not resumed, in its shard).
+  work_meter(const sweep_spec& s, const std::function<bool(const work_unit&)>& to_run);
+  void add(const work_unit& u) noexcept;
+  [[nodiscard]] double fraction() const noexcept { return total_ > 0 ? done_ / total_ : 0.0; }
+
+ private:
+  [[nodiscard]] double cost(const work_unit& u) const noexcept;
+  const sweep_spec* spec_;
+  std::vector<double> per_realization_;  // expected_events per point
+  double total_ = 0, done_ = 0;
+};
+
+// Seconds left when `elapsed` seconds did `work_done` of the work (0 .. 1).
+[[nodiscard]] double eta_seconds(double elapsed, double work_done) noexcept;
 
 // "1:02:03", "4:05" or "7s".
 [[nodiscard]] const char* format_duration(double seconds, char (&buf)[32]) noexcept;

@@ -158,6 +158,24 @@ struct result_set {
 // merge keeps results independent of this order.
 [[nodiscard]] std::vector<std::size_t> points_by_cost(const sweep_spec& s);
 
+// The expected number of events of one realization at p: a cost model for
+// progress estimates (the ETA), not physics to rely on. A realization costs
+// about linearly in its events. Per belt switch (lambda t_a of them):
+//   the switch itself;
+//   a stick onset if the mass reaches the new belt velocity before the next
+//   switch: friction needs about tau = 2V/(mu g) to undo the relative
+//   velocity 2V, so p_onset ~ 1/(1 + lambda tau);
+//   a stick break if that stick then lasts the longest stick d_max = 2a/V
+//   before the next switch, p_break = p_onset exp(-lambda d_max), plus about
+//   half as many slip reversals;
+// and ~2 events to start a realization. Fitted against the event counts of
+// a 12 lambda x 4 mu x 2 k sweep, it is within about 25 % at every point
+// (test_eta_cost_model.cpp), where lambda t_a alone is off by up to 3x.
+[[nodiscard]] double expected_events(const model_parameters& p) noexcept;
+
+// Expected work of a unit: its realizations times expected_events.
+[[nodiscard]] double expected_unit_cost(const sweep_spec& s, const work_unit& u);
+
 struct sweep_hooks {
   // Called from one thread at a time, after each unit is merged.
   std::function<void(std::uint64_t units_done, std::uint64_t units_total)> progress;

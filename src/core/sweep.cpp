@@ -219,6 +219,20 @@ result_set make_result_set(const sweep_spec& s, ordered_merger&& m) {
   return rs;
 }
 
+double expected_events(const model_parameters& p) noexcept {
+  const double switches = p.switch_rate * p.window;
+  const double tau = 2.0 * p.belt_speed / (p.friction_coefficient * p.gravity);
+  const double p_onset = 1.0 / (1.0 + p.switch_rate * tau);
+  const double p_break = p_onset * std::exp(-p.switch_rate * p.max_stick_duration());
+  return 2.0 + switches * (1.0 + p_onset + 1.5 * p_break);
+}
+
+double expected_unit_cost(const sweep_spec& s, const work_unit& u) {
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  return static_cast<double>(last - first) * expected_events(point_parameters(s, u.point));
+}
+
 std::vector<std::size_t> points_by_cost(const sweep_spec& s) {
   const std::size_t n = point_count(s);
   std::vector<double> cost(n);
