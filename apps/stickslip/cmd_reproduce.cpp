@@ -49,6 +49,8 @@ void run(const reproduce_flags& f, const invocation& inv) {
   auto log = [](const std::string& line) {
     fmt::print(stderr, "reproduce: {}\n", line);
   };
+  if (f.quick)
+    log("--quick: a DEMO on a small design, not the study; the report is marked as a demo");
   const bool render = !f.no_figures && io::gnuplot_available();
   if (!f.no_figures && !render)
     log("gnuplot (with pngcairo and svg) not found: writing data and scripts only");
@@ -69,16 +71,21 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
       "Rerun the paper's study (40 lambda x 8 mu x 2000 realizations, t_a = 50 s) under the "
       "printed and the concluded parameters; write sweep outputs, gnuplot figures and a "
       "claim-by-claim report (report.md, report.html)");
-  cmd->add_option("-o,--output", flags->out_dir, "output folder")->capture_default_str();
+  cmd->add_option("-o,--output", flags->out_dir, "output folder (default reproduction)")
+      ->type_name("DIR");
   cmd->add_option("--realizations", flags->realizations,
-                  "realizations per grid point (default 2000; 200 with --quick)");
+                  "realizations per grid point (default 2000; 200 with --quick)")
+      ->type_name("N");
   cmd->add_option("--refine-realizations", flags->refine_realizations,
                   "realizations per lambda when refining the maximum of mean R (default "
-                  "10000; 400 with --quick)");
-  cmd->add_option("--seed", flags->seed, "master seed (default 20200101)");
-  cmd->add_option("--threads", flags->threads, "threads (0 = all cores)")->capture_default_str();
+                  "10000; 400 with --quick)")
+      ->type_name("N");
+  cmd->add_option("--seed", flags->seed, "master seed (default 20200101)")->type_name("S");
+  cmd->add_option("--threads", flags->threads, "threads, 0 = all cores (default 0)")
+      ->type_name("T");
   cmd->add_flag("--quick", flags->quick,
-                "small design for tests and demos: 8 lambda x 3 mu x 200 realizations");
+                "DEMO only: a small design (8 lambda x 3 mu x 200 realizations) for tests and "
+                "demos; its report is marked as a demo, not a reproduction");
   cmd->add_flag("--no-candidates", flags->no_candidates,
                 "skip the other candidate parameter sets (k=40/g=10, k=4/g=1, k=4/V=10)");
   cmd->add_flag("--no-figures", flags->no_figures,

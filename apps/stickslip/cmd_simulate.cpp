@@ -58,6 +58,9 @@ struct recorder : observer_base {
 };
 
 std::optional<std::vector<double>> given_switch_times(const simulate_options& o) {
+  if (o.times_opt->count() > 0 && o.times_file_opt->count() > 0)
+    throw invalid_value("--switch-times-file", o.switch_times_file,
+                        "either --switch-times or --switch-times-file, not both");
   if (o.times_opt->count() > 0) return io::parse_switch_time_list("--switch-times", o.switch_times);
   if (o.times_file_opt->count() > 0) return io::read_switch_times_file(o.switch_times_file);
   return std::nullopt;
@@ -209,7 +212,7 @@ void add_simulate_command(CLI::App& app, const invocation&) {
                     ->group(replay);
   o.belt_opt = cmd->add_option("--belt-start", o.belt_start,
                                "initial belt direction: +1, -1 or random (default: drawn)")
-                   ->type_name("+1|-1")
+                   ->type_name("+1|-1|random")
                    ->group(replay);
   o.times_opt = cmd->add_option("--switch-times", o.switch_times,
                                 "belt switch times t1,t2,... (sorted, >= 0) instead of Poisson")
@@ -217,10 +220,10 @@ void add_simulate_command(CLI::App& app, const invocation&) {
                     ->group(replay);
   o.times_file_opt =
       cmd->add_option("--switch-times-file", o.switch_times_file,
-                      "file with one switch time per line ('#' comments allowed)")
+                      "file with one switch time per line ('#' comments allowed); not "
+                      "together with --switch-times")
           ->type_name("FILE")
-          ->group(replay)
-          ->excludes(o.times_opt);
+          ->group(replay);
   const char* output = "Output";
   cmd->add_option("--format", o.format, "episode table format: csv or json (default csv)")
       ->check(CLI::IsMember({"csv", "json"}))

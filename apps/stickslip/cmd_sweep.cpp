@@ -332,8 +332,9 @@ void clean_up_after_failure(const error& e, const std::string& dir, bool dir_exi
 
 void report(const sweep_spec& spec, const run_plan& plan, const run_outcome& out,
             unsigned threads, int ranks) {
-  const std::string where = ranks > 1 ? fmt::format("{} ranks x {} threads", ranks, threads)
-                                      : fmt::format("{} threads", threads);
+  const std::string thread_text = fmt::format("{} thread{}", threads, threads == 1 ? "" : "s");
+  const std::string where =
+      ranks > 1 ? fmt::format("{} ranks x {}", ranks, thread_text) : thread_text;
   const std::string resumed =
       out.resumed_units ? fmt::format(", {} units from the journal", out.resumed_units) : "";
   if (plan.shard) {

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "atomic_file.hpp"
 #include "figures_common.hpp"
@@ -85,6 +86,41 @@ void add_figure(document& d, const figure& f, const std::string& dir) {
                           f.title, relative_to(f.dir, dir), f.stem, f.caption));
 }
 
+// Size of the lambda axis of the main sweep (40 for the paper's design).
+std::size_t lambda_grid_size(const study_result& st) {
+  for (const auto& s : st.sets)
+    for (const auto& ax : s.sweep.spec.axes)
+      if (ax.name == "lambda") return ax.values.size();
+  return 0;
+}
+
+// Size of the mu axis of the main sweep (8 for the paper's design).
+std::size_t mu_grid_size(const study_result& st) {
+  for (const auto& s : st.sets)
+    for (const auto& ax : s.sweep.spec.axes)
+      if (ax.name == "mu") return ax.values.size();
+  return 0;
+}
+
+std::string chi2_text(const peak_estimate& p) {
+  const auto text = fmt::format("{:.2f} / {}", p.chi2, p.dof);
+  return poor_fit(p) ? text + " **poor fit**" : text;
+}
+
+}  // namespace
+
+// Wilson-Hilferty cube-root normal approximation (within ~1 % for dof >= 3):
+// q = dof (1 - 2/(9 dof) + z sqrt(2/(9 dof)))^3, z = 1.6449 for 95 %.
+double chi2_95(std::size_t dof) {
+  const double k = static_cast<double>(dof);
+  const double c = 2.0 / (9.0 * k);
+  return k * std::pow(1.0 - c + 1.6448536269514722 * std::sqrt(c), 3);
+}
+
+bool poor_fit(const peak_estimate& p) { return p.dof > 0 && p.chi2 > chi2_95(p.dof); }
+
+namespace {
+
 // ---------------------------------------------------------------- sections --
 
 void claims_section(document& d, const study_result& st) {
@@ -92,12 +128,13 @@ void claims_section(document& d, const study_result& st) {
   for (const auto& s : st.sets) sets.push_back(&s);
   const auto claims = evaluate_claims(sets);
   d.heading(2, "Every quantitative claim of the paper");
-  d.paragraph(
+  d.paragraph(fmt::format(
       "Each claim evaluated under the printed parameters and under the concluded set. "
       "Values of the maximum of mean R come from the refinement (weighted quadratic fit in "
       "ln λ on a finer λ grid with more realizations; 95 % intervals by parametric bootstrap); "
       "the grid maximum in parentheses is the same estimator the paper used (largest mean on "
-      "the 40-point grid). The rule behind each verdict is in the notes below the table.");
+      "the {}-point λ grid{}). The rule behind each verdict is in the notes below the table.",
+      lambda_grid_size(st), st.options.quick ? "; the paper's grid has 40 points" : ""));
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> head{"claim", "paper"};
   for (const auto* s : sets) {
@@ -116,10 +153,22 @@ void claims_section(document& d, const study_result& st) {
     rows.push_back(row);
   }
   d.table(rows);
+  // One note per distinct text: a rule that reads the same for every set is
+  // said once, naming the sets it covers.
   std::vector<std::string> notes;
-  for (const auto& c : claims)
-    for (std::size_t i = 0; i < c.per_set.size(); ++i)
-      notes.push_back(fmt::format("`{}` ({}): {}", c.id, sets[i]->set.id, c.per_set[i].note));
+  for (const auto& c : claims) {
+    std::vector<bool> said(c.per_set.size(), false);
+    for (std::size_t i = 0; i < c.per_set.size(); ++i) {
+      if (said[i]) continue;
+      std::vector<std::string> ids;
+      for (std::size_t j = i; j < c.per_set.size(); ++j)
+        if (!said[j] && c.per_set[j].note == c.per_set[i].note) {
+          said[j] = true;
+          ids.push_back(sets[j]->set.id);
+        }
+      notes.push_back(fmt::format("`{}` ({}): {}", c.id, fmt::join(ids, ", "), c.per_set[i].note));
+    }
+  }
   d.paragraph("Notes on the verdicts:");
   d.list(notes);
 }
@@ -252,11 +301,21 @@ void refinement_section(document& d, const study_result& st) {
                       p.valid ? fmt::format("{:.4f} [{:.4f}, {:.4f}]", p.R_star, p.R_lo, p.R_hi)
                               : "–",
                       p.valid ? fmt::format("{:.4f}", p.R_se_delta) : "–",
-                      fmt::format("{:.2f} / {}", p.chi2, p.dof), p.interior ? "yes" : "no",
+                      chi2_text(p), p.interior ? "yes" : "no",
                       fmt::format("{} of {}", p.bootstrap,
                                   p.bootstrap + p.bootstrap_degenerate)});
     }
     d.table(rows);
+    std::vector<std::string> poor;
+    for (const auto& r : s.refinements)
+      if (poor_fit(r.peak)) poor.push_back(fmt::format("μ = {}", r.mu));
+    if (!poor.empty())
+      d.paragraph(fmt::format(
+          "**Poor fit** ({}): χ² is above the 95 % point of the χ² distribution with its "
+          "degrees of freedom, so the quadratic in ln λ does not describe mean R over the whole "
+          "window (an asymmetric peak, or a window wider than the peak). Treat λ* and R* "
+          "there, and their intervals, as rough.",
+          fmt::join(poor, ", ")));
   }
 }
 
@@ -283,6 +342,9 @@ void grid_section(document& d, const set_study& s) {
   d.table(rows);
 }
 
+// "1 thread", "2 threads".
+std::string threads_text(unsigned n) { return fmt::format("{} thread{}", n, n == 1 ? "" : "s"); }
+
 void timing_section(document& d, const study_result& st) {
   d.heading(2, "Wall time");
   std::vector<std::vector<std::string>> rows{
@@ -294,27 +356,27 @@ void timing_section(document& d, const study_result& st) {
     rows.push_back({fmt::format("ours, {}: main sweep ({} points × {})", s.set.id,
                                 point_count(s.sweep.spec), s.sweep.spec.realizations),
                     fmt::format("{}", point_count(s.sweep.spec) * s.sweep.spec.realizations),
-                    format_duration(s.sweep_seconds), fmt::format("{} threads", st.threads)});
+                    format_duration(s.sweep_seconds), threads_text(st.threads)});
   for (const auto& s : st.sets)
     rows.push_back({fmt::format("ours, {}: main sweep + refinement", s.set.id),
                     fmt::format("{}", total_realizations(s)), format_duration(s.seconds),
-                    fmt::format("{} threads", st.threads)});
+                    threads_text(st.threads)});
   std::uint64_t all = 0;
   for (const auto& s : st.sets) all += total_realizations(s);
   for (const auto& s : st.candidates) all += total_realizations(s);
   rows.push_back({"ours: the whole `reproduce` (both sets, refinements, candidates)",
                   fmt::format("{}", all), format_duration(st.seconds),
-                  fmt::format("{} threads", st.threads)});
+                  threads_text(st.threads)});
   d.table(rows);
   if (!st.sets.empty() && st.sets.back().sweep_seconds > 0) {
     const double ours = st.sets.back().sweep_seconds;
     const double paper = paper_days * 86400.0;
     d.paragraph(fmt::format(
-        "The main sweep under the concluded set took {} on {} threads against {} days on {} "
+        "The main sweep under the concluded set took {} on {} against {} days on {} "
         "computers: about {} times less wall time ({} times less per computer and thread). The difference is the method: between events the motion has a "
         "closed form, so each realization costs a few hundred event computations instead of "
         "ode45 steps of at most 1e-4 s (≥ 500,000 steps per 50 s realization).",
-        format_duration(ours), st.threads, paper_days, paper_computers, round_big(paper / ours),
+        format_duration(ours), threads_text(st.threads), paper_days, paper_computers, round_big(paper / ours),
         round_big(paper * paper_computers / (ours * st.threads))));
   }
 }
@@ -490,8 +552,17 @@ void provenance_section(document& d, const study_result& st, const run_metadata&
 document build(const study_result& st, const run_metadata& meta,
                const std::vector<figure>& figs, const std::string& dir) {
   document d;
-  d.heading(1, "Reproduction: Role of parameters in the stochastic dynamics of a stick-slip "
-               "oscillator");
+  d.heading(1, fmt::format("Reproduction: Role of parameters in the stochastic dynamics of a "
+                           "stick-slip oscillator{}",
+                           st.options.quick ? " (DEMO, --quick)" : ""));
+  if (st.options.quick)
+    d.paragraph(fmt::format(
+        "**DEMO (`reproduce --quick`): not a reproduction.** This run used a small design "
+        "({} λ × {} μ × {} realizations, refinement with {}) so that it finishes in seconds. "
+        "Its numbers and verdicts are far noisier than the study's and must not be quoted; "
+        "run `stickslip reproduce` without --quick for the paper's 40 λ × 8 μ × 2000 design.",
+        lambda_grid_size(st), st.sets.empty() ? 0 : mu_grid_size(st), st.options.realizations,
+        st.options.refine_realizations));
   d.paragraph(fmt::format(
       "This report was written by `stickslip reproduce` (stickslip {}, git {}). It reruns the "
       "paper's parametric study — mean stick statistics over λ × μ, {} realizations per "
