@@ -85,7 +85,7 @@ io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   io::realization_report run;
   const auto times = given_switch_times(o);
   run.given_switches = times.has_value();
-  run.params = apply_scalar_flags(cmd, o.model, model_parameters{});
+  run.params = apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
   sweep_spec spec;  // the sweep's defaults: initial-condition law, seed 1
   spec.seed = run.seed = resolve_seed(o.model, spec.seed);
   spec.max_events = resolve_max_events(o.model, spec.max_events);

@@ -96,9 +96,10 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
   spec.axes.insert(spec.axes.end(), added.begin(), added.end());
 }
 
-// (a) The resolved, validated spec: defaults < --config file < flags.
+// (a) The resolved, validated spec: defaults < --config file < --preset < flags.
 sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   sweep_spec spec = o.config_opt->count() > 0 ? io::read_sweep_toml_file(o.config) : sweep_spec{};
+  spec.base = apply_preset(o.model, spec.base);
   apply_model_flags(cmd, o.model, spec);
   spec.seed = resolve_seed(o.model, spec.seed);
   spec.max_events = resolve_max_events(o.model, spec.max_events);

@@ -149,6 +149,24 @@ cases=$((cases + 1))
 grep -q "more than one journal" err.txt || bad "duplicates not reported"
 $compare ref merged >/dev/null || bad "merge with duplicates differs"
 
+# 8. issue 14: existing results, duplicate grid values, missing inputs,
+#    command-line syntax, partial simulate outputs
+cp -r ref ref_copy
+expect 2 "ref_copy/results.nc' already exists.*--overwrite" - -- sweep "${A[@]}" -o ref_copy
+cmp -s ref/summary.csv ref_copy/summary.csv || bad "a refused sweep changed ref_copy"
+expect 2 "grid axis lambda.*#1 and #2" o -- sweep --lambda 1,1 -o o
+expect 2 "input file 'nope.toml' does not exist" o -- sweep --config nope.toml -o o
+expect 2 "input file 'nope.txt' does not exist" - -- simulate --switch-times-file nope.txt
+expect 2 "unknown subcommand 'swep'; did you mean sweep" o -- swep -o o
+expect 2 "unknown flag '--lamda'.*did you mean --lambda" o -- sweep --lamda 1,2 -o o
+expect 2 "--mu is given 2 times" - -- simulate --mu 5 --mu 6
+expect 2 "--events-file: '/tmp'.*not a directory" ef -- simulate --events --events-file /tmp -o ef/ep.csv
+expect 3 "No such file or directory" tf -- simulate --trajectory 0.1 --trajectory-file /proc/nope/t.csv -o tf/ep.csv
+printf '[sweep]\nrealizations = 100.5\n' >real.toml
+expect 2 "sweep.realizations at real.toml:2:.*1 to 2\^40" o -- sweep --config real.toml -o o
+printf '[initial]\nx0 = [1.0, -1.0]\n' >x0.toml
+expect 2 "initial.x0 at x0.toml:2:.*lo = 1 > hi = -1" o -- sweep --config x0.toml -o o
+
 echo "bad_input: $cases cases, $failures failures"
 ((failures == 0)) && rm -rf "$work"
 ((failures == 0))
