@@ -148,6 +148,10 @@ cases=$((cases + 1))
 "$bin" merge -o merged h0 h1 m0 2>err.txt || bad "merge with duplicates failed"
 grep -q "more than one journal" err.txt || bad "duplicates not reported"
 $compare ref merged >/dev/null || bad "merge with duplicates differs"
+expect 2 "merged/results.nc' already exists.*--overwrite" - -- merge -o merged h0 h1 m0
+$compare ref merged >/dev/null || bad "a refused merge changed merged/"
+cases=$((cases + 1))
+"$bin" merge --overwrite -o merged h0 h1 m0 2>err.txt || bad "merge --overwrite failed: $(cat err.txt)"
 
 # 8. issue 14: existing results, duplicate grid values, missing inputs,
 #    command-line syntax, partial simulate outputs
