@@ -226,6 +226,7 @@ void add_simulate_command(CLI::App& app, const invocation&) {
           ->group(replay);
   const char* output = "Output";
   cmd->add_option("--format", o.format, "episode table format: csv or json (default csv)")
+      ->type_name("csv|json")
       ->check(CLI::IsMember({"csv", "json"}))
       ->group(output);
   cmd->add_option("-o,--output", o.output, "write the episode table to FILE (default stdout)")
