@@ -125,6 +125,19 @@ int report_parse_error(CLI::App& app, const CLI::ParseError& e,
                               given.size()));
       return code;
     }
+  // A flag that takes a value but is last, or followed by another flag.
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string name;
+    if (!flag_token(args[i], name) || args[i].find('=') != std::string::npos) continue;
+    const auto* opt = sub->get_option_no_throw(name);
+    if (opt == nullptr || opt->get_type_size_max() == 0) continue;
+    std::string next;
+    if (i + 1 == args.size() || flag_token(args[i + 1], next)) {
+      print_error(fmt::format("{} needs a value ({}) (stickslip {} --help)", name,
+                              opt->get_type_name(), sub->get_name()));
+      return code;
+    }
+  }
   print_error(fmt::format("{} (stickslip {} --help)", e.what(), sub->get_name()));
   return code;
 }

@@ -32,6 +32,8 @@ expect_parse_error "unknown flag '--zzzzzz'" simulate --zzzzzz
 expect_parse_error "--mu is given 2 times|give each flag once" simulate --mu 5 --mu 6
 expect_parse_error "--lambda is given 2 times" sweep --lambda 1 --switch-rate 2 -o x
 expect_parse_error "--output" sweep --lambda 1
+expect_parse_error "--mu needs a value (X)" simulate --mu
+expect_parse_error "--seed needs a value (S)" sweep --seed --lambda 1 -o x
 expect_parse_error "--format" simulate --format xml
 expect_parse_error "--switch-times" simulate --switch-times 1 --switch-times-file x
 [[ ! -e x ]] || fail "a parse error created x"
