@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <fstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -640,6 +642,28 @@ std::string report_markdown(const study_result& study, const run_metadata& meta,
   return build(study, meta, figures, report_dir).markdown();
 }
 
+namespace {
+
+// Titles and images of a --quick run say DEMO: a label in the script's
+// preamble (it applies to every panel and both terminals), then render.
+void mark_as_demo(figure& f, bool render) {
+  std::ifstream in(f.script(), std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string script = text.str();
+  const std::string anchor = "set encoding utf8\n";
+  const auto at = script.find(anchor);
+  if (at != std::string::npos)
+    script.insert(at + anchor.size(),
+                  "set label 999 \"DEMO (reproduce --quick): not a reproduction\" at screen "
+                  "0.005, screen 0.012 left front tc rgb \"#cc0000\" font \",11\"\n");
+  detail::write_text_file(f.script(), script);
+  f.title = "DEMO, " + f.title;
+  f.rendered = render && run_gnuplot(f.dir, f.stem + ".gp");
+}
+
+}  // namespace
+
 report_files write_reproduction(const study_result& study, const run_metadata& meta,
                                 const std::string& dir, bool render) {
   std::error_code ec;
@@ -650,15 +674,19 @@ report_files write_reproduction(const study_result& study, const run_metadata& m
   for (const auto& s : study.candidates)
     write_set_files(s, meta, dir + "/candidates/" + s.set.id);
 
+  // A --quick demo: every figure is stamped as one before it is rendered.
+  const bool demo = study.options.quick;
   std::vector<figure> figs;
   for (const auto& s : study.sets) {
-    auto f = write_set_figures(s, dir + "/figures/" + s.set.id, render);
+    auto f = write_set_figures(s, dir + "/figures/" + s.set.id, render && !demo);
     figs.insert(figs.end(), f.begin(), f.end());
   }
   if (!study.candidates.empty()) {
-    auto f = write_candidate_figures(study, dir + "/figures/candidates", render);
+    auto f = write_candidate_figures(study, dir + "/figures/candidates", render && !demo);
     figs.insert(figs.end(), f.begin(), f.end());
   }
+  if (demo)
+    for (auto& f : figs) mark_as_demo(f, render);
 
   const auto doc = build(study, meta, figs, dir);
   report_files out;

@@ -393,3 +393,16 @@ TEST_F(ReproduceReport, PoorFitsAreFlaggedInTheRefinementTable) {
       EXPECT_EQ(flagged, io::poor_fit(r.peak)) << s.set.id << " mu " << r.mu;
     }
 }
+
+TEST_F(ReproduceReport, QuickFiguresAreStampedAsADemo) {
+  int scripts = 0;
+  for (const auto& e : fs::recursive_directory_iterator(*dir_ / "figures"))
+    if (e.path().extension() == ".gp") {
+      ++scripts;
+      EXPECT_NE(slurp(e.path()).find("DEMO (reproduce --quick): not a reproduction"),
+                std::string::npos)
+          << e.path();
+    }
+  EXPECT_GT(scripts, 10);
+  EXPECT_NE(slurp(files_->markdown).find("DEMO, Fig. 4"), std::string::npos);
+}
