@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
 #include "stickslip/io/figures.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/report.hpp"
@@ -19,21 +20,26 @@
 namespace stickslip::app {
 namespace {
 
+// Numbers are kept as text and parsed with io::parse_unsigned, so that "-5"
+// is refused with the flag, the value and the range (CLI11 would wrap it).
 struct reproduce_flags {
   std::string out_dir = "reproduction";
-  std::uint64_t realizations = 0;         // 0: 2000 (200 with --quick)
-  std::uint64_t refine_realizations = 0;  // 0: 10000 (400 with --quick)
-  std::uint64_t seed = 0;                 // 0: the study's documented seed
-  unsigned threads = 0;
+  std::string realizations;         // empty: 2000 (200 with --quick)
+  std::string refine_realizations;  // empty: 10000 (400 with --quick)
+  std::string seed;                 // empty: the study's documented seed
+  std::string threads = "0";
   bool quick = false, no_candidates = false, no_figures = false;
 };
 
 io::study_options resolve(const reproduce_flags& f) {
   io::study_options o = f.quick ? io::quick_options() : io::study_options{};
-  if (f.realizations) o.realizations = f.realizations;
-  if (f.refine_realizations) o.refine_realizations = f.refine_realizations;
-  if (f.seed) o.seed = f.seed;
-  o.threads = f.threads;
+  if (!f.realizations.empty())
+    o.realizations = io::parse_unsigned("--realizations", f.realizations, 2, max_realizations);
+  if (!f.refine_realizations.empty())
+    o.refine_realizations =
+        io::parse_unsigned("--refine-realizations", f.refine_realizations, 2, max_realizations);
+  if (!f.seed.empty()) o.seed = io::parse_unsigned("--seed", f.seed);
+  o.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   o.candidates = !f.no_candidates;
   if (o.realizations < 2)
     throw invalid_parameter("--realizations", static_cast<double>(o.realizations),

@@ -23,4 +23,10 @@ grep -qE '[0-9]\.[0-9]{6}' "$WORK/stderr" && fail "a %f-style number: $(cat "$WO
 expect_fail "estimated memory" sweep --lambda lin:0.1:10:3000 --mu lin:0.1:10:3000 --realizations 1
 checks=$((checks + 1))
 grep -qE '[0-9]\.[0-9]{4,}' "$WORK/stderr" && fail "memory estimate with many digits: $(cat "$WORK/stderr")"
+
+# reproduce: numbers are checked like sweep's, not wrapped ("-5" was read as
+# 18446744073709551611 realizations).
+expect_fail "--realizations|'-5'|2 to 2^40" reproduce --realizations -5 -o rp
+expect_fail "--threads|'x'" reproduce --threads x -o rp
+[[ ! -e rp ]] || fail "a refused reproduce created rp/"
 finish
