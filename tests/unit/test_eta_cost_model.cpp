@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "stickslip/sweep.hpp"
@@ -67,6 +68,7 @@ TEST(EtaCostModel, EtaFromExpectedWorkIsWithinAFactor1Point5From10Percent) {
   for (std::size_t i = 0; i < units.size(); ++i) predicted_done[i] = (acc += units[i].predicted);
   const double worst =
       worst_eta_ratio(units, [&](std::size_t i) { return predicted_done[i] / predicted_total; });
+  RecordProperty("worst_eta_ratio", std::to_string(worst));
   EXPECT_LE(worst, 1.5);
 }
 
@@ -75,6 +77,7 @@ TEST(EtaCostModel, TheUnitCountEtaFailsTheSameCheck) {
   const double n = static_cast<double>(units.size());
   const double worst =
       worst_eta_ratio(units, [&](std::size_t i) { return static_cast<double>(i + 1) / n; });
+  RecordProperty("worst_eta_ratio", std::to_string(worst));
   EXPECT_GT(worst, 1.5);
 }
 
