@@ -19,6 +19,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/run/merge.hpp"
+#include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 
@@ -28,6 +29,7 @@ namespace {
 struct merge_options {
   std::vector<std::string> inputs;
   std::string out_dir;
+  bool overwrite = false;
 };
 
 void print_problem(const std::string& p) { fmt::print(stderr, "stickslip: journal: {}\n", p); }
@@ -40,6 +42,9 @@ void run_merge(const merge_options& o) {
     if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
       throw invalid_value("-o (output directory)", o.out_dir, "a directory or a new path");
   }
+  if (!o.overwrite)
+    io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
+                          "add --overwrite to replace them, or choose another -o OUT");
   auto merged = run::merge_shards(o.inputs, print_problem);
   if (merged.duplicates)
     fmt::print(stderr, "stickslip: merge: {} units were in more than one journal (identical; "
@@ -69,6 +74,8 @@ void add_merge_command(CLI::App& app, const invocation&) {
   cmd->add_option("-o,--output", opts->out_dir, "directory for the merged outputs")
       ->type_name("OUT")
       ->required();
+  cmd->add_flag("--overwrite", opts->overwrite,
+                "replace the results of an earlier run in OUT (default: refuse and say which)");
   cmd->callback([opts] { run_merge(*opts); });
 }
 

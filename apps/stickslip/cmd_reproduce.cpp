@@ -30,12 +30,14 @@
 namespace stickslip::app {
 namespace {
 
+// Numbers are kept as text and parsed with io::parse_unsigned, so that "-5"
+// is refused with the flag, the value and the range (CLI11 would wrap it).
 struct reproduce_flags {
   std::string out_dir = "reproduction";
-  std::uint64_t realizations = 0;         // 0: 2000 (200 with --quick)
-  std::uint64_t refine_realizations = 0;  // 0: 10000 (400 with --quick)
-  std::uint64_t seed = 0;                 // 0: the study's documented seed
-  unsigned threads = 0;
+  std::string realizations;         // empty: 2000 (200 with --quick)
+  std::string refine_realizations;  // empty: 10000 (400 with --quick)
+  std::string seed;                 // empty: the study's documented seed
+  std::string threads = "0";
   bool quick = false, no_candidates = false, no_figures = false;
   bool resume = false, keep_journal = false;
   std::string shard;  // "i/n"
@@ -44,10 +46,13 @@ struct reproduce_flags {
 
 io::study_options resolve(const reproduce_flags& f) {
   io::study_options o = f.quick ? io::quick_options() : io::study_options{};
-  if (f.realizations) o.realizations = f.realizations;
-  if (f.refine_realizations) o.refine_realizations = f.refine_realizations;
-  if (f.seed) o.seed = f.seed;
-  o.threads = f.threads;
+  if (!f.realizations.empty())
+    o.realizations = io::parse_unsigned("--realizations", f.realizations, 2, max_realizations);
+  if (!f.refine_realizations.empty())
+    o.refine_realizations =
+        io::parse_unsigned("--refine-realizations", f.refine_realizations, 2, max_realizations);
+  if (!f.seed.empty()) o.seed = io::parse_unsigned("--seed", f.seed);
+  o.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   o.candidates = !f.no_candidates;
   if (o.realizations < 2)
     throw invalid_parameter("--realizations", static_cast<double>(o.realizations),
@@ -98,7 +103,7 @@ void run(const reproduce_flags& f, const invocation& inv) {
   std::signal(SIGXFSZ, SIG_IGN);  // past `ulimit -f`: EFBIG, reported
   run::stop_token stop;
   run::stop_on_signals signals(stop);
-  execution exec(f.threads);
+  execution exec(static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16)));
   if (exec.is_worker()) return exec.serve();  // rank 0 runs the study
 
   auto options = resolve(f);
@@ -111,6 +116,8 @@ void run(const reproduce_flags& f, const invocation& inv) {
   auto log = [](const std::string& line) {
     fmt::print(stderr, "reproduce: {}\n", line);
   };
+  if (f.quick)
+    log("--quick: a DEMO on a small design, not the study; the report is marked as a demo");
   if (!(f.checkpoint_interval >= 0) || f.checkpoint_interval > 86400)
     throw invalid_parameter("--checkpoint-interval", f.checkpoint_interval, "0 .. 86400 seconds");
   if (slice)
@@ -152,16 +159,21 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
       "Rerun the paper's study (40 lambda x 8 mu x 2000 realizations, t_a = 50 s) under the "
       "printed and the concluded parameters; write sweep outputs, gnuplot figures and a "
       "claim-by-claim report (report.md, report.html)");
-  cmd->add_option("-o,--output", flags->out_dir, "output folder")->capture_default_str();
+  cmd->add_option("-o,--output", flags->out_dir, "output folder (default reproduction)")
+      ->type_name("DIR");
   cmd->add_option("--realizations", flags->realizations,
-                  "realizations per grid point (default 2000; 200 with --quick)");
+                  "realizations per grid point (default 2000; 200 with --quick)")
+      ->type_name("N");
   cmd->add_option("--refine-realizations", flags->refine_realizations,
                   "realizations per lambda when refining the maximum of mean R (default "
-                  "10000; 400 with --quick)");
-  cmd->add_option("--seed", flags->seed, "master seed (default 20200101)");
-  cmd->add_option("--threads", flags->threads, "threads (0 = all cores)")->capture_default_str();
+                  "10000; 400 with --quick)")
+      ->type_name("N");
+  cmd->add_option("--seed", flags->seed, "master seed (default 20200101)")->type_name("S");
+  cmd->add_option("--threads", flags->threads, "threads, 0 = all cores (default 0)")
+      ->type_name("T");
   cmd->add_flag("--quick", flags->quick,
-                "small design for tests and demos: 8 lambda x 3 mu x 200 realizations");
+                "DEMO only: a small design (8 lambda x 3 mu x 200 realizations) for tests and "
+                "demos; its report is marked as a demo, not a reproduction");
   cmd->add_flag("--no-candidates", flags->no_candidates,
                 "skip the other candidate parameter sets (k=40/g=10, k=4/g=1, k=4/V=10)");
   cmd->add_flag("--no-figures", flags->no_figures,

@@ -37,6 +37,7 @@
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
@@ -52,7 +53,7 @@ struct sweep_options {
   bool records = false;
   std::string engine;
   std::string out_dir;
-  bool resume = false, keep_journal = false;
+  bool resume = false, keep_journal = false, overwrite = false;
   std::string shard;                       // "i/n"
   std::string checkpoint_interval = "2";   // seconds between journal segments
   CLI::Option *config_opt = nullptr, *realizations_opt = nullptr, *block_size_opt = nullptr,
@@ -92,18 +93,19 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
   spec.axes.insert(spec.axes.end(), added.begin(), added.end());
 }
 
-// (a) The resolved, validated spec: defaults < --config file < flags.
+// (a) The resolved, validated spec: defaults < --config file < --preset < flags.
 sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   sweep_spec spec = o.config_opt->count() > 0 ? io::read_sweep_toml_file(o.config) : sweep_spec{};
+  spec.base = apply_preset(o.model, spec.base);
   apply_model_flags(cmd, o.model, spec);
   spec.seed = resolve_seed(o.model, spec.seed);
   spec.max_events = resolve_max_events(o.model, spec.max_events);
   if (o.realizations_opt->count() > 0)
-    spec.realizations = io::parse_unsigned("--realizations", o.realizations, 1);
+    spec.realizations = io::parse_unsigned("--realizations", o.realizations, 1, max_realizations);
   if (o.block_size_opt->count() > 0)
-    spec.block_size = io::parse_unsigned("--block-size", o.block_size, 1);
+    spec.block_size = io::parse_unsigned("--block-size", o.block_size, 1, max_block_size);
   if (o.bins_opt->count() > 0)
-    spec.histograms.bins = static_cast<std::size_t>(io::parse_unsigned("--bins", o.bins, 1));
+    spec.histograms.bins = static_cast<std::size_t>(io::parse_unsigned("--bins", o.bins, 1, max_histogram_bins));
   if (o.records_opt->count() > 0) spec.keep_records = o.records;
   if (o.engine_opt->count() > 0) spec.engine = io::parse_engine("--engine", o.engine);
   validate(spec);
@@ -136,16 +138,19 @@ void check_result_memory(const sweep_spec& spec) {
   const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
   if (ram > 0 && bytes > 0.8 * ram)
-    throw invalid_parameter(
-        "grid size (estimated memory for the results, GiB)", bytes / (1u << 30),
-        fmt::format("<= 80% of this machine's {:.1f} GiB: use fewer grid points or bins",
-                    ram / (1u << 30)));
+    throw error(exit_code::invalid_input,
+                fmt::format("invalid grid size: the results would need about {:.3g} GiB (estimated "
+                            "memory; allowed: <= 80% of this machine's {:.3g} GiB): "
+                            "use fewer grid points or bins",
+                            bytes / (1u << 30), ram / (1u << 30)));
 }
 
 void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_outcome& out,
             const run::runner& r) {
-  const std::string where = r.ranks() > 1 ? fmt::format("{} ranks x {} threads", r.ranks(), r.threads())
-                                          : fmt::format("{} threads", r.threads());
+  const std::string thread_text =
+      fmt::format("{} thread{}", r.threads(), r.threads() == 1 ? "" : "s");
+  const std::string where =
+      r.ranks() > 1 ? fmt::format("{} ranks x {}", r.ranks(), thread_text) : thread_text;
   const std::string resumed =
       out.resumed_units ? fmt::format(", {} units from the journal", out.resumed_units) : "";
   if (plan.slice) {
@@ -179,6 +184,10 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   const sweep_spec spec = build_sweep_spec(cmd, o);
   check_result_memory(spec);
   check_output_dir(o.out_dir);
+  if (!o.resume && !o.overwrite)
+    io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
+                          "add --overwrite to replace them, --resume to continue an "
+                          "interrupted sweep, or choose another -o DIR");
   run::run_plan plan;
   plan.dir = o.out_dir;
   plan.slice = run::parse_shard(o.shard);
@@ -191,7 +200,9 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   plan.report = print_journal_note;
   progress_bar bar;
   if (bar.active())
-    plan.progress = [&bar](std::uint64_t d, std::uint64_t total) { bar.update(d, total); };
+    plan.progress = [&bar](std::uint64_t d, std::uint64_t total, double work) {
+      bar.update(d, total, work);
+    };
 
   try {
     const auto out = run::sweep_into(spec, plan, io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
@@ -252,6 +263,8 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                   "seconds between journal segments (each is fsynced); 0 = after every unit "
                   "(default 2)")
       ->type_name("SECONDS");
+  cmd->add_flag("--overwrite", o.overwrite,
+                "replace the results of an earlier run in DIR (default: refuse and say which)");
   cmd->add_flag("--keep-journal", o.keep_journal,
                 "keep DIR/.journal after the outputs are written (default: remove it)");
   cmd->callback([cmd, opts, inv] { run_sweep_command(*cmd, *opts, inv); });

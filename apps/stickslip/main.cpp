@@ -4,8 +4,11 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
+#include "parse_errors.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/version.hpp"
 
@@ -23,7 +26,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return stickslip::app::report_parse_error(app, e, std::vector<std::string>(argv + 1, argv + argc));
   } catch (const stickslip::error& e) {
     fmt::print(stderr, "stickslip: error: {}\n", e.what());
     return static_cast<int>(e.code());

@@ -6,12 +6,21 @@
 #include <limits>
 
 #include "stickslip/integrator.hpp"
+#include "stickslip/presets.hpp"
 #include "stickslip/io/config.hpp"
 
 namespace stickslip::app {
 
 void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
                      const model_parameters& defaults) {
+  std::string presets;
+  for (const auto& p : parameter_presets())
+    presets += fmt::format("; {}: {}", p.name, p.description);
+  f.preset_option =
+      cmd.add_option("--preset", f.preset,
+                     "a named parameter set, applied before the parameter flags" + presets)
+          ->type_name("NAME")
+          ->group("Model parameters (the paper's symbols)");
   for (std::size_t i = 0; i < f.params.size(); ++i) {
     const std::string symbol = parameter_names[i];
     const auto& info = info_for(symbol);
@@ -54,11 +63,21 @@ std::string flag_label(const std::string& symbol) {
   return fmt::format("--{} ({})", symbol, info_for(symbol).description);
 }
 
-model_parameters resolve_scalar_model(const CLI::App& cmd, const model_flags& f,
-                                      model_parameters base) {
+model_parameters apply_preset(const model_flags& f, model_parameters base) {
+  if (!f.preset_option || f.preset_option->count() == 0) return base;
+  const auto& preset = find_preset("--preset", f.preset).parameters;
+  base.mass = preset.mass;
+  base.stiffness = preset.stiffness;
+  base.gravity = preset.gravity;
+  base.belt_speed = preset.belt_speed;
+  base.window = preset.window;
+  return base;
+}
+
+model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
+                                    model_parameters base) {
   for (const auto* flag : given_model_flags(cmd, f))
     parameter_by_name(base, flag->symbol) = io::parse_number(flag_label(flag->symbol), flag->text);
-  validate(base);
   return base;
 }
 

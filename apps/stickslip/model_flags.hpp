@@ -21,14 +21,15 @@ struct model_flags {
     CLI::Option* option = nullptr;
   };
   std::array<flag, 7> params;
-  std::string seed_text, max_events_text;
+  std::string seed_text, max_events_text, preset;
   CLI::Option* seed_option = nullptr;
+  CLI::Option* preset_option = nullptr;
   CLI::Option* max_events_option = nullptr;
 };
 
 enum class flag_values { scalar, grid };
 
-// Registers --m/--mass, --k/--stiffness, --g/--gravity, --mu/--friction-coefficient,
+// Registers --preset NAME (presets.hpp), --m/--mass, --k/--stiffness, --g/--gravity, --mu/--friction-coefficient,
 // --V/--belt-speed, --lambda/--switch-rate, --ta/--window, --seed, --max-events.
 // `defaults` is shown in --help.
 void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
@@ -41,10 +42,13 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
 // Flag name with its meaning, for messages: "--mu (friction coefficient)".
 [[nodiscard]] std::string flag_label(const std::string& symbol);
 
-// `base` with every given flag applied as one number; then validate(). Throws
-// stickslip::error (exit code 2) naming the parameter, value and allowed range.
-[[nodiscard]] model_parameters resolve_scalar_model(const CLI::App& cmd, const model_flags& f,
-                                                    model_parameters base);
+// `base` with the --preset values if one was given (the parameters the
+// preset names replace those of `base`), otherwise `base` unchanged.
+[[nodiscard]] model_parameters apply_preset(const model_flags& f, model_parameters base);
+
+// `base` with every given flag applied as one number, not validated.
+[[nodiscard]] model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
+                                                  model_parameters base);
 
 // --seed and --max-events if given, otherwise the fallbacks.
 [[nodiscard]] std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback);

@@ -1,6 +1,9 @@
 // A small progress bar with an ETA on stderr, drawn with '\r' and only when
 // stderr is a terminal (bookworm packages no C++ progress-bar library).
 // Plug it into sweep_hooks::progress; calls are serialized by the sweep.
+// The ETA extrapolates from the fraction of the expected work done
+// (run::work_meter, expected_unit_cost), not from the unit count: the costliest
+// units run first, so a count-based ETA starts far too high.
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -15,8 +18,9 @@ class progress_bar {
   progress_bar& operator=(const progress_bar&) = delete;
   ~progress_bar();
 
-  // At most ~10 redraws per second, and always the last one.
-  void update(std::uint64_t done, std::uint64_t total);
+  // At most ~10 redraws per second, and always the last one. `work_done`
+  // is the fraction of the expected work finished (0 .. 1).
+  void update(std::uint64_t done, std::uint64_t total, double work_done);
   // Ends the bar's line (if one was drawn).
   void finish();
   [[nodiscard]] bool active() const noexcept { return active_; }

@@ -9,6 +9,8 @@
 #include "stickslip/integrator.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/parameters.hpp"
+#include "stickslip/presets.hpp"
 #include "stickslip/random_stream.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/sweep.hpp"
+#include "stickslip/trajectory.hpp"

@@ -37,6 +37,14 @@ inline constexpr const char* to_string(sweep_engine e) noexcept {
   return e == sweep_engine::fast ? "fast" : "reference";
 }
 
+// The limits validate() enforces, in one place (flags, TOML and messages use
+// these): realization indices must fit the 40-bit counter field of the random
+// streams; a unit's block and the histograms must stay small enough to hold.
+inline constexpr std::uint64_t max_realizations = std::uint64_t{1} << 40;
+inline constexpr std::uint64_t max_block_size = std::uint64_t{1} << 24;
+inline constexpr std::uint64_t max_histogram_bins = 100'000;
+inline constexpr std::int64_t max_event_bound = std::int64_t{1} << 53;
+
 struct sweep_spec {
   model_parameters base;           // values of the parameters not swept
   initial_condition_law initial;
@@ -52,7 +60,8 @@ struct sweep_spec {
 };
 
 // Throws stickslip::error naming the first problem (unknown or repeated axis,
-// empty axis, invalid point, zero realizations, absurd size).
+// empty axis, a value given twice on one axis, invalid point, zero
+// realizations, absurd size).
 void validate(const sweep_spec& s);
 
 [[nodiscard]] std::size_t point_count(const sweep_spec& s) noexcept;
@@ -149,6 +158,24 @@ struct result_set {
 // thread pool, the MPI master) start the costliest points first; the ordered
 // merge keeps results independent of this order.
 [[nodiscard]] std::vector<std::size_t> points_by_cost(const sweep_spec& s);
+
+// The expected number of events of one realization at p: a cost model for
+// progress estimates (the ETA), not physics to rely on. A realization costs
+// about linearly in its events. Per belt switch (lambda t_a of them):
+//   the switch itself;
+//   a stick onset if the mass reaches the new belt velocity before the next
+//   switch: friction needs about tau = 2V/(mu g) to undo the relative
+//   velocity 2V, so p_onset ~ 1/(1 + lambda tau);
+//   a stick break if that stick then lasts the longest stick d_max = 2a/V
+//   before the next switch, p_break = p_onset exp(-lambda d_max), plus about
+//   half as many slip reversals;
+// and ~2 events to start a realization. Fitted against the event counts of
+// a 12 lambda x 4 mu x 2 k sweep, it is within about 25 % at every point
+// (test_eta_cost_model.cpp), where lambda t_a alone is off by up to 3x.
+[[nodiscard]] double expected_events(const model_parameters& p) noexcept;
+
+// Expected work of a unit: its realizations times expected_events.
+[[nodiscard]] double expected_unit_cost(const sweep_spec& s, const work_unit& u);
 
 struct sweep_hooks {
   // Called from one thread at a time, after each unit is merged.

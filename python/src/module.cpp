@@ -215,7 +215,7 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
             plan.resume = resume;
             plan.checkpoint_interval = std::chrono::duration<double>(checkpoint_interval);
             plan.stop = &stop;
-            plan.progress = count;
+            plan.progress = [&](std::uint64_t d, std::uint64_t t, double) { count(d, t); };
             outcome = run::run_journaled(spec, plan, meta, runner);
             return;
           }

@@ -1,5 +1,7 @@
 #include "stickslip/sweep.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <atomic>
@@ -15,6 +17,27 @@
 #include "stickslip/error.hpp"
 
 namespace stickslip {
+namespace {
+
+// Two equal values on one axis would give two grid points with the same
+// point_key, hence the same random streams: not independent replicates, and
+// a coordinate that cannot be selected from.
+void check_distinct(const axis& ax) {
+  std::vector<double> sorted = ax.values;
+  std::sort(sorted.begin(), sorted.end());
+  const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+  if (dup == sorted.end()) return;
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i < ax.values.size(); ++i)
+    if (ax.values[i] == *dup) at.push_back(i + 1);
+  throw invalid_parameter(
+      "grid axis " + ax.name, *dup,
+      fmt::format("each value once; {} is entry #{} and #{}: equal grid points share one "
+                  "random stream, so they are not independent replicates",
+                  *dup, at[0], at[1]));
+}
+
+}  // namespace
 
 void validate(const sweep_spec& s) {
   validate(s.base);
@@ -26,6 +49,7 @@ void validate(const sweep_spec& s) {
       throw invalid_value("grid axis", ax.name, "each parameter swept at most once");
     if (ax.values.empty())
       throw invalid_value("grid axis " + ax.name, "(empty list)", "at least one value");
+    check_distinct(ax);
     for (double v : ax.values) {
       model_parameters p = s.base;
       parameter_by_name(p, sym) = v;
@@ -35,12 +59,15 @@ void validate(const sweep_spec& s) {
   }
   if (s.realizations < 1)
     throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
-  if (s.realizations > (1ULL << 40))
-    throw invalid_parameter("realizations", static_cast<double>(s.realizations), "<= 2^40");
-  if (s.block_size < 1 || s.block_size > (1ULL << 24))
-    throw invalid_parameter("block_size", static_cast<double>(s.block_size), "1 .. 2^24");
-  if (s.histograms.bins < 1 || s.histograms.bins > 100000)
-    throw invalid_parameter("bins", static_cast<double>(s.histograms.bins), "1 .. 100000");
+  if (s.realizations > max_realizations)
+    throw invalid_value("realizations", std::to_string(s.realizations),
+                        "1 .. 2^40 = " + std::to_string(max_realizations));
+  if (s.block_size < 1 || s.block_size > max_block_size)
+    throw invalid_value("block_size", std::to_string(s.block_size),
+                        "1 .. 2^24 = " + std::to_string(max_block_size));
+  if (s.histograms.bins < 1 || s.histograms.bins > max_histogram_bins)
+    throw invalid_value("bins", std::to_string(s.histograms.bins),
+                        "1 .. " + std::to_string(max_histogram_bins));
   if (!(s.histograms.stick_duration_max >= 0) || !std::isfinite(s.histograms.stick_duration_max))
     throw invalid_parameter("stick_duration_max", s.histograms.stick_duration_max,
                             "finite and >= 0 (0 = d_max)");
@@ -49,7 +76,7 @@ void validate(const sweep_spec& s) {
                             "finite and >= 0 (0 = automatic)");
   // 2^53: event counts are exact in doubles up to there (the lane engine
   // keeps them in SIMD registers); no realization comes near it.
-  if (s.max_events < 1 || s.max_events > (std::int64_t{1} << 53))
+  if (s.max_events < 1 || s.max_events > max_event_bound)
     throw invalid_value("max_events", std::to_string(s.max_events), "1 .. 2^53 = 9007199254740992");
   // Product of the axis sizes in floating point: point_count() would wrap.
   double points = 1.0;
@@ -190,6 +217,20 @@ result_set make_result_set(const sweep_spec& s, ordered_merger&& m) {
     rs.points.push_back({point_parameters(s, i), point_index(s, i), std::move(m.points()[i])});
   if (s.keep_records) rs.records = std::move(m.records());
   return rs;
+}
+
+double expected_events(const model_parameters& p) noexcept {
+  const double switches = p.switch_rate * p.window;
+  const double tau = 2.0 * p.belt_speed / (p.friction_coefficient * p.gravity);
+  const double p_onset = 1.0 / (1.0 + p.switch_rate * tau);
+  const double p_break = p_onset * std::exp(-p.switch_rate * p.max_stick_duration());
+  return 2.0 + switches * (1.0 + p_onset + 1.5 * p_break);
+}
+
+double expected_unit_cost(const sweep_spec& s, const work_unit& u) {
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  return static_cast<double>(last - first) * expected_events(point_parameters(s, u.point));
 }
 
 std::vector<std::size_t> points_by_cost(const sweep_spec& s) {

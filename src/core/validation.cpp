@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
 
@@ -18,10 +20,10 @@ void validate(const initial_condition_law& law) {
   finite("xdot0 (initial velocity)", law.velocity_max);
   if (law.position_min > law.position_max)
     throw invalid_parameter("x0 range minimum", law.position_min,
-                            "<= maximum " + std::to_string(law.position_max));
+                            fmt::format("<= maximum {}", law.position_max));
   if (law.velocity_min > law.velocity_max)
     throw invalid_parameter("xdot0 range minimum", law.velocity_min,
-                            "<= maximum " + std::to_string(law.velocity_max));
+                            fmt::format("<= maximum {}", law.velocity_max));
   if (law.belt_start < -1 || law.belt_start > 1)
     throw invalid_parameter("belt-start", law.belt_start, "+1, -1 or random");
 }
@@ -44,8 +46,8 @@ void validate_switch_times(std::span<const double> times) {
       throw invalid_parameter(name, times[i], "finite and >= 0");
     if (i > 0 && !(times[i] > times[i - 1]))
       throw invalid_parameter(name, times[i],
-                              "strictly greater than the previous one (" +
-                                  std::to_string(times[i - 1]) + "): times must be sorted");
+                              fmt::format("strictly greater than the previous one ({}): times must be sorted",
+                                          times[i - 1]));
   }
 }
 

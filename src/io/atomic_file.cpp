@@ -54,6 +54,26 @@ void remove_file_quietly(const std::string& path) noexcept {
   ::unlink(path.c_str());  // unlink(2) never removes a directory
 }
 
+std::vector<created_directory> create_directories(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::vector<created_directory> missing;
+  std::error_code ec;
+  for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    missing.push_back(p.string());
+    if (p == p.parent_path()) break;
+  }
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw io_error(dir, "exists and is not a directory");
+  fs::create_directories(dir, ec);
+  if (ec) throw io_error(dir, "cannot create the directory: " + ec.message());
+  return missing;
+}
+
+void remove_created(const std::vector<created_directory>& created) noexcept {
+  std::error_code ec;
+  for (const auto& d : created) std::filesystem::remove(d, ec);  // only removes empty directories
+}
+
 void sync_file(const std::string& path, const std::string& report_as) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw io_error(report_as, errno_text("open for fsync"));

@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -17,6 +18,13 @@ namespace stickslip::io::detail {
 
 // Removes a regular file if it exists (never a directory); ignores errors.
 void remove_file_quietly(const std::string& path) noexcept;
+
+// Creates `dir` and any missing parents. Returns the directories it created,
+// deepest first, for remove_created. Throws io_error(dir, reason).
+using created_directory = std::string;
+[[nodiscard]] std::vector<created_directory> create_directories(const std::string& dir);
+// Removes directories that create_directories made (only if empty again).
+void remove_created(const std::vector<created_directory>& created) noexcept;
 
 // fsync an existing file by name (for files that a library wrote and closed,
 // e.g. NetCDF). Throws io_error(report_as, ...).

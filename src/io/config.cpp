@@ -2,6 +2,7 @@
 // The TOML side is in config_toml.cpp.
 #include <fmt/format.h>
 
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -137,14 +138,24 @@ double switch_time(const std::string& where, std::string_view item) {
 
 }  // namespace
 
+std::string limit_text(std::uint64_t v) {
+  if (v == UINT64_MAX) return fmt::format("2^64 - 1 = {}", v);
+  if (v >= (1u << 16) && std::has_single_bit(v))
+    return fmt::format("2^{} = {}", std::countr_zero(v), v);
+  return fmt::format("{}", v);
+}
+
 std::string read_text_file(const std::string& path) {
   // A directory opens as an empty stream and /dev/zero never ends: accept
   // regular files of sane size only.
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found)
+    throw error(exit_code::invalid_input, fmt::format("input file '{}' does not exist", path));
   if (ec) throw io_error(path, ec.message());
   if (!std::filesystem::is_regular_file(status))
-    throw io_error(path, "not a regular file");
+    throw error(exit_code::invalid_input,
+                fmt::format("input file '{}' is not a regular file", path));
   constexpr std::uintmax_t max_bytes = 64u << 20;
   if (std::filesystem::file_size(path, ec) > max_bytes || ec)
     throw io_error(path, ec ? ec.message() : "larger than 64 MiB");
@@ -169,7 +180,7 @@ std::uint64_t parse_unsigned(std::string_view key, std::string_view text, std::u
   const auto t = trim(text);
   std::uint64_t v = 0;
   const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  const auto allowed = fmt::format("a whole number from {} to {}", min, max);
+  const auto allowed = fmt::format("a whole number from {} to {}", min, limit_text(max));
   if (t.empty() || ec != std::errc{} || ptr != t.data() + t.size() || v < min || v > max)
     throw invalid_value(std::string(key), std::string(text), allowed);
   return v;

@@ -4,9 +4,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -81,35 +83,22 @@ double read_number(const context& cx, const std::string& dotted, const toml::nod
   return v;
 }
 
-// Unsigned 64-bit: an integer >= 0, or a string of digits for values above
-// 2^63 - 1 (TOML integers are signed 64-bit).
-std::uint64_t read_u64(const context& cx, const std::string& dotted, const toml::node& n) {
-  if (n.is_integer()) {
-    const auto v = n.as_integer()->get();
-    if (v < 0) cx.wrong(dotted, n, "an integer >= 0");
-    return static_cast<std::uint64_t>(v);
-  }
-  if (n.is_string()) {
+// Unsigned 64-bit in [min, max]: an integer, or a string of digits for
+// values above 2^63 - 1 (TOML integers are signed 64-bit).
+std::uint64_t read_u64(const context& cx, const std::string& dotted, const toml::node& n,
+                       std::uint64_t min = 0, std::uint64_t max = UINT64_MAX) {
+  const auto allowed = fmt::format("an integer from {} to {}", min, limit_text(max));
+  std::optional<std::uint64_t> v;
+  if (n.is_integer() && n.as_integer()->get() >= 0) {
+    v = static_cast<std::uint64_t>(n.as_integer()->get());
+  } else if (n.is_string()) {
     const std::string& s = n.as_string()->get();
-    std::uint64_t v = 0;
-    const bool digits = !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
-      return c >= '0' && c <= '9';
-    });
-    if (digits) {
-      try {
-        std::size_t used = 0;
-        v = std::stoull(s, &used);
-        if (used == s.size()) return v;
-      } catch (const std::exception&) {
-      }
-    }
+    std::uint64_t parsed = 0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), parsed);
+    if (!s.empty() && ec == std::errc{} && ptr == s.data() + s.size()) v = parsed;
   }
-  cx.wrong(dotted, n, "an integer >= 0");
-}
-
-std::int64_t read_i64(const context& cx, const std::string& dotted, const toml::node& n) {
-  if (!n.is_integer()) cx.wrong(dotted, n, "an integer");
-  return n.as_integer()->get();
+  if (!v || *v < min || *v > max) cx.wrong(dotted, n, allowed);
+  return *v;
 }
 
 bool read_bool(const context& cx, const std::string& dotted, const toml::node& n) {
@@ -134,6 +123,8 @@ void read_range(const context& cx, const std::string& dotted, const toml::node& 
   if (!a || a->size() != 2) cx.wrong(dotted, n, "an array of two numbers [lo, hi]");
   lo = read_number(cx, dotted + "[0]", *a->get(0));
   hi = read_number(cx, dotted + "[1]", *a->get(1));
+  if (lo > hi)
+    cx.wrong(dotted, n, fmt::format("[lo, hi] with lo <= hi; here lo = {} > hi = {}", lo, hi));
 }
 
 void read_initial(const context& cx, const toml::table& t, initial_condition_law& law) {
@@ -232,13 +223,14 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
     const std::string key(k.str());
     const std::string dotted = "sweep." + key;
     if (key == "realizations")
-      s.realizations = read_u64(cx, dotted, n);
+      s.realizations = read_u64(cx, dotted, n, 1, max_realizations);
     else if (key == "seed")
       s.seed = read_u64(cx, dotted, n);
     else if (key == "block_size")
-      s.block_size = read_u64(cx, dotted, n);
+      s.block_size = read_u64(cx, dotted, n, 1, max_block_size);
     else if (key == "max_events")
-      s.max_events = read_i64(cx, dotted, n);
+      s.max_events = static_cast<std::int64_t>(
+          read_u64(cx, dotted, n, 1, static_cast<std::uint64_t>(max_event_bound)));
     else if (key == "keep_records")
       s.keep_records = read_bool(cx, dotted, n);
     else if (key == "engine") {
@@ -256,7 +248,7 @@ void read_histograms(const context& cx, const toml::table& t, histogram_spec& h)
     const std::string key(k.str());
     const std::string dotted = "histograms." + key;
     if (key == "bins")
-      h.bins = static_cast<std::size_t>(read_u64(cx, dotted, n));
+      h.bins = static_cast<std::size_t>(read_u64(cx, dotted, n, 1, max_histogram_bins));
     else if (key == "stick_duration_max")
       h.stick_duration_max = read_number(cx, dotted, n);
     else if (key == "slip_duration_max")

@@ -6,6 +6,7 @@
 
 #include "figures_common.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/trajectory.hpp"
 
 namespace stickslip::io {
 
@@ -15,12 +16,6 @@ using detail::gp_string;
 using detail::num;
 
 namespace {
-
-// Segments of one realization, kept for sampling.
-struct segment_collector : observer_base {
-  std::vector<segment> segments;
-  void on_segment(const segment& s) { segments.push_back(s); }
-};
 
 constexpr const char* lambda_label = "λ, belt switch rate [1/s]";
 
@@ -130,21 +125,28 @@ figure fig4(const set_study& s, const std::string& dir, bool render) {
     dat += fmt::format("# lambda = {} 1/s; columns: bin center [s], density of D_1 [1/s], "
                        "count of D_1, density of D (all sticks) [1/s]\n",
                        num(lam));
-    for (std::size_t i = 0; i < h.bins(); ++i)
+    double top = 0;  // the highest bar or step of either histogram
+    for (std::size_t i = 0; i < h.bins(); ++i) {
       dat += fmt::format("{} {} {} {}\n", num(h.center(i)), num(h.density(i)), h.count(i),
                          i < hd.bins() ? num(hd.density(i)) : "NaN");
+      top = std::max({top, h.density(i), i < hd.bins() ? hd.density(i) : 0.0});
+    }
     dat += "\n\n";
     body += fmt::format(
         "  set title \"λ = {} 1/s (n = {})\"\n"
         "  set xlabel \"D_1, first stick duration [s]\"\n"
         "  set ylabel \"density [1/s]\"\n"
         "  set xrange [0:{dmax}*1.05]\n"
+        "  set yrange [0:{ymax}]\n"
         "  set arrow 1 from {dmax}, graph 0 to {dmax}, graph 1 nohead dt 2 lc rgb \"#555555\"\n"
         "  plot \"fig4_first_stick_hist.dat\" index {blk} u 1:2 w boxes lt 1 fs solid 0.5 "
         "title \"D_1, first stick\", \"\" index {blk} u 1:4 w histeps lt 2 lw 1.5 title "
         "\"D, all sticks\"\n",
         fmt::format("{:.3g}", lam), h.total(), fmt::arg("dmax", num(dmax)),
-        fmt::arg("blk", block));
+        fmt::arg("blk", block),
+        // Explicit, with room for the key: gnuplot's autoscale ignores the
+        // histeps line, which clipped the D peak at d_max for small lambda.
+        fmt::arg("ymax", num(top > 0 ? 1.25 * top : 1.0)));
     ++block;
   }
   body += "  unset multiplot\n";
@@ -309,7 +311,7 @@ figure fig7(const set_study& s, const std::string& dir, bool render) {
 figure convergence(const set_study& s, const std::string& dir, bool render) {
   const double mu = detail::nearest_mu(s.sweep, 5.0);
   const auto lams = detail::nearest_lambdas(s.sweep, {0.1, 3.8, 30.0});
-  auto f = make(dir, "convergence", "convergence_R", "Convergence of mean R",
+  auto f = make(dir, "convergence", "convergence_R", "Fig. S1: convergence of mean R",
                 fmt::format("The paper's convergence study, redone: the running estimate of "
                             "mean R after n realizations (one point per block of {}) at mu = "
                             "{} for lambda = {}; {}. Top: running mean minus the final mean, "
@@ -370,7 +372,7 @@ figure convergence(const set_study& s, const std::string& dir, bool render) {
 }
 
 figure refinement(const set_study& s, const std::string& dir, bool render) {
-  auto f = make(dir, "refinement", "refinement_peak", "Refinement of the maximum of mean R",
+  auto f = make(dir, "refinement", "refinement_peak", "Fig. S2: refinement of the maximum of mean R",
                 fmt::format("For each mu: mean R on the refinement grid ({} lambda values, "
                             "geometric, around the grid maximum; {} realizations each) with "
                             "95 % error bars, the weighted quadratic fit in ln(lambda) and the "
@@ -425,21 +427,11 @@ figure refinement(const set_study& s, const std::string& dir, bool render) {
 
 std::vector<trace_point> sample_realization(const sweep_spec& spec, const model_parameters& p,
                                             std::uint64_t realization, double dt, double t_end) {
-  segment_collector c;
+  segment_recorder c;
   (void)simulate_realization(spec, p, realization, c);
   std::vector<trace_point> out;
-  for (const auto& sg : c.segments) {
-    if (sg.start >= t_end) break;
-    const double end = std::min(sg.end, t_end);
-    // Samples at the segment start, every dt inside, and at its end, so the
-    // kinks at events are drawn exactly.
-    const auto steps = static_cast<std::size_t>(std::ceil((end - sg.start) / dt));
-    for (std::size_t i = 0; i <= steps; ++i) {
-      const double t = std::min(sg.start + static_cast<double>(i) * dt, end);
-      const auto q = evaluate(sg, t);
-      out.push_back({t, q.position, q.velocity, sg.belt_velocity, sg.kind == mode::stick});
-    }
-  }
+  for (const auto& q : sample_trajectory(c.segments, dt, t_end))
+    out.push_back({q.time, q.position, q.velocity, q.belt_velocity, q.kind == mode::stick});
   return out;
 }
 

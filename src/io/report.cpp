@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <fstream>
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "atomic_file.hpp"
 #include "figures_common.hpp"
@@ -67,9 +70,14 @@ std::string round_big(double x) {
 }
 
 // "2 threads", or "2 MPI ranks × 2 threads" for a distributed run.
+
+// "1 thread", "2 threads".
+std::string threads_text(unsigned n) { return fmt::format("{} thread{}", n, n == 1 ? "" : "s"); }
+
+// "2 threads", or "2 MPI ranks × 2 threads" for a distributed run.
 std::string compute_resources(const study_result& st) {
-  return st.ranks > 1 ? fmt::format("{} MPI ranks × {} threads", st.ranks, st.threads)
-                      : fmt::format("{} threads", st.threads);
+  return st.ranks > 1 ? fmt::format("{} MPI ranks × {}", st.ranks, threads_text(st.threads))
+                      : threads_text(st.threads);
 }
 
 std::string format_duration(double seconds) {
@@ -91,6 +99,41 @@ void add_figure(document& d, const figure& f, const std::string& dir) {
                           f.title, relative_to(f.dir, dir), f.stem, f.caption));
 }
 
+// Size of the lambda axis of the main sweep (40 for the paper's design).
+std::size_t lambda_grid_size(const study_result& st) {
+  for (const auto& s : st.sets)
+    for (const auto& ax : s.sweep.spec.axes)
+      if (ax.name == "lambda") return ax.values.size();
+  return 0;
+}
+
+// Size of the mu axis of the main sweep (8 for the paper's design).
+std::size_t mu_grid_size(const study_result& st) {
+  for (const auto& s : st.sets)
+    for (const auto& ax : s.sweep.spec.axes)
+      if (ax.name == "mu") return ax.values.size();
+  return 0;
+}
+
+std::string chi2_text(const peak_estimate& p) {
+  const auto text = fmt::format("{:.2f} / {}", p.chi2, p.dof);
+  return poor_fit(p) ? text + " **poor fit**" : text;
+}
+
+}  // namespace
+
+// Wilson-Hilferty cube-root normal approximation (within ~1 % for dof >= 3):
+// q = dof (1 - 2/(9 dof) + z sqrt(2/(9 dof)))^3, z = 1.6449 for 95 %.
+double chi2_95(std::size_t dof) {
+  const double k = static_cast<double>(dof);
+  const double c = 2.0 / (9.0 * k);
+  return k * std::pow(1.0 - c + 1.6448536269514722 * std::sqrt(c), 3);
+}
+
+bool poor_fit(const peak_estimate& p) { return p.dof > 0 && p.chi2 > chi2_95(p.dof); }
+
+namespace {
+
 // ---------------------------------------------------------------- sections --
 
 void claims_section(document& d, const study_result& st) {
@@ -98,12 +141,13 @@ void claims_section(document& d, const study_result& st) {
   for (const auto& s : st.sets) sets.push_back(&s);
   const auto claims = evaluate_claims(sets);
   d.heading(2, "Every quantitative claim of the paper");
-  d.paragraph(
+  d.paragraph(fmt::format(
       "Each claim evaluated under the printed parameters and under the concluded set. "
       "Values of the maximum of mean R come from the refinement (weighted quadratic fit in "
       "ln λ on a finer λ grid with more realizations; 95 % intervals by parametric bootstrap); "
       "the grid maximum in parentheses is the same estimator the paper used (largest mean on "
-      "the 40-point grid). The rule behind each verdict is in the notes below the table.");
+      "the {}-point λ grid{}). The rule behind each verdict is in the notes below the table.",
+      lambda_grid_size(st), st.options.quick ? "; the paper's grid has 40 points" : ""));
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> head{"claim", "paper"};
   for (const auto* s : sets) {
@@ -122,10 +166,22 @@ void claims_section(document& d, const study_result& st) {
     rows.push_back(row);
   }
   d.table(rows);
+  // One note per distinct text: a rule that reads the same for every set is
+  // said once, naming the sets it covers.
   std::vector<std::string> notes;
-  for (const auto& c : claims)
-    for (std::size_t i = 0; i < c.per_set.size(); ++i)
-      notes.push_back(fmt::format("`{}` ({}): {}", c.id, sets[i]->set.id, c.per_set[i].note));
+  for (const auto& c : claims) {
+    std::vector<bool> said(c.per_set.size(), false);
+    for (std::size_t i = 0; i < c.per_set.size(); ++i) {
+      if (said[i]) continue;
+      std::vector<std::string> ids;
+      for (std::size_t j = i; j < c.per_set.size(); ++j)
+        if (!said[j] && c.per_set[j].note == c.per_set[i].note) {
+          said[j] = true;
+          ids.push_back(sets[j]->set.id);
+        }
+      notes.push_back(fmt::format("`{}` ({}): {}", c.id, fmt::join(ids, ", "), c.per_set[i].note));
+    }
+  }
   d.paragraph("Notes on the verdicts:");
   d.list(notes);
 }
@@ -258,11 +314,21 @@ void refinement_section(document& d, const study_result& st) {
                       p.valid ? fmt::format("{:.4f} [{:.4f}, {:.4f}]", p.R_star, p.R_lo, p.R_hi)
                               : "–",
                       p.valid ? fmt::format("{:.4f}", p.R_se_delta) : "–",
-                      fmt::format("{:.2f} / {}", p.chi2, p.dof), p.interior ? "yes" : "no",
+                      chi2_text(p), p.interior ? "yes" : "no",
                       fmt::format("{} of {}", p.bootstrap,
                                   p.bootstrap + p.bootstrap_degenerate)});
     }
     d.table(rows);
+    std::vector<std::string> poor;
+    for (const auto& r : s.refinements)
+      if (poor_fit(r.peak)) poor.push_back(fmt::format("μ = {}", r.mu));
+    if (!poor.empty())
+      d.paragraph(fmt::format(
+          "**Poor fit** ({}): χ² is above the 95 % point of the χ² distribution with its "
+          "degrees of freedom, so the quadratic in ln λ does not describe mean R over the whole "
+          "window (an asymmetric peak, or a window wider than the peak). Treat λ* and R* "
+          "there, and their intervals, as rough.",
+          fmt::join(poor, ", ")));
   }
 }
 
@@ -498,8 +564,17 @@ void provenance_section(document& d, const study_result& st, const run_metadata&
 document build(const study_result& st, const run_metadata& meta,
                const std::vector<figure>& figs, const std::string& dir) {
   document d;
-  d.heading(1, "Reproduction: Role of parameters in the stochastic dynamics of a stick-slip "
-               "oscillator");
+  d.heading(1, fmt::format("Reproduction: Role of parameters in the stochastic dynamics of a "
+                           "stick-slip oscillator{}",
+                           st.options.quick ? " (DEMO, --quick)" : ""));
+  if (st.options.quick)
+    d.paragraph(fmt::format(
+        "**DEMO (`reproduce --quick`): not a reproduction.** This run used a small design "
+        "({} λ × {} μ × {} realizations, refinement with {}) so that it finishes in seconds. "
+        "Its numbers and verdicts are far noisier than the study's and must not be quoted; "
+        "run `stickslip reproduce` without --quick for the paper's 40 λ × 8 μ × 2000 design.",
+        lambda_grid_size(st), st.sets.empty() ? 0 : mu_grid_size(st), st.options.realizations,
+        st.options.refine_realizations));
   d.paragraph(fmt::format(
       "This report was written by `stickslip reproduce` (stickslip {}, git {}). It reruns the "
       "paper's parametric study — mean stick statistics over λ × μ, {} realizations per "
@@ -577,6 +652,28 @@ std::string report_markdown(const study_result& study, const run_metadata& meta,
   return build(study, meta, figures, report_dir).markdown();
 }
 
+namespace {
+
+// Titles and images of a --quick run say DEMO: a label in the script's
+// preamble (it applies to every panel and both terminals), then render.
+void mark_as_demo(figure& f, bool render) {
+  std::ifstream in(f.script(), std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string script = text.str();
+  const std::string anchor = "set encoding utf8\n";
+  const auto at = script.find(anchor);
+  if (at != std::string::npos)
+    script.insert(at + anchor.size(),
+                  "set label 999 \"DEMO (reproduce --quick): not a reproduction\" at screen "
+                  "0.005, screen 0.012 left front tc rgb \"#cc0000\" font \",11\"\n");
+  detail::write_text_file(f.script(), script);
+  f.title = "DEMO, " + f.title;
+  f.rendered = render && run_gnuplot(f.dir, f.stem + ".gp");
+}
+
+}  // namespace
+
 report_files write_reproduction(const study_result& study, const run_metadata& meta,
                                 const std::string& dir, bool render) {
   std::error_code ec;
@@ -587,15 +684,19 @@ report_files write_reproduction(const study_result& study, const run_metadata& m
   for (const auto& s : study.candidates)
     write_set_files(s, meta, dir + "/candidates/" + s.set.id);
 
+  // A --quick demo: every figure is stamped as one before it is rendered.
+  const bool demo = study.options.quick;
   std::vector<figure> figs;
   for (const auto& s : study.sets) {
-    auto f = write_set_figures(s, dir + "/figures/" + s.set.id, render);
+    auto f = write_set_figures(s, dir + "/figures/" + s.set.id, render && !demo);
     figs.insert(figs.end(), f.begin(), f.end());
   }
   if (!study.candidates.empty()) {
-    auto f = write_candidate_figures(study, dir + "/figures/candidates", render);
+    auto f = write_candidate_figures(study, dir + "/figures/candidates", render && !demo);
     figs.insert(figs.end(), f.begin(), f.end());
   }
+  if (demo)
+    for (auto& f : figs) mark_as_demo(f, render);
 
   const auto doc = build(study, meta, figs, dir);
   report_files out;

@@ -13,36 +13,11 @@
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
-namespace {
-
 namespace fs = std::filesystem;
-
-// Creates `dir` and any missing parents; returns the directories it created,
-// deepest first (so they can be removed again in that order).
-std::vector<fs::path> create_directory(const fs::path& dir) {
-  std::vector<fs::path> missing;
-  std::error_code ec;
-  for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
-    missing.push_back(p);
-    if (p == p.parent_path()) break;
-  }
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw io_error(dir.string(), "exists and is not a directory");
-  fs::create_directories(dir, ec);
-  if (ec) throw io_error(dir.string(), "cannot create the output directory: " + ec.message());
-  return missing;
-}
-
-void remove_created(const std::vector<fs::path>& created) noexcept {
-  std::error_code ec;
-  for (const auto& d : created) fs::remove(d, ec);  // only removes empty directories
-}
-
-}  // namespace
 
 void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir) {
   detail::check_shape(rs);
-  const auto created = create_directory(dir);
+  const auto created = detail::create_directories(dir);
   const auto in_dir = [&](const char* name) { return (fs::path(dir) / name).string(); };
 
   struct output {
@@ -80,7 +55,7 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
     for (std::size_t i = 0; i < renamed; ++i) detail::remove_file_quietly(outputs[i].path);
     for (std::size_t i = renamed; i < written; ++i)
       detail::remove_file_quietly(detail::temporary_path(outputs[i].path));
-    remove_created(created);
+    detail::remove_created(created);
     throw;
   }
   // A records.csv left by an earlier run into the same directory would

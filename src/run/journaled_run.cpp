@@ -7,6 +7,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/run/work_meter.hpp"
 
 namespace stickslip::run {
 namespace {
@@ -55,12 +56,23 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
 
   io::journal_writer journal(plan.dir, spec, out.metadata, plan.slice ? plan.slice->tag() : "run",
                              plan.checkpoint_interval);
+  auto to_run = [&](const work_unit& u) {
+    return !done[u.point * nb + u.block] && (!plan.slice || plan.slice->owns(spec, u));
+  };
+  std::optional<work_meter> work;
   sweep_hooks hooks;
-  hooks.progress = plan.progress;
-  hooks.unit_done = [&](const work_unit& u, const block_result& res) { journal.add(u, res); };
+  if (plan.progress) {
+    work.emplace(spec, to_run);
+    hooks.progress = [&](std::uint64_t d, std::uint64_t total) {
+      plan.progress(d, total, work->fraction());
+    };
+  }
+  hooks.unit_done = [&](const work_unit& u, const block_result& res) {
+    journal.add(u, res);
+    if (work) work->add(u);
+  };
   hooks.wanted = [&](const work_unit& u) {
-    return !(plan.stop && plan.stop->requested()) && !done[u.point * nb + u.block] &&
-           (!plan.slice || plan.slice->owns(spec, u));
+    return !(plan.stop && plan.stop->requested()) && to_run(u);
   };
   r.run(spec, merger, hooks);
   journal.flush();

@@ -60,7 +60,7 @@ expect 2 "raw records" o -- sweep --lambda lin:0.1:10:1000 --realizations 100000
 expect 2 "realizations.*2\^40" o -- sweep --realizations 1099511627777 -o o
 expect 2 "lambda \* ta" o -- sweep --lambda 1e6 --ta 1e6 -o o
 expect 2 "bins.*100000" o -- sweep --bins 1000000 -o o
-expect 2 "block_size" o -- sweep --block-size 99999999 -o o
+expect 2 "--block-size.*2\^24" o -- sweep --block-size 99999999 -o o
 expect 2 "--threads" o -- sweep --threads 100000 -o o
 expect 2 "records" o -- sweep --lambda lin:0.1:1:1000 --realizations 100000 --records -o o
 expect 4 "bound on events" o -- sweep --lambda 0.05,0.1 --ta 30 --realizations 50 --max-events 10 -o o
@@ -148,6 +148,28 @@ cases=$((cases + 1))
 "$bin" merge -o merged h0 h1 m0 2>err.txt || bad "merge with duplicates failed"
 grep -q "more than one journal" err.txt || bad "duplicates not reported"
 $compare ref merged >/dev/null || bad "merge with duplicates differs"
+expect 2 "merged/results.nc' already exists.*--overwrite" - -- merge -o merged h0 h1 m0
+$compare ref merged >/dev/null || bad "a refused merge changed merged/"
+cases=$((cases + 1))
+"$bin" merge --overwrite -o merged h0 h1 m0 2>err.txt || bad "merge --overwrite failed: $(cat err.txt)"
+
+# 8. issue 14: existing results, duplicate grid values, missing inputs,
+#    command-line syntax, partial simulate outputs
+cp -r ref ref_copy
+expect 2 "ref_copy/results.nc' already exists.*--overwrite" - -- sweep "${A[@]}" -o ref_copy
+cmp -s ref/summary.csv ref_copy/summary.csv || bad "a refused sweep changed ref_copy"
+expect 2 "grid axis lambda.*#1 and #2" o -- sweep --lambda 1,1 -o o
+expect 2 "input file 'nope.toml' does not exist" o -- sweep --config nope.toml -o o
+expect 2 "input file 'nope.txt' does not exist" - -- simulate --switch-times-file nope.txt
+expect 2 "unknown subcommand 'swep'; did you mean sweep" o -- swep -o o
+expect 2 "unknown flag '--lamda'.*did you mean --lambda" o -- sweep --lamda 1,2 -o o
+expect 2 "--mu is given 2 times" - -- simulate --mu 5 --mu 6
+expect 2 "--events-file: '/tmp'.*not a directory" ef -- simulate --events --events-file /tmp -o ef/ep.csv
+expect 3 "No such file or directory" tf -- simulate --trajectory 0.1 --trajectory-file /proc/nope/t.csv -o tf/ep.csv
+printf '[sweep]\nrealizations = 100.5\n' >real.toml
+expect 2 "sweep.realizations at real.toml:2:.*1 to 2\^40" o -- sweep --config real.toml -o o
+printf '[initial]\nx0 = [1.0, -1.0]\n' >x0.toml
+expect 2 "initial.x0 at x0.toml:2:.*lo = 1 > hi = -1" o -- sweep --config x0.toml -o o
 
 echo "bad_input: $cases cases, $failures failures"
 ((failures == 0)) && rm -rf "$work"

@@ -48,7 +48,7 @@ expect_fail "'model.mass'|unknown_key.toml:2:1" sweep --config unknown_key.toml
 printf '[grids]\nlambda = [1]\n' >unknown_table.toml
 expect_fail "'grids'|unknown_table.toml:1:" sweep --config unknown_table.toml
 printf '[sweep]\nrealizations = "many"\n' >wrong_type.toml
-expect_fail "sweep.realizations|wrong_type.toml:2:16|an integer >= 0|a string" sweep --config wrong_type.toml
+expect_fail "sweep.realizations|wrong_type.toml:2:16|an integer from 1 to 2^40|a string" sweep --config wrong_type.toml
 printf '[model]\nmu = true\n' >wrong_type2.toml
 expect_fail "model.mu|a number|a boolean" sweep --config wrong_type2.toml
 printf '[grid]\nlambda = "log:0.1:30:0"\n' >bad_grid.toml

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include "stickslip/io/figures.hpp"
@@ -281,3 +283,126 @@ TEST(ReproduceFigures, SampledRealizationFollowsTheSegments) {
 }
 
 }  // namespace
+
+// ---- issue 14: what a new user hit in the report ----
+
+TEST_F(ReproduceReport, QuickReportIsMarkedAsADemoAndNamesItsGridSize) {
+  const auto md = slurp(files_->markdown);
+  EXPECT_NE(md.find("(DEMO, --quick)"), std::string::npos);
+  EXPECT_NE(md.find("**DEMO (`reproduce --quick`): not a reproduction.**"), std::string::npos);
+  EXPECT_NE(md.find("5-point λ grid"), std::string::npos);  // o.lambda has 5 values
+  EXPECT_EQ(md.find("the 40-point grid"), std::string::npos);
+  EXPECT_NE(slurp(files_->html).find("DEMO"), std::string::npos);
+  // The same study, not marked quick: no banner.
+  auto full = *study_;
+  full.options.quick = false;
+  const char* argv[] = {"stickslip", "reproduce"};
+  const auto plain = io::report_markdown(full, io::make_metadata(2, argv, ""), {}, dir_->string());
+  EXPECT_EQ(plain.find("DEMO"), std::string::npos);
+}
+
+TEST_F(ReproduceReport, VerdictNotesAreNotRepeatedWordForWord) {
+  const auto md = slurp(files_->markdown);
+  const auto at = md.find("Notes on the verdicts:");
+  ASSERT_NE(at, std::string::npos);
+  std::istringstream in(md.substr(at));
+  std::string line;
+  std::set<std::pair<std::string, std::string>> seen;  // (claim id, note text)
+  int notes = 0;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      if (notes) break;
+      continue;
+    }
+    if (line.rfind("- `", 0) != 0) break;
+    ++notes;
+    const auto id_end = line.find('`', 3);
+    const auto text_at = line.find("): ");
+    ASSERT_NE(text_at, std::string::npos) << line;
+    const auto key = std::make_pair(line.substr(3, id_end - 3), line.substr(text_at + 3));
+    EXPECT_TRUE(seen.insert(key).second) << "repeated: " << line;
+  }
+  EXPECT_GT(notes, 0);
+  // A note that holds for both sets names both.
+  EXPECT_NE(md.find("(printed, concluded): "), std::string::npos);
+}
+
+TEST_F(ReproduceReport, ConvergenceAndRefinementFiguresAreNumbered) {
+  const auto md = slurp(files_->markdown);
+  EXPECT_NE(md.find("Fig. S1: convergence of mean R"), std::string::npos);
+  EXPECT_NE(md.find("Fig. S2: refinement of the maximum of mean R"), std::string::npos);
+}
+
+TEST_F(ReproduceReport, Fig4YRangeHoldsBothHistograms) {
+  for (const char* set : {"printed", "concluded"}) {
+    const auto gp = slurp(*dir_ / "figures" / set / "fig4_first_stick_hist.gp");
+    const auto dat = slurp(*dir_ / "figures" / set / "fig4_first_stick_hist.dat");
+    // The y range of each panel, in order.
+    std::vector<double> ymax;
+    const std::regex yr(R"(set yrange \[0:([0-9.eE+-]+)\])");
+    for (auto it = std::sregex_iterator(gp.begin(), gp.end(), yr); it != std::sregex_iterator();
+         ++it)
+      ymax.push_back(std::stod((*it)[1]));
+    // The highest density (D_1: column 2, D: column 4) of each data block.
+    std::vector<double> top;
+    std::istringstream in(dat);
+    std::string line;
+    bool in_block = false;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') {
+        in_block = false;
+        continue;
+      }
+      if (!in_block) top.push_back(0);
+      in_block = true;
+      std::istringstream cols(line);
+      double c, d1, n, d;
+      cols >> c >> d1 >> n >> d;
+      top.back() = std::max({top.back(), d1, std::isnan(d) ? 0.0 : d});
+    }
+    ASSERT_EQ(ymax.size(), top.size()) << set;
+    ASSERT_FALSE(top.empty());
+    for (std::size_t i = 0; i < top.size(); ++i)
+      EXPECT_GE(ymax[i], top[i]) << set << " panel " << i;
+  }
+}
+
+TEST(Chi2PoorFit, NinetyFivePercentPointsMatchTheTable) {
+  // chi^2 table (Abramowitz & Stegun 26.8 / any statistics text), 95 % points.
+  EXPECT_NEAR(io::chi2_95(5), 11.070, 0.01 * 11.070);
+  EXPECT_NEAR(io::chi2_95(14), 23.685, 0.01 * 23.685);
+  EXPECT_NEAR(io::chi2_95(30), 43.773, 0.01 * 43.773);
+  io::peak_estimate p;
+  p.chi2 = 24.9;  // the fit the issue found unflagged
+  p.dof = 14;
+  EXPECT_TRUE(io::poor_fit(p));
+  p.chi2 = 14.0;
+  EXPECT_FALSE(io::poor_fit(p));
+}
+
+TEST_F(ReproduceReport, PoorFitsAreFlaggedInTheRefinementTable) {
+  const auto md = slurp(files_->markdown);
+  for (const auto& s : study_->sets)
+    for (const auto& r : s.refinements) {
+      const auto cell = fmt::format("{:.2f} / {}", r.peak.chi2, r.peak.dof);
+      const auto at = md.find(cell);
+      ASSERT_NE(at, std::string::npos) << cell;
+      const std::string flag = " **poor fit**";
+      const bool flagged = md.compare(at + cell.size(), flag.size(), flag) == 0;
+      EXPECT_EQ(flagged, io::poor_fit(r.peak)) << s.set.id << " mu " << r.mu;
+    }
+}
+
+TEST_F(ReproduceReport, QuickFiguresAreStampedAsADemo) {
+  int scripts = 0;
+  for (const auto& e : fs::recursive_directory_iterator(*dir_ / "figures"))
+    if (e.path().extension() == ".gp") {
+      ++scripts;
+      EXPECT_NE(slurp(e.path()).find("DEMO (reproduce --quick): not a reproduction"),
+                std::string::npos)
+          << e.path();
+    }
+  EXPECT_GT(scripts, 10);
+  EXPECT_NE(slurp(files_->markdown).find("DEMO, Fig. 4"), std::string::npos);
+}

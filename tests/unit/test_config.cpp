@@ -264,8 +264,22 @@ INSTANTIATE_TEST_SUITE_P(
         // wrong types
         bad_toml{"[model]\nmu = \"five\"\n", {"model.mu", "bad.toml:2:6", "a number", "a string"}},
         bad_toml{"model = 3\n", {"model", "a table"}},
-        bad_toml{"[sweep]\nrealizations = 2.5\n", {"sweep.realizations", "an integer >= 0",
-                                                     "a float"}},
+        bad_toml{"[sweep]\nrealizations = 2.5\n", {"sweep.realizations", "a float"}},
+        // issue 14: the true range, with file:line, in every limit message
+        bad_toml{"[sweep]\nrealizations = 100.5\n",
+                 {"sweep.realizations at bad.toml:2:", "1 to 2^40 = 1099511627776"}},
+        bad_toml{"[sweep]\nrealizations = 0\n",
+                 {"sweep.realizations at bad.toml:2:", "1 to 2^40 = 1099511627776"}},
+        bad_toml{"[sweep]\nrealizations = 1099511627777\n",
+                 {"sweep.realizations at bad.toml:2:", "1 to 2^40"}},
+        bad_toml{"[sweep]\nblock_size = 0\n", {"sweep.block_size at bad.toml:2:", "2^24"}},
+        bad_toml{"[sweep]\nmax_events = -3\n", {"sweep.max_events at bad.toml:2:", "2^53"}},
+        bad_toml{"[histograms]\nbins = 0\n", {"histograms.bins at bad.toml:2:", "1 to 100000"}},
+        bad_toml{"[histograms]\nbins = 100001\n", {"histograms.bins", "1 to 100000"}},
+        bad_toml{"[initial]\nx0 = [1.0, -1.0]\n",
+                 {"initial.x0 at bad.toml:2:", "lo = 1 > hi = -1"}},
+        bad_toml{"[initial]\nxdot0 = [0.25, 0.125]\n",
+                 {"initial.xdot0 at bad.toml:2:", "lo = 0.25 > hi = 0.125"}},
         bad_toml{"[sweep]\nrealizations = -5\n", {"sweep.realizations", "-5"}},
         bad_toml{"[sweep]\nseed = \"12a\"\n", {"sweep.seed", "an integer"}},
         bad_toml{"[sweep]\nkeep_records = 1\n", {"sweep.keep_records", "a boolean"}},
@@ -284,10 +298,11 @@ INSTANTIATE_TEST_SUITE_P(
         bad_toml{"[grid]\norder = [\"lambda\", \"lambda\"]\nlambda = [1]\n", {"repeated"}},
         bad_toml{"[grid]\norder = []\nlambda = [1]\n", {"grid.order", "every swept"}}));
 
-TEST(ReadSweepTomlFile, MissingFileIsAnIoError) {
+// issue 14: a missing input file is bad input (exit 2), not an I/O failure.
+TEST(ReadSweepTomlFile, MissingFileIsInvalidInputThatDoesNotExist) {
   const auto msg = error_of([] { (void)read_sweep_toml_file("/nonexistent/x.toml"); },
-                            exit_code::io_failure);
-  EXPECT_THAT(msg, HasSubstr("/nonexistent/x.toml"));
+                            exit_code::invalid_input);
+  EXPECT_THAT(msg, AllOf(HasSubstr("/nonexistent/x.toml"), HasSubstr("does not exist")));
 }
 
 // ---- switch times ----
@@ -339,8 +354,8 @@ TEST(ReadSwitchTimesFile, ReadsAFileAndNamesIt) {
   }
   EXPECT_THAT(error_of([&] { (void)read_switch_times_file(path); }), HasSubstr(path + ":2"));
   std::remove(path.c_str());
-  EXPECT_THAT(error_of([&] { (void)read_switch_times_file(path); }, exit_code::io_failure),
-              HasSubstr(path));
+  EXPECT_THAT(error_of([&] { (void)read_switch_times_file(path); }, exit_code::invalid_input),
+              AllOf(HasSubstr(path), HasSubstr("does not exist")));
 }
 
 }  // namespace

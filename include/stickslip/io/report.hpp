@@ -76,6 +76,12 @@ struct peak_estimate {
   std::size_t bootstrap = 0, bootstrap_degenerate = 0;
 };
 
+// The 95 % point of the chi^2 distribution with `dof` degrees of freedom.
+[[nodiscard]] double chi2_95(std::size_t dof);
+// A refinement fit whose chi^2 is above its 95 % point: the quadratic in
+// ln lambda does not describe mean R over the window; the report flags it.
+[[nodiscard]] bool poor_fit(const peak_estimate& p);
+
 [[nodiscard]] peak_estimate fit_peak(const std::vector<double>& lambda,
                                      const std::vector<double>& mean,
                                      const std::vector<double>& std_error, double center,

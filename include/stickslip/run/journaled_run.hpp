@@ -32,8 +32,10 @@ struct run_plan {
   bool resume = false;              // continue the journal in DIR (refused without it)
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
-  // Units merged so far (resumed ones included) of the total; serialized.
-  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+  // Units merged so far (resumed ones included) of the total, and the
+  // fraction of this run's expected work done (work_meter: for an honest
+  // ETA); serialized.
+  std::function<void(std::uint64_t done, std::uint64_t total, double work_done)> progress;
   // Problems found in the journal and notes on the resume, one line each.
   io::journal_report report;
 };

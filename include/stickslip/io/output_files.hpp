@@ -1,0 +1,38 @@
+// Output files as a set: refuse to replace earlier results unless asked, and
+// write several text files all or nothing.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace stickslip::io {
+
+// The results of a finished sweep that `dir` holds now (results.nc,
+// summary.json, summary.csv, records.csv; the journal is not a result).
+[[nodiscard]] std::vector<std::string> existing_sweep_results(const std::string& dir);
+
+// Throws stickslip::error (exit code 2, invalid input) naming the first of
+// `paths` that exists: "'P' already exists (...): <how_to_proceed>".
+// `what` says what the file is ("the results of an earlier sweep").
+void refuse_to_replace(const std::vector<std::string>& paths, const std::string& what,
+                       const std::string& how_to_proceed);
+
+// One output file: the flag that names it (for messages), its path, and
+// the function that prints its text.
+struct text_output {
+  std::string flag;  // "-o", "--events-file", ...
+  std::string path;
+  std::function<std::string()> text;
+};
+
+// Writes every file, or none. First the checks: no path may be a directory or
+// named twice, and unless `replace_existing` none may exist yet
+// (refuse_to_replace with `how_to_proceed`). Then each file goes to
+// `path.tmp` (flushed, fsynced), and only then are all renamed into place. A failure removes the temporaries, the files this
+// call already renamed, and the directories it created, and throws
+// stickslip::error with the system's reason: exit code 2 when a path is an
+// existing directory or two outputs share a path, 3 for I/O failures.
+void write_text_files(const std::vector<text_output>& files, bool replace_existing,
+                      const std::string& how_to_proceed);
+
+}  // namespace stickslip::io

@@ -1,0 +1,131 @@
+// Text of simulate's outputs. Numbers are printed with fmt "{}", the shortest
+// text that reads back to the same double; JSON goes through json_emitter.
+#include "stickslip/io/realization_output.hpp"
+
+#include <fmt/format.h>
+
+#include "json_emitter.hpp"
+#include "stickslip/trajectory.hpp"
+
+namespace stickslip::io {
+
+std::string episodes_csv(const realization_report& r) {
+  std::string out = "mode,start,end,x_start,belt_velocity,censored\n";
+  for (const auto& e : r.episodes)
+    out += fmt::format("{},{},{},{},{},{}\n", to_string(e.kind), e.start, e.end,
+                       e.position_at_start, e.belt_velocity, e.censored ? 1 : 0);
+  return out;
+}
+
+std::string events_csv(const realization_report& r) {
+  std::string out = "kind,time,x,xdot,v\n";
+  for (const auto& e : r.events)
+    out += fmt::format("{},{},{},{},{}\n", to_string(e.kind), e.time, e.position, e.velocity,
+                       e.belt_velocity);
+  return out;
+}
+
+std::string trajectory_csv(const realization_report& r, double step) {
+  std::string out = "t,x,xdot,v,mode\n";
+  for (const auto& q : sample_trajectory(r.segments, step))
+    out += fmt::format("{},{},{},{},{}\n", q.time, q.position, q.velocity, q.belt_velocity,
+                       to_string(q.kind));
+  return out;
+}
+
+namespace {
+
+using detail::json_emitter;
+using detail::layout;
+
+void emit_initial_conditions(json_emitter& j, const realization_report& r) {
+  j.key("initial_conditions");
+  j.begin_object();
+  j.member("x0", r.ic.position);
+  j.member("xdot0", r.ic.velocity);
+  j.member("belt_start", r.ic.belt_direction);
+  j.key("given");
+  j.begin_object();
+  j.member("x0", r.given_x0);
+  j.member("xdot0", r.given_xdot0);
+  j.member("belt_start", r.given_belt);
+  j.end_object();
+  j.end_object();
+}
+
+void emit_statistics(json_emitter& j, const realization_report& r) {
+  const auto& s = r.record;
+  j.key("statistics");
+  j.begin_object();
+  j.member("sticks", static_cast<std::uint64_t>(s.sticks));
+  j.member("slips", static_cast<std::uint64_t>(s.slips));
+  j.member("stick_fraction", s.stick_fraction);
+  j.key("first_stick_start");
+  s.sticks ? j.value(s.first_stick_start) : j.null();
+  j.key("first_stick_duration");
+  s.sticks ? j.value(s.first_stick_duration) : j.null();
+  j.member("first_stick_censored", s.first_stick_censored);
+  j.end_object();
+  j.key("event_counts");
+  j.begin_object();
+  j.member("belt_switch", r.counts.belt_switches);
+  j.member("stick_onset", r.counts.stick_onsets);
+  j.member("stick_break", r.counts.stick_breaks);
+  j.member("slip_reversal", r.counts.slip_reversals);
+  j.end_object();
+}
+
+void emit_episodes(json_emitter& j, const realization_report& r) {
+  j.key("episodes");
+  j.begin_array(layout::multi_line);
+  for (const auto& e : r.episodes) {
+    j.begin_object();
+    j.member("mode", to_string(e.kind));
+    j.member("start", e.start);
+    j.member("end", e.end);
+    j.member("x_start", e.position_at_start);
+    j.member("belt_velocity", e.belt_velocity);
+    j.member("censored", e.censored);
+    j.end_object();
+  }
+  j.end_array();
+}
+
+void emit_events(json_emitter& j, const realization_report& r) {
+  j.key("events");
+  j.begin_array(layout::multi_line);
+  for (const auto& e : r.events) {
+    j.begin_object();
+    j.member("kind", to_string(e.kind));
+    j.member("time", e.time);
+    j.member("x", e.position);
+    j.member("xdot", e.velocity);
+    j.member("v", e.belt_velocity);
+    j.end_object();
+  }
+  j.end_array();
+}
+
+}  // namespace
+
+std::string realization_json(const realization_report& r, bool with_events) {
+  detail::text_sink out;
+  json_emitter j(out);
+  j.begin_object(layout::multi_line);
+  j.key("parameters");
+  j.begin_object();
+  for (const char* name : parameter_names) j.member(name, parameter_by_name(r.params, name));
+  j.end_object();
+  j.member("seed", r.seed);
+  j.member("realization", r.realization);
+  emit_initial_conditions(j, r);
+  j.member("switch_times", r.given_switches ? "given" : "poisson");
+  emit_statistics(j, r);
+  emit_episodes(j, r);
+  if (with_events) emit_events(j, r);
+  j.end_object();
+  out.put('\n');
+  return out.str();
+}
+
+}  // namespace stickslip::io

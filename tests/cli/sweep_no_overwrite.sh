@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# issue 14: `sweep -o DIR` on a folder that holds finished results refuses to
+# replace them (naming the file and the ways on: --overwrite, --resume, another
+# -o), leaves them untouched, and replaces them with --overwrite.
+source "$(dirname "$0")/lib.sh" "$@"
+A=(--lambda 0.5,2 --mu 5 --ta 5 --realizations 20 --block-size 10 --threads 1)
+
+run_ok sweep "${A[@]}" -o out
+cp out/summary.csv first.csv
+"$BIN" sweep "${A[@]}" --seed 2 -o out >"$WORK/stdout" 2>"$WORK/stderr"
+expect_eq "exit code of a sweep onto finished results" "$?" "2"
+for phrase in "out/results.nc' already exists" "--overwrite" "--resume"; do
+  checks=$((checks + 1))
+  grep -qF -- "$phrase" "$WORK/stderr" || fail "stderr lacks '$phrase': $(cat "$WORK/stderr")"
+done
+cmp -s out/summary.csv first.csv || fail "the refused sweep changed out/summary.csv"
+[[ ! -e out/.journal ]] || fail "the refused sweep left a journal"
+
+run_ok sweep "${A[@]}" --seed 2 -o out --overwrite
+cmp -s out/summary.csv first.csv && fail "--overwrite did not replace the results"
+
+# A folder with other files but no results is fine.
+mkdir other && touch other/notes.txt
+run_ok sweep "${A[@]}" -o other
+[[ -s other/summary.csv && -e other/notes.txt ]] || fail "sweep into a folder with other files"
+
+# Duplicate grid values are refused (issue 14).
+expect_fail "grid axis lambda|each value once|#1 and #2" sweep --lambda 1,1 --realizations 10
+expect_fail "grid axis mu|#1 and #3" sweep --mu 5,7,5 --realizations 10
+finish
