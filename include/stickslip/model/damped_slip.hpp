@@ -166,15 +166,16 @@ class damped_oscillator {
   }
 
   // One root of g(t) = sigma (v - x'(t)) in (lo, hi], g(lo) > 0 >= g(hi), g
-  // monotone: Newton steps (g' = -sigma x'') kept inside the bracket, else
-  // bisection, until the bracket is a few ulps wide. Returns the bracket end
-  // with g <= 0 (never a time before the root).
+  // monotone: Newton steps (g' = -sigma x'') from the secant point, kept
+  // inside the bracket (else bisection). Stops when a Newton correction is
+  // within a few ulps of t (t is then the root to a few ulps: the iteration
+  // has reached the rounding noise of g) or the bracket is that narrow.
   [[nodiscard]] double solve_monotone(double y0, double z0, double v, double sigma, double lo,
                                       double g_lo, double hi, damped_state s_hi,
                                       damped_state& at_root) const noexcept {
+    constexpr double eps = std::numeric_limits<double>::epsilon();
     const double g_hi = sigma * (v - s_hi.velocity);
-    double t = g_lo > 0.0 && g_lo - g_hi > 0.0 ? lo + (hi - lo) * (g_lo / (g_lo - g_hi))
-                                               : 0.5 * (lo + hi);
+    double t = g_lo - g_hi > 0.0 ? lo + (hi - lo) * (g_lo / (g_lo - g_hi)) : 0.5 * (lo + hi);
     for (int i = 0; i < 200; ++i) {
       if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
       if (t <= lo || t >= hi) break;  // the bracket is two adjacent doubles
@@ -187,13 +188,13 @@ class damped_oscillator {
         lo = t;
       }
       const double slope = -sigma * s.acceleration;
-      double next = slope != 0.0 ? t - g / slope : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
-      // Converged Newton: straddle the root with one ulp-sized probe.
-      if (std::abs(next - t) <= 2.0 * std::numeric_limits<double>::epsilon() * t)
-        next = g <= 0.0 ? std::nextafter(t, lo) : std::nextafter(t, hi);
-      t = next;
+      const double step = slope != 0.0 ? g / slope : 0.0;
+      if (slope != 0.0 && std::abs(step) <= 4.0 * eps * t) {
+        at_root = s;
+        return t;
+      }
+      if (hi - lo <= 4.0 * eps * hi) break;
+      t = t - step;
     }
     at_root = s_hi;
     return hi;
