@@ -113,30 +113,88 @@ class damped_oscillator {
     const double w1 = -w2_ * z0 - 2.0 * gamma_ * a0;
     double lo = 0.0;
     double g_lo = sigma * (v - z0);
-    // Extrema of x': the under-damped ones every pi / omega_d after the
-    // first; the others have at most one.
-    double extremum = extremum_after(a0, w1, 0.0);
-    const double spacing =
-        regime_ == damping_regime::under ? std::numbers::pi / rate_ : inf;
-    double index = 0.0;
-    const double first = extremum;
-    while (lo < horizon) {
-      const double hi = std::min(extremum, horizon);
-      const damped_state s_hi = advance(y0, z0, hi);
-      const double g_hi = sigma * (v - s_hi.velocity);
-      if (g_hi <= 0.0) return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, at_root);
-      lo = hi;
-      g_lo = g_hi;
-      index += 1.0;
-      extremum = first + index * spacing;
+    if (regime_ == damping_regime::under) {
+      // Extrema every pi / omega_d from the first, theta_1 = omega_d t_1. At
+      // theta_n cos and sin are known without a call: +-(cos theta_1,
+      // sin theta_1), alternating; only e^{-gamma t} is computed there.
+      const under_extremum first = first_under_extremum(a0, w1);
+      if (!(first.theta < inf)) return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root);
+      double sign = 1.0;
+      for (double n = 0.0;; n += 1.0) {
+        const double t_n = (first.theta + n * std::numbers::pi) / rate_;
+        const bool at_horizon = !(t_n < horizon);
+        const double hi = at_horizon ? horizon : t_n;
+        const damped_state s_hi =
+            at_horizon ? advance(y0, z0, hi)
+                       : state_from(y0, z0, std::exp(-gamma_ * hi), sign * first.cos,
+                                    sign * first.sin / rate_);
+        const double g_hi = sigma * (v - s_hi.velocity);
+        if (g_hi <= 0.0) return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, at_root);
+        if (at_horizon) return inf;
+        lo = hi;
+        g_lo = g_hi;
+        sign = -sign;
+      }
     }
-    return inf;
+    // Critically and over-damped: at most one extremum.
+    const double extremum = extremum_after(a0, w1, 0.0);
+    if (extremum < horizon) {
+      const damped_state s_hi = advance(y0, z0, extremum);
+      const double g_hi = sigma * (v - s_hi.velocity);
+      if (g_hi <= 0.0) return solve_monotone(y0, z0, v, sigma, lo, g_lo, extremum, s_hi, at_root);
+      lo = extremum;
+      g_lo = g_hi;
+    }
+    return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root, lo);
   }
 
  private:
   struct basis {
     double f0, f1, g0, g1;
   };
+
+  struct under_extremum {
+    double theta, cos, sin;  // the first extremum's phase omega_d t_1 > 0
+  };
+  // Under-damped: x'' = e^{-gamma t} R sin(theta + phi), phi = atan2(w0, b),
+  // b = (w1 + gamma w0) / omega_d; zeros at theta_n = n pi - phi, where
+  // cos theta_n = (-1)^n cos phi, sin theta_n = -(-1)^n sin phi.
+  [[nodiscard]] under_extremum first_under_extremum(double w0, double w1) const noexcept {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const double b = (w1 + gamma_ * w0) / rate_;
+    if (w0 == 0.0 && b == 0.0) return {inf, 0.0, 0.0};
+    const double phi = fm::atan2(w0, b);
+    const double r = std::sqrt(w0 * w0 + b * b);  // magnitudes are validated: no overflow
+    double n = std::floor(phi / std::numbers::pi) + 1.0;
+    double theta = n * std::numbers::pi - phi;
+    if (theta <= 0.0) {
+      theta += std::numbers::pi;
+      n += 1.0;
+    }
+    const double parity = std::fmod(n, 2.0) == 0.0 ? 1.0 : -1.0;
+    return {theta, parity * b / r, -parity * w0 / r};
+  }
+
+  // The state from e = e^{-gamma t}, C and S of the basis (under-damped:
+  // C = cos omega_d t, S = sin(omega_d t) / omega_d).
+  [[nodiscard]] damped_state state_from(double y0, double z0, double e, double c,
+                                        double s) const noexcept {
+    const double e_s = e * s, e_c = e * c;
+    const double y = y0 * (e_c + gamma_ * e_s) + z0 * e_s;
+    const double z = y0 * (-w2_ * e_s) + z0 * (e_c - gamma_ * e_s);
+    return {y, z, -w2_ * y - 2.0 * gamma_ * z};
+  }
+
+  // The last piece, from lo to the horizon, has no extremum inside.
+  [[nodiscard]] double horizon_only(double y0, double z0, double v, double sigma, double g_lo,
+                                    double horizon, damped_state& at_root,
+                                    double lo = 0.0) const noexcept {
+    if (!(lo < horizon)) return std::numeric_limits<double>::infinity();
+    const damped_state s_hi = advance(y0, z0, horizon);
+    if (sigma * (v - s_hi.velocity) <= 0.0)
+      return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, at_root);
+    return std::numeric_limits<double>::infinity();
+  }
 
   [[nodiscard]] basis at(double t) const noexcept {
     double e_s, e_c;  // e^{-gamma t} S and e^{-gamma t} C
@@ -166,10 +224,11 @@ class damped_oscillator {
   }
 
   // One root of g(t) = sigma (v - x'(t)) in (lo, hi], g(lo) > 0 >= g(hi), g
-  // monotone: Newton steps (g' = -sigma x'') from the secant point, kept
-  // inside the bracket (else bisection). Stops when a Newton correction is
-  // within a few ulps of t (t is then the root to a few ulps: the iteration
-  // has reached the rounding noise of g) or the bracket is that narrow.
+  // monotone: Halley steps (g' = -sigma x'', g'' = -sigma x''') from the
+  // secant point, kept inside the bracket (else bisection). Stops when a
+  // correction is within a few ulps of t (t is then the root to a few ulps:
+  // the iteration has reached the rounding noise of g) or the bracket is that
+  // narrow.
   [[nodiscard]] double solve_monotone(double y0, double z0, double v, double sigma, double lo,
                                       double g_lo, double hi, damped_state s_hi,
                                       damped_state& at_root) const noexcept {
@@ -188,7 +247,9 @@ class damped_oscillator {
         lo = t;
       }
       const double slope = -sigma * s.acceleration;
-      const double step = slope != 0.0 ? g / slope : 0.0;
+      const double curvature = sigma * (w2_ * s.velocity + 2.0 * gamma_ * s.acceleration);
+      const double denominator = 2.0 * slope * slope - g * curvature;
+      const double step = denominator != 0.0 ? 2.0 * g * slope / denominator : 0.0;
       if (slope != 0.0 && std::abs(step) <= 4.0 * eps * t) {
         at_root = s;
         return t;
