@@ -173,3 +173,40 @@ TEST(ModelClosedForms, OverAndCriticallyDampedMotionApproachesTheEquilibriumWith
 
 }  // namespace
 }  // namespace stickslip
+
+namespace stickslip {
+namespace {
+
+// A strongly over-damped slip that lasts long: e^{r2 t} underflows while
+// e^{2 beta t} overflows (2 beta t > 709); the closed form must still give
+// e^{-gamma t} sinh(beta t) / beta = (e^{r1 t} - e^{r2 t}) / (2 beta), not
+// 0 * inf. Here zeta = 4, omega_0 = 2, t = 60 s: 2 beta t ~ 930.
+TEST(ModelClosedForms, LongOverDampedSlipStaysFinite) {
+  oscillator_model m;
+  m.mass = 1.0;
+  m.stiffness = 4.0;
+  m.damping = 2.0 * 4.0 * 2.0;
+  m.kinetic_friction = 0.5;
+  m.static_friction = 0.6;
+  m.belt = two_level_belt(0.0, 1.0, 1e-9, 1e-9);
+  m.window = 60.0;
+  const double ak = m.kinetic_offset(), as = m.static_band_half_width();
+  const double x0 = 4.0 * as, y0 = x0 - ak, gamma = m.decay_rate(), w0 = m.natural_frequency();
+  struct last_segment : model_observer_base {
+    model_segment last{};
+    void on_segment(const model_segment& s) { last = s; }
+  } obs;
+  given_level_switches none({});
+  simulate_model(m, {x0, 0.0, 0}, none, obs);
+  const double beta = std::sqrt(gamma * gamma - w0 * w0), r1 = -w0 * w0 / (gamma + beta);
+  const double r2 = -gamma - beta;
+  for (double t : {10.0, 45.0, 60.0}) {
+    const phase_point p = evaluate(obs.last, t);
+    const double y = y0 * (r1 * std::exp(r2 * t) - r2 * std::exp(r1 * t)) / (r1 - r2);
+    ASSERT_TRUE(std::isfinite(p.position)) << "t " << t;
+    EXPECT_NEAR(p.position, ak + y, 1e-12 * x0) << "t " << t;
+  }
+}
+
+}  // namespace
+}  // namespace stickslip

@@ -39,7 +39,7 @@ class damped_oscillator {
  public:
   // Preconditions: omega_0 > 0, gamma > 0, both finite.
   damped_oscillator(double omega0, double gamma) noexcept
-      : w2_(omega0 * omega0), gamma_(gamma) {
+      : w2_(omega0 * omega0), gamma_(gamma), growth_(omega0 + 2.0 * gamma) {
     const double d = (omega0 - gamma) * (omega0 + gamma);  // omega_d^2, factored
     if (d > 0.0) {
       regime_ = damping_regime::under;
@@ -214,9 +214,21 @@ class damped_oscillator {
       }
       case damping_regime::over:
       default: {
-        const double e1 = std::exp(r1_ * t), e2 = std::exp(r2_ * t);
-        e_s = e2 * std::expm1(2.0 * rate_ * t) / (2.0 * rate_);  // (e1 - e2) / (2 beta)
-        e_c = 0.5 * (e1 + e2);
+        // (e1 - e2) / (2 beta) and (e1 + e2) / 2 with e1 = e^{r1 t},
+        // e2 = e^{r2 t}: for 2 beta t < 1 as e2 expm1(2 beta t) (no
+        // cancellation, one exp and one expm1, e1 = e2 (1 + expm1)); beyond,
+        // from e1 and e2 themselves (e2 may underflow where e^{2 beta t}
+        // would overflow: never 0 * inf).
+        const double spread = 2.0 * rate_ * t;
+        if (spread < 1.0) {
+          const double e2 = std::exp(r2_ * t), em = std::expm1(spread);
+          e_s = e2 * em / (2.0 * rate_);
+          e_c = e2 + 0.5 * (e2 * em);
+        } else {
+          const double e1 = std::exp(r1_ * t), e2 = std::exp(r2_ * t);
+          e_s = (e1 - e2) / (2.0 * rate_);
+          e_c = 0.5 * (e1 + e2);
+        }
         break;
       }
     }
@@ -254,6 +266,17 @@ class damped_oscillator {
         at_root = s;
         return t;
       }
+      // A last step this small leaves a Halley error ~ (growth step)^3 below
+      // the rounding of t: take it without another closed-form evaluation,
+      // moving the state along its own Taylor series (third order, the next
+      // term is smaller still).
+      if (slope != 0.0 && std::abs(step) * growth_ <= 2e-6 && t - step > lo && t - step <= hi) {
+        const double h = -step;
+        const double jerk = -w2_ * s.velocity - 2.0 * gamma_ * s.acceleration;
+        at_root = {s.y + h * (s.velocity + h * (0.5 * s.acceleration + h * jerk / 6.0)), v,
+                   s.acceleration + h * jerk};
+        return t + h;
+      }
       if (hi - lo <= 4.0 * eps * hi) break;
       t = t - step;
     }
@@ -261,7 +284,7 @@ class damped_oscillator {
     return hi;
   }
 
-  double w2_, gamma_;
+  double w2_, gamma_, growth_;  // growth_ = omega_0 + 2 gamma bounds every rate of the slip
   damping_regime regime_ = damping_regime::critical;
   double rate_ = 0.0;  // omega_d (under) or beta (over)
   double r1_ = 0.0, r2_ = 0.0;
