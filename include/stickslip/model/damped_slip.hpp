@@ -15,11 +15,13 @@
 // and expm1, so nothing overflows or cancels).
 //
 // The relative velocity x' - v is monotone between consecutive zeros of x''
-// (the extrema of x'), which have closed forms (extremum_after). The first
-// root of sigma (v - x') = 0 is found piece by piece: a piece whose end has
-// sigma (v - x') <= 0 holds exactly one root (monotone), which a Newton
-// iteration safeguarded by the bracket solves to a few ulps. No root is
-// missed, since every piece is checked at its end.
+// (the extrema of x'), which have closed forms (extremum_after; the
+// under-damped ones also first_under_extremum, whose cos/sin make each
+// extremum cost one exp). The first root of sigma (v - x') = 0 is found piece
+// by piece: a piece whose end has sigma (v - x') <= 0 holds exactly one root
+// (monotone), which Halley's iteration safeguarded by the bracket solves to a
+// few ulps. No root is missed, since every piece is checked at its end.
+// Derivations: docs/model.md, "Slip" of "The model family".
 #pragma once
 #include <cmath>
 #include <limits>
