@@ -200,5 +200,57 @@ TEST(ModelOracleAgreement, RandomFamilyScenariosHaveIdenticalEpisodeSequences) {
   EXPECT_GT(rest_sticks, 20);
 }
 
+
+// Hand-picked starts on the edges of the cases, each with one right answer
+// that both integrators must give (no degeneracy filter): on the outward band
+// edge at belt velocity (a zero-length stick: slip on; with mu_s = mu_k no
+// return until a switch, with mu_s > mu_k a return and a stick), on the
+// inward edge (a stick across the band), outside the band at belt velocity (a
+// reversal), at rest on a resting level inside and outside the band, and
+// belt switches at t = 0, for c = 0, under- and over-damped. g = 8, m = 1,
+// k = 4, mu_k = 0.5: a_k = 1 exactly.
+TEST(ModelOracleAgreement, EdgeStartsAndSwitchesAtZero) {
+  int checked = 0;
+  for (double c : {0.0, 0.8, 10.0}) {
+    for (double mu_s : {0.5, 0.75}) {
+      oscillator_model m;
+      m.gravity = 8.0;
+      m.kinetic_friction = 0.5;
+      m.static_friction = mu_s;
+      m.damping = c;
+      m.belt = markov_belt{{1.0, -1.0, 0.0}, {-2, 1, 1, 1, -2, 1, 1, 1, -2}};
+      m.window = 8.0;
+      const double as = m.static_band_half_width();
+      auto edge = [&](double v, double s) { return s * as - c * v / m.stiffness; };
+      const model_scenario cases[] = {
+          {m, {edge(1.0, 1.0), 1.0, 0}, {}},
+          {m, {edge(-1.0, -1.0), -1.0, 1}, {}},
+          {m, {edge(1.0, -1.0), 1.0, 0}, {}},
+          {m, {edge(1.0, 1.0) + 2.0, 1.0, 0}, {}},
+          {m, {0.4, 0.0, 2}, {{3.0, 0}}},
+          {m, {3.0 * as, 0.0, 2}, {}},
+          {m, {0.0, 1.0, 0}, {{0.0, 1}, {3.0, 2}}},
+          {m, {0.3, -1.0, 0}, {{0.0, 2}}},
+          {m, {edge(1.0, 1.0), 1.0, 0}, {{0.0, 1}, {1.0, 0}}},
+          {m, {0.2, 0.7, 1}, {{0.0, 2}, {0.1, 0}, {0.2, 1}}},
+      };
+      for (const model_scenario& s : cases) {
+        const model_exact_run exact = run_model_exact(s);
+        const model_oracle_result oracle = integrate_model_reference(
+            s.model, s.ic, s.switches, {.steps_per_period = steps_per_period});
+        const tolerance tol = tolerance_for(s, exact, steps_per_period);
+        const auto d = compare(exact.episodes, oracle.episodes);
+        ASSERT_TRUE(d.has_value()) << describe(s) << "\nexact:\n"
+                                   << episodes_text(exact.episodes) << "oracle:\n"
+                                   << episodes_text(oracle.episodes);
+        EXPECT_LE(d->time, tol.time) << describe(s);
+        EXPECT_LE(d->position, tol.position) << describe(s);
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 60);
+}
+
 }  // namespace
 }  // namespace stickslip::reference
