@@ -131,7 +131,8 @@ class damped_oscillator {
                        : state_from(y0, z0, std::exp(-gamma_ * hi), sign * first.cos,
                                     sign * first.sin / rate_);
         const double g_hi = sigma * (v - s_hi.velocity);
-        if (g_hi <= 0.0) return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, at_root);
+        if (g_hi <= 0.0)
+          return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, !at_horizon, at_root);
         if (at_horizon) return inf;
         lo = hi;
         g_lo = g_hi;
@@ -143,7 +144,8 @@ class damped_oscillator {
     if (extremum < horizon) {
       const damped_state s_hi = advance(y0, z0, extremum);
       const double g_hi = sigma * (v - s_hi.velocity);
-      if (g_hi <= 0.0) return solve_monotone(y0, z0, v, sigma, lo, g_lo, extremum, s_hi, at_root);
+      if (g_hi <= 0.0)
+        return solve_monotone(y0, z0, v, sigma, lo, g_lo, extremum, s_hi, true, at_root);
       lo = extremum;
       g_lo = g_hi;
     }
@@ -194,7 +196,7 @@ class damped_oscillator {
     if (!(lo < horizon)) return std::numeric_limits<double>::infinity();
     const damped_state s_hi = advance(y0, z0, horizon);
     if (sigma * (v - s_hi.velocity) <= 0.0)
-      return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, at_root);
+      return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, false, at_root);
     return std::numeric_limits<double>::infinity();
   }
 
@@ -245,10 +247,15 @@ class damped_oscillator {
   // narrow.
   [[nodiscard]] double solve_monotone(double y0, double z0, double v, double sigma, double lo,
                                       double g_lo, double hi, damped_state s_hi,
-                                      damped_state& at_root) const noexcept {
+                                      bool vertex_at_hi, damped_state& at_root) const noexcept {
     constexpr double eps = std::numeric_limits<double>::epsilon();
     const double g_hi = sigma * (v - s_hi.velocity);
-    double t = g_lo - g_hi > 0.0 ? lo + (hi - lo) * (g_lo / (g_lo - g_hi)) : 0.5 * (lo + hi);
+    // Start: where g vanishes on the parabola with its vertex at an extremum
+    // end (g' = 0 there) through the other end, else the secant point.
+    double t = 0.5 * (lo + hi);
+    if (g_lo - g_hi > 0.0)
+      t = vertex_at_hi ? hi - (hi - lo) * std::sqrt(-g_hi / (g_lo - g_hi))
+                       : lo + (hi - lo) * (g_lo / (g_lo - g_hi));
     for (int i = 0; i < 200; ++i) {
       if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
       if (t <= lo || t >= hi) break;  // the bracket is two adjacent doubles
