@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "stickslip/error.hpp"
@@ -89,15 +90,33 @@ TEST(ModelValidation, GeneratorRowThatDoesNotSumToZero) {
 
 TEST(ModelValidation, ReplayedLevelThatDoesNotExist) {
   const std::vector<level_switch> ok{{0.5, 1}, {1.0, 0}};
-  EXPECT_NO_THROW(validate_level_switches(ok, 2));
+  EXPECT_NO_THROW(validate_level_switches(ok, 2, 0));
   const std::vector<level_switch> bad{{0.5, 1}, {1.0, 2}};
   try {
-    validate_level_switches(bad, 2);
+    validate_level_switches(bad, 2, 0);
     ADD_FAILURE() << "accepted";
   } catch (const error& e) {
     EXPECT_EQ(e.code(), exit_code::invalid_input);
     expect_mentions(e.what(), {"switch #2 level", "2", "0..1"});
   }
+}
+
+TEST(ModelValidation, ReplayedSwitchThatKeepsTheLevel) {
+  const std::vector<level_switch> from_start{{0.5, 0}};
+  const std::vector<level_switch> repeated{{0.5, 2}, {0.7, 1}, {0.9, 1}};
+  for (const auto& [switches, start, which] :
+       {std::tuple{from_start, std::size_t{0}, "switch #1 level"},
+        std::tuple{repeated, std::size_t{0}, "switch #3 level"}}) {
+    try {
+      validate_level_switches(switches, 3, start);
+      ADD_FAILURE() << "accepted";
+    } catch (const error& e) {
+      EXPECT_EQ(e.code(), exit_code::invalid_input);
+      expect_mentions(e.what(), {which, "other than the current one"});
+    }
+  }
+  const std::vector<level_switch> fine{{0.5, 2}, {0.7, 1}};
+  EXPECT_NO_THROW(validate_level_switches(fine, 3, 0));
 }
 
 TEST(ModelValidation, PaperModelIsTheFamilysSpecialCase) {

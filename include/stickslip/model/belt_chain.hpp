@@ -107,7 +107,7 @@ class markov_level_switches {
 class given_level_switches {
  public:
   // Preconditions (validate_level_switches at the edge): times finite, >= 0,
-  // strictly increasing; levels exist.
+  // strictly increasing; levels exist; each differs from the one before.
   explicit given_level_switches(std::span<const level_switch> switches) noexcept
       : switches_(switches) {}
   [[nodiscard]] level_switch next() noexcept {
@@ -121,9 +121,12 @@ class given_level_switches {
 };
 
 // Throws stickslip::error naming the first offending entry: a time that is
-// not finite, negative or not after the previous one, or a level index
-// >= level_count.
-void validate_level_switches(std::span<const level_switch> switches, std::size_t level_count);
+// not finite, negative or not after the previous one, a level index
+// >= level_count, or (given the starting level) a switch to the level the
+// belt is already on: the chain only jumps between distinct levels, and the
+// engine's switch rules (a switch ends every stick) assume the level changes.
+void validate_level_switches(std::span<const level_switch> switches, std::size_t level_count,
+                             std::size_t start_level);
 
 // Two-level replay lines carry only times ("go to the other level"): the
 // (t, level) list that alternates from `start_level`.

@@ -51,7 +51,9 @@ std::size_t draw_stationary_level(const belt_chain& chain, std::uint64_t seed,
   return chain.stationary_level(random_stream::open_uniform(rs.next_block().v[3]));
 }
 
-void validate_level_switches(std::span<const level_switch> switches, std::size_t level_count) {
+void validate_level_switches(std::span<const level_switch> switches, std::size_t level_count,
+                             std::size_t start_level) {
+  std::size_t current = start_level;
   for (std::size_t i = 0; i < switches.size(); ++i) {
     const std::string name = "switch #" + std::to_string(i + 1);
     const double t = switches[i].time;
@@ -63,6 +65,11 @@ void validate_level_switches(std::span<const level_switch> switches, std::size_t
     if (switches[i].level >= level_count)
       throw invalid_parameter(name + " level", static_cast<double>(switches[i].level),
                               "an existing level index, 0.." + std::to_string(level_count - 1));
+    if (switches[i].level == current)
+      throw invalid_parameter(name + " level", static_cast<double>(current),
+                              "a level other than the current one (" + std::to_string(current) +
+                                  "): a switch must change the belt level");
+    current = switches[i].level;
   }
 }
 
