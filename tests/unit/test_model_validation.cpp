@@ -119,6 +119,24 @@ TEST(ModelValidation, ReplayedSwitchThatKeepsTheLevel) {
   EXPECT_NO_THROW(validate_level_switches(fine, 3, 0));
 }
 
+TEST(ModelValidation, InitialStateOnAnExistingLevel) {
+  const markov_belt belt = two_level_belt(1.0, -1.0, 1.0, 1.0);
+  EXPECT_NO_THROW(validate(model_initial_state{0.5, -0.2, 1}, belt));
+  try {
+    validate(model_initial_state{0.5, -0.2, 2}, belt);
+    ADD_FAILURE() << "accepted";
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::invalid_input);
+    expect_mentions(e.what(), {"belt-start", "2", "0..1"});
+  }
+  try {
+    validate(model_initial_state{std::numeric_limits<double>::quiet_NaN(), 0.0, 0}, belt);
+    ADD_FAILURE() << "accepted";
+  } catch (const error& e) {
+    expect_mentions(e.what(), {"x0", "nan", "finite"});
+  }
+}
+
 TEST(ModelValidation, PaperModelIsTheFamilysSpecialCase) {
   model_parameters p;
   p.friction_coefficient = 0.3;

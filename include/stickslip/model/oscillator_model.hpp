@@ -94,4 +94,8 @@ struct model_initial_state {
   std::size_t level = 0;
 };
 
+// Throws stickslip::error: x0 and x'0 finite with |value| <= 1e60, and the
+// level an index of one of the belt's levels.
+void validate(const model_initial_state& state, const markov_belt& belt);
+
 }  // namespace stickslip

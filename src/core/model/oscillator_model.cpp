@@ -126,6 +126,18 @@ std::vector<double> stationary_law(const markov_belt& belt) {
   return pi;
 }
 
+void validate(const model_initial_state& state, const markov_belt& belt) {
+  if (!std::isfinite(state.position) || std::abs(state.position) > max_magnitude)
+    throw invalid_parameter("x0 (initial position)", state.position,
+                            "a finite number with |value| <= 1e60");
+  if (!std::isfinite(state.velocity) || std::abs(state.velocity) > max_magnitude)
+    throw invalid_parameter("xdot0 (initial velocity)", state.velocity,
+                            "a finite number with |value| <= 1e60");
+  if (state.level >= belt.level_count())
+    throw invalid_parameter("belt-start (level index)", static_cast<double>(state.level),
+                            "an existing level index, 0.." + std::to_string(belt.level_count() - 1));
+}
+
 oscillator_model paper_model(const model_parameters& p) {
   oscillator_model m;
   m.mass = p.mass;
