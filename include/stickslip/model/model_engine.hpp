@@ -1,0 +1,264 @@
+// Exact, event-driven integration of one realization of the model family
+// (oscillator_model.hpp; derivations in docs/model.md, "The model family"):
+//
+//   m x'' + c x' + k x = f,  slip: f = mu_k m g sgn(v - x'),
+//   stick: x' = v while |k x + c v| <= mu_s m g,  v(t) a Markov chain.
+//
+// The same events, episodes and observer calls as simulate() (integrator.hpp),
+// with model_segment for the pieces of motion. Write F = k x + c v (the force
+// a stick needs) and b = -c v / k, so the stick band is |x - b| <= a_s.
+//
+// Stick at v != 0: x = x0 + v t until x - b = sgn(v) a_s (a break), or a belt
+//   switch. At v = 0: until the next belt switch. A switch ends every stick:
+//   the mass keeps x' = old v and slips against the new level.
+// Slip with sigma = sgn(v - x'): harmonic about sigma a_k when c = 0 (the
+//   paper's rotation, the same code and the same bits as simulate()), damped
+//   otherwise (damped_slip.hpp: closed forms and certified root isolation).
+// At x' = v: a stick if |F| <= mu_s m g, except at the outward band edge
+//   (sgn(v) (x - b) = a_s, v != 0), where the stick would last zero time: the
+//   slip goes on with sigma = sgn(v), like after a break. Otherwise the slip
+//   reverses: sigma = sgn(F) (a slip_reversal).
+// After a break (or an outward-edge touch) the relative acceleration is
+//   x'' = sgn(v) (mu_k - mu_s) g. With mu_s = mu_k it is 0: the orbit only
+//   grazes x' = v (undamped, docs/model.md) or never returns (damped: every
+//   later extremum of x' is smaller in size), so no contact is sought until
+//   the next switch (`grazing`). With mu_s > mu_k the slip leaves at once and
+//   its return is found like any other.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "stickslip/episode.hpp"
+#include "stickslip/error.hpp"
+#include "stickslip/integrator.hpp"
+#include "stickslip/model/belt_chain.hpp"
+#include "stickslip/model/damped_slip.hpp"
+#include "stickslip/model/model_segment.hpp"
+#include "stickslip/model/oscillator_model.hpp"
+
+namespace stickslip {
+
+// Preconditions: validate(model) passed; ic.level < level count; the switch
+// source yields level_switch values with existing levels, times non-decreasing.
+template <class LevelSwitches, class Observer>
+event_counts simulate_model(const oscillator_model& model, const model_initial_state& ic,
+                            LevelSwitches& switches, Observer& obs,
+                            std::int64_t max_events = default_max_events) {
+  const double as = model.static_band_half_width();
+  const double ak = model.kinetic_offset();
+  const double w = model.natural_frequency();
+  const double w2 = w * w;
+  const double gamma = model.decay_rate();
+  const bool damped = gamma > 0.0;
+  const bool equal_friction = model.static_friction == model.kinetic_friction;
+  const double edge_acceleration_size = (model.kinetic_friction - model.static_friction) * model.gravity;
+  const double c_over_k = model.damping / model.stiffness;
+  const double ta = model.window;
+  const double* levels = model.belt.levels.data();
+  const detail::damped_oscillator oscillator(w, damped ? gamma : 0.0);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+
+  event_counts counts;
+  double t = 0.0, x = ic.position, z = ic.velocity;
+  double v = levels[ic.level];
+  double b = -c_over_k * v;  // centre of the stick band
+  level_switch next_switch = switches.next();
+
+  mode m;
+  double sigma = 1.0;         // friction direction while slipping
+  bool grazing = false;       // no return to x' = v before the next switch
+  bool after_reversal = false;
+  bool mirror = false;        // undamped slip started by a switch that ended a stick, v -> -v
+  double acceleration = 0.0;  // x'' at the start of a damped slip
+
+  auto generic_acceleration = [&] { return -w2 * (x - sigma * ak) - 2.0 * gamma * z; };
+  auto sign_of = [](double u) { return u > 0 ? 1.0 : -1.0; };
+  auto on_outward_edge = [&] { return v != 0.0 && as - sign_of(v) * (x - b) <= 0.0; };
+  // Slip away from the outward band edge at x' = v (after a break, or a
+  // contact there): sigma = sgn(v), x'' = sgn(v) (mu_k - mu_s) g exactly.
+  auto leave_edge = [&] {
+    m = mode::slip;
+    sigma = sign_of(v);
+    grazing = equal_friction;
+    after_reversal = !equal_friction;
+    mirror = false;
+    acceleration = sigma * edge_acceleration_size;
+  };
+  // Resolve the mode at relative velocity zero (x' == v), arriving with from_sigma.
+  auto resolve_at_contact = [&](double from_sigma) {
+    const bool inside = from_sigma > 0 ? x - b >= -as : x - b <= as;
+    if (inside) {
+      x = std::clamp(x, b - as, b + as);
+      m = mode::stick;
+    } else {
+      m = mode::slip;
+      sigma = -from_sigma;
+      after_reversal = true;
+      acceleration = generic_acceleration();
+    }
+  };
+
+  if (z == v && std::abs(x - b) <= as && !on_outward_edge()) {
+    m = mode::stick;
+  } else if (z == v && std::abs(x - b) <= as) {  // a zero-length stick at the outward edge
+    leave_edge();
+  } else if (z == v) {
+    m = mode::slip;
+    sigma = sign_of(x - b);
+    after_reversal = true;
+    acceleration = generic_acceleration();
+  } else {
+    m = mode::slip;
+    sigma = v > z ? 1.0 : -1.0;
+    acceleration = generic_acceleration();
+  }
+
+  episode ep{m, 0.0, 0.0, x, v, false};
+  auto close_episode = [&](double when, mode next_mode) {
+    ep.end = when;
+    if (ep.end > ep.start) obs.on_episode(ep);
+    ep = episode{next_mode, when, 0.0, x, v, false};
+  };
+  auto take_switch = [&] {
+    v = levels[next_switch.level];
+    b = -c_over_k * v;
+    ++counts.belt_switches;
+    obs.on_event(event{event_kind::belt_switch, t, x, z, v});
+    next_switch = switches.next();
+  };
+
+  std::int64_t steps = 0;
+  while (true) {
+    if (++steps > max_events) throw work_bound_exceeded(steps, t, ta);
+    const double t_switch = next_switch.time;
+
+    if (m == mode::stick) {
+      const double s = sign_of(v);
+      const double t_edge = v != 0.0 ? t + (as - s * (x - b)) / std::abs(v) : inf;
+      const double t_next = std::min(t_edge, t_switch);
+      obs.on_segment(model_segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w, gamma});
+      if (t_next >= ta) {
+        x += v * (ta - t);
+        t = ta;
+        break;
+      }
+      if (t_switch <= t_edge) {  // a belt switch ends the stick: x' = old v
+        x = std::clamp(x + v * (t_switch - t), b - as, b + as);
+        z = v;
+        t = t_switch;
+        const double old_v = v;
+        take_switch();
+        m = mode::slip;
+        sigma = v > z ? 1.0 : -1.0;
+        grazing = after_reversal = false;
+        mirror = !damped && v == -old_v;
+        acceleration = generic_acceleration();
+        close_episode(t, mode::slip);
+      } else {  // the stick breaks at the band edge; exact state
+        x = b + s * as;
+        z = v;
+        t = t_edge;
+        leave_edge();
+        ++counts.stick_breaks;
+        obs.on_event(event{event_kind::stick_break, t, x, z, v});
+        close_episode(t, mode::slip);
+      }
+      continue;
+    }
+
+    // --- slip ---
+    const double center = sigma * ak;
+    const double y = x - center;
+    double t_root = inf;
+    double x_root = 0.0;
+    if (!damped) {
+      const double wy = w * y;
+      const double disc = wy * wy + (z - v) * (z + v);  // B^2 - v^2
+      if (!grazing && disc > 0.0) {
+        double dtheta;
+        if (mirror) {
+          dtheta = detail::mirror_return_angle(wy, z);  // z == -v exactly here
+        } else if (after_reversal) {
+          dtheta = detail::reversal_arc_angle(wy, v, sigma);  // z == v exactly here
+        } else {
+          dtheta = detail::root_angle(wy, z, v, sigma, std::sqrt(disc));
+        }
+        t_root = t + dtheta / w;
+        x_root = mirror ? x : center - sigma * std::sqrt(disc) / w;
+      }
+    } else if (!grazing) {
+      detail::damped_state at_root{};
+      const double tau = oscillator.first_rest(y, z, acceleration, v, sigma,
+                                               std::min(t_switch, ta) - t, at_root);
+      if (tau < inf) {
+        t_root = t + tau;
+        x_root = center + at_root.y;
+      }
+    }
+    const double t_next = std::min(t_root, t_switch);
+    obs.on_segment(model_segment{mode::slip, t, std::min(t_next, ta), x, z, v, center, w, gamma});
+    auto advance_to = [&](double when) {
+      const double dt = when - t;
+      if (!damped) {
+        const double cs = detail::fm::cos(w * dt), sn = detail::fm::sin(w * dt);
+        x = center + y * cs + z / w * sn;
+        z = z * cs - w * y * sn;
+      } else {
+        const detail::damped_state s = oscillator.advance(y, z, dt);
+        x = center + s.y;
+        z = s.velocity;
+      }
+      t = when;
+    };
+    if (t_next >= ta) {
+      advance_to(ta);
+      break;
+    }
+    if (t_switch <= t_root) {  // a belt switch during a slip: x, x' continuous
+      advance_to(t_switch);
+      take_switch();
+      grazing = after_reversal = mirror = false;
+      if (z == v) {  // measure zero: landed exactly on relative rest
+        resolve_at_contact(x - b > 0 ? -1.0 : 1.0);
+        if (m == mode::stick && on_outward_edge()) {
+          leave_edge();
+        } else if (m == mode::stick) {
+          ++counts.stick_onsets;
+          obs.on_event(event{event_kind::stick_onset, t, x, z, v});
+          close_episode(t, mode::stick);
+        }
+      } else {
+        sigma = v > z ? 1.0 : -1.0;
+        acceleration = generic_acceleration();
+      }
+      continue;
+    }
+    // Relative rest x' = v.
+    x = x_root;
+    z = v;
+    t = t_root;
+    const double from_sigma = sigma;
+    after_reversal = mirror = false;
+    resolve_at_contact(from_sigma);
+    if (m == mode::stick) {
+      if (on_outward_edge()) {  // a zero-length stick: slip on from the edge
+        leave_edge();
+        continue;
+      }
+      ++counts.stick_onsets;
+      obs.on_event(event{event_kind::stick_onset, t, x, z, v});
+      close_episode(t, mode::stick);
+    } else {
+      ++counts.slip_reversals;
+      obs.on_event(event{event_kind::slip_reversal, t, x, z, v});
+    }
+  }
+  ep.end = ta;
+  ep.censored = true;
+  obs.on_episode(ep);
+  return counts;
+}
+
+}  // namespace stickslip

@@ -1,0 +1,154 @@
+#include "stickslip/model/oscillator_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "stickslip/error.hpp"
+
+namespace stickslip {
+namespace {
+
+void require_positive(const char* name, double value) {
+  if (!std::isfinite(value) || !(value > 0.0))
+    throw invalid_parameter(name, value, "a finite number > 0");
+}
+
+void require_scale(const char* name, double value) {
+  if (!(value >= min_magnitude && value <= max_magnitude))
+    throw invalid_parameter(name, value, "a derived scale within [1e-60, 1e60]");
+}
+
+std::string level_name(std::size_t i) { return "belt level v" + std::to_string(i + 1); }
+std::string rate_name(std::size_t i, std::size_t j) {
+  return "belt rate q" + std::to_string(i + 1) + "," + std::to_string(j + 1);
+}
+
+}  // namespace
+
+markov_belt two_level_belt(double v1, double v2, double rate_from_first,
+                           double rate_from_second) {
+  return markov_belt{{v1, v2},
+                     {-rate_from_first, rate_from_first, rate_from_second, -rate_from_second}};
+}
+
+void validate(const markov_belt& belt) {
+  const std::size_t n = belt.levels.size();
+  if (n < 2)
+    throw invalid_parameter("belt levels (count)", static_cast<double>(n), "at least 2 levels");
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = belt.levels[i];
+    if (!std::isfinite(v) || std::abs(v) > max_magnitude)
+      throw invalid_parameter(level_name(i), v, "a finite number with |value| <= 1e60");
+    for (std::size_t j = 0; j < i; ++j)
+      if (belt.levels[j] == v)
+        throw invalid_parameter(level_name(i), v,
+                                "distinct from every other level (equals " + level_name(j) + ")");
+  }
+  if (belt.generator.size() != n * n)
+    throw invalid_parameter("belt generator (entries)", static_cast<double>(belt.generator.size()),
+                            "exactly n x n = " + std::to_string(n * n) + " rates");
+  for (std::size_t i = 0; i < n; ++i) {
+    double off_sum = 0.0, largest = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const double q = belt.rate(i, j);
+      if (!std::isfinite(q) || q < 0.0 || q > max_magnitude)
+        throw invalid_parameter(rate_name(i, j), q, "a finite rate >= 0 and <= 1e60");
+      off_sum += q;
+      largest = std::max(largest, q);
+    }
+    if (!(off_sum > 0.0))
+      throw invalid_parameter("belt rate of leaving " + level_name(i), off_sum,
+                              "a finite rate > 0 (every level must be left)");
+    const double diagonal = belt.rate(i, i);
+    if (!std::isfinite(diagonal))
+      throw invalid_parameter(rate_name(i, i), diagonal, "finite (minus the row's other rates)");
+    const double row_sum = off_sum + diagonal;
+    if (std::abs(row_sum) > 1e-12 * std::max(largest, std::abs(diagonal)))
+      throw invalid_parameter("belt generator row " + std::to_string(i + 1) + " sum", row_sum,
+                              "0 (q" + std::to_string(i + 1) + "," + std::to_string(i + 1) +
+                                  " = -sum of the other rates in its row)");
+  }
+}
+
+void validate(const oscillator_model& m) {
+  require_positive("m", m.mass);
+  require_positive("k", m.stiffness);
+  require_positive("g", m.gravity);
+  require_positive("ta", m.window);
+  if (!std::isfinite(m.damping) || m.damping < 0.0)
+    throw invalid_parameter("c (damping)", m.damping, "a finite number >= 0");
+  require_positive("mu_k (kinetic friction)", m.kinetic_friction);
+  if (!std::isfinite(m.static_friction) || m.static_friction < m.kinetic_friction)
+    throw invalid_parameter("mu_s (static friction)", m.static_friction,
+                            ">= mu_k = " + std::to_string(m.kinetic_friction) +
+                                " (mu_k > mu_s is not allowed)");
+  for (double v : {m.mass, m.stiffness, m.gravity, m.window, m.kinetic_friction})
+    require_scale("model parameter", v);
+  validate(m.belt);
+  require_scale("a_k = mu_k m g / k", m.kinetic_offset());
+  require_scale("a_s = mu_s m g / k", m.static_band_half_width());
+  require_scale("omega_0 = sqrt(k/m)", m.natural_frequency());
+  if (m.damping > 0.0) {
+    require_scale("c", m.damping);
+    require_scale("gamma = c / (2 m)", m.decay_rate());
+  }
+}
+
+std::vector<double> stationary_law(const markov_belt& belt) {
+  const std::size_t n = belt.levels.size();
+  // Solve A pi = b with A = Q^T, its last row replaced by (1, ..., 1), b = e_n.
+  std::vector<double> a(n * n), b(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) a[i * n + j] = i + 1 == n ? 1.0 : belt.rate(j, i);
+  b[n - 1] = 1.0;
+  for (std::size_t col = 0; col < n; ++col) {
+    std::size_t pivot = col;
+    for (std::size_t r = col + 1; r < n; ++r)
+      if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
+    if (pivot != col) {
+      for (std::size_t j = 0; j < n; ++j) std::swap(a[col * n + j], a[pivot * n + j]);
+      std::swap(b[col], b[pivot]);
+    }
+    for (std::size_t r = col + 1; r < n; ++r) {
+      const double f = a[r * n + col] / a[col * n + col];
+      for (std::size_t j = col; j < n; ++j) a[r * n + j] -= f * a[col * n + j];
+      b[r] -= f * b[col];
+    }
+  }
+  std::vector<double> pi(n);
+  for (std::size_t i = n; i-- > 0;) {
+    double s = b[i];
+    for (std::size_t j = i + 1; j < n; ++j) s -= a[i * n + j] * pi[j];
+    pi[i] = s / a[i * n + i];
+  }
+  return pi;
+}
+
+void validate(const model_initial_state& state, const markov_belt& belt) {
+  if (!std::isfinite(state.position) || std::abs(state.position) > max_magnitude)
+    throw invalid_parameter("x0 (initial position)", state.position,
+                            "a finite number with |value| <= 1e60");
+  if (!std::isfinite(state.velocity) || std::abs(state.velocity) > max_magnitude)
+    throw invalid_parameter("xdot0 (initial velocity)", state.velocity,
+                            "a finite number with |value| <= 1e60");
+  if (state.level >= belt.level_count())
+    throw invalid_parameter("belt-start (level index)", static_cast<double>(state.level),
+                            "an existing level index, 0.." + std::to_string(belt.level_count() - 1));
+}
+
+oscillator_model paper_model(const model_parameters& p) {
+  oscillator_model m;
+  m.mass = p.mass;
+  m.stiffness = p.stiffness;
+  m.damping = 0.0;
+  m.gravity = p.gravity;
+  m.static_friction = p.friction_coefficient;
+  m.kinetic_friction = p.friction_coefficient;
+  m.belt = two_level_belt(p.belt_speed, -p.belt_speed, p.switch_rate, p.switch_rate);
+  m.window = p.window;
+  return m;
+}
+
+}  // namespace stickslip

@@ -1,0 +1,256 @@
+// The exact engine of the model family (simulate_model) against the
+// independent RK4 oracle (model_oracle.hpp) on random scenarios spanning the
+// family: mu_s = mu_k and mu_s > mu_k, undamped, under-, critically and
+// over-damped slips, 2 to 4 belt levels with a resting (v = 0) level in a
+// quarter of them, level-dependent rates.
+//
+// What must agree: the episode sequences exactly (count and modes), and every
+// boundary and start position within the oracle's error, with the bound of
+// test_oracle_agreement.cpp: tol_t = 10 kappa E(N) + 1e-12 t_a,
+// E(N) = t_a (2 pi / N)^4 / 120, kappa = 1 + B / V_min (B the largest orbit
+// speed amplitude, V_min the slowest moving level).
+//
+// Near-degenerate scenarios are regenerated (counted, and required rare):
+// a stick shorter than 10 stick resolutions; a contact whose stick force
+// |k x + c v| lies within 1e3 tol of mu_s m g (stick vs reversal flips); an
+// event within 1e3 tol_t of a belt switch; a near tangency the oracle flags
+// (an extremum of x' within its resolution of v).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "reference/model_oracle.hpp"
+#include "reference/model_scenario.hpp"
+
+namespace stickslip::reference {
+namespace {
+
+constexpr std::uint64_t scenario_seed = 0xfa417'5eedULL;
+constexpr int scenario_count = 1000;
+constexpr double steps_per_period = 800;
+
+struct tolerance {
+  double time, position;
+};
+
+double slowest_moving_level(const oscillator_model& m) {
+  double v = 1e300;
+  for (double u : m.belt.levels)
+    if (u != 0.0) v = std::min(v, std::abs(u));
+  return v;
+}
+double fastest_level(const oscillator_model& m) {
+  double v = 0;
+  for (double u : m.belt.levels) v = std::max(v, std::abs(u));
+  return v;
+}
+
+tolerance tolerance_for(const model_scenario& s, const model_exact_run& r, double n) {
+  double B = std::abs(s.ic.velocity);
+  for (const model_segment& g : r.segments)
+    if (g.kind == mode::slip) B = std::max(B, std::hypot(g.omega * (g.position - g.center), g.velocity));
+  const double kappa = 1.0 + B / slowest_moving_level(s.model);
+  const double e = s.model.window * std::pow(2.0 * std::numbers::pi / n, 4) / 120.0;
+  const double t = 10.0 * kappa * e + 1e-12 * s.model.window;
+  return {t, t * (fastest_level(s.model) + B)};
+}
+
+std::optional<std::string> near_degenerate(const model_scenario& s, const model_exact_run& r,
+                                           const model_oracle_result& o, tolerance tol) {
+  const double res = 10.0 * o.stick_resolution;
+  for (const episode& e : r.episodes)
+    if (e.kind == mode::stick && e.duration() < res) return "short exact stick";
+  for (const episode& e : o.episodes)
+    if (e.kind == mode::stick && e.duration() < res) return "short oracle stick";
+  if (!o.near_tangencies.empty()) return "near tangency";
+  const oscillator_model& m = s.model;
+  const double static_force = m.static_friction * m.mass * m.gravity;
+  auto near_switch = [&](double t) {
+    for (const level_switch& w : s.switches)
+      if (std::abs(w.time - t) < 1e3 * tol.time) return true;
+    return false;
+  };
+  for (const event& e : r.events) {
+    if (e.kind == event_kind::belt_switch) continue;
+    if (near_switch(e.time)) return "event next to a belt switch";
+    const double force = m.stiffness * e.position + m.damping * e.belt_velocity;
+    if (e.kind != event_kind::stick_break &&
+        std::abs(std::abs(force) - static_force) < 1e3 * m.stiffness * tol.position)
+      return "contact at the band edge";
+  }
+  for (const oracle_event& e : o.events) {
+    if (e.kind == event_kind::belt_switch) continue;
+    if (near_switch(e.time)) return "oracle event next to a belt switch";
+  }
+  return std::nullopt;
+}
+
+std::string describe(const model_scenario& s) {
+  const oscillator_model& m = s.model;
+  std::string out;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "m=%.17g k=%.17g c=%.17g (zeta %.3g) mu_s=%.17g mu_k=%.17g ta=%.17g x0=%.17g "
+                "xdot0=%.17g level=%zu levels:",
+                m.mass, m.stiffness, m.damping, m.damping_ratio(), m.static_friction,
+                m.kinetic_friction, m.window, s.ic.position, s.ic.velocity, s.ic.level);
+  out += buf;
+  for (double v : m.belt.levels) {
+    std::snprintf(buf, sizeof buf, " %.17g", v);
+    out += buf;
+  }
+  out += " switches:";
+  for (const level_switch& w : s.switches) {
+    std::snprintf(buf, sizeof buf, " %.17g->%zu", w.time, w.level);
+    out += buf;
+  }
+  return out;
+}
+
+std::string episodes_text(const std::vector<episode>& es) {
+  std::string out;
+  char buf[160];
+  for (const episode& e : es) {
+    std::snprintf(buf, sizeof buf, "  %-5s %.12f %.12f x=%.9g v=%.4g\n", to_string(e.kind), e.start,
+                  e.end, e.position_at_start, e.belt_velocity);
+    out += buf;
+  }
+  return out;
+}
+
+struct difference {
+  double time = 0, position = 0;
+};
+std::optional<difference> compare(const std::vector<episode>& exact,
+                                  const std::vector<episode>& oracle) {
+  if (exact.size() != oracle.size()) return std::nullopt;
+  difference d;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    if (exact[i].kind != oracle[i].kind) return std::nullopt;
+    d.time = std::max({d.time, std::abs(exact[i].start - oracle[i].start),
+                       std::abs(exact[i].end - oracle[i].end)});
+    d.position =
+        std::max(d.position, std::abs(exact[i].position_at_start - oracle[i].position_at_start));
+  }
+  return d;
+}
+
+TEST(ModelOracleAgreement, RandomFamilyScenariosHaveIdenticalEpisodeSequences) {
+  std::mt19937_64 rng(scenario_seed);
+  const auto t0 = std::chrono::steady_clock::now();
+  int accepted = 0, regenerated = 0, sticks = 0, with_stick = 0;
+  int undamped = 0, under = 0, critical = 0, over = 0, unequal = 0, resting = 0, many_levels = 0;
+  int rest_sticks = 0;
+  double max_ratio = 0;
+  while (accepted < scenario_count) {
+    const model_scenario s = draw_model_scenario(rng);
+    const model_exact_run exact = run_model_exact(s);
+    const model_oracle_result oracle = integrate_model_reference(
+        s.model, s.ic, s.switches, {.steps_per_period = steps_per_period});
+    const tolerance tol = tolerance_for(s, exact, steps_per_period);
+    if (auto why = near_degenerate(s, exact, oracle, tol)) {
+      ++regenerated;
+      std::printf("regenerated (%s): %s\n", why->c_str(), describe(s).c_str());
+      continue;
+    }
+    ++accepted;
+    const auto d = compare(exact.episodes, oracle.episodes);
+    ASSERT_TRUE(d.has_value()) << "episode sequences differ for " << describe(s) << "\nexact:\n"
+                               << episodes_text(exact.episodes) << "oracle:\n"
+                               << episodes_text(oracle.episodes);
+    EXPECT_LE(d->time, tol.time) << describe(s);
+    EXPECT_LE(d->position, tol.position) << describe(s);
+    max_ratio = std::max(max_ratio, d->time / tol.time);
+    int n_sticks = 0;
+    for (const episode& e : exact.episodes) {
+      n_sticks += e.kind == mode::stick;
+      rest_sticks += e.kind == mode::stick && e.belt_velocity == 0.0;
+    }
+    sticks += n_sticks;
+    with_stick += n_sticks > 0;
+    const oscillator_model& m = s.model;
+    const double zeta = m.damping_ratio();
+    undamped += m.damping == 0.0;
+    under += m.damping > 0.0 && zeta < 1.0;
+    critical += m.damping > 0.0 && zeta == 1.0;
+    over += zeta > 1.0;
+    unequal += m.static_friction > m.kinetic_friction;
+    many_levels += m.belt.level_count() > 2;
+    resting += std::find(m.belt.levels.begin(), m.belt.levels.end(), 0.0) != m.belt.levels.end();
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf(
+      "model oracle agreement: %d scenarios (%d regenerated), %d sticks (%d at rest), %d with a "
+      "stick; undamped %d, under %d, critical %d, over %d; mu_s > mu_k %d; > 2 levels %d; a "
+      "resting level %d; max boundary error %.3g of tolerance; %.2f s\n",
+      accepted, regenerated, sticks, rest_sticks, with_stick, undamped, under, critical, over,
+      unequal, many_levels, resting, max_ratio, seconds);
+  EXPECT_LE(regenerated, scenario_count / 10);
+  EXPECT_GT(with_stick, scenario_count / 2);
+  EXPECT_GT(critical, 30);
+  EXPECT_GT(over, 50);
+  EXPECT_GT(under, 200);
+  EXPECT_GT(rest_sticks, 20);
+}
+
+
+// Hand-picked starts on the edges of the cases, each with one right answer
+// that both integrators must give (no degeneracy filter): on the outward band
+// edge at belt velocity (a zero-length stick: slip on; with mu_s = mu_k no
+// return until a switch, with mu_s > mu_k a return and a stick), on the
+// inward edge (a stick across the band), outside the band at belt velocity (a
+// reversal), at rest on a resting level inside and outside the band, and
+// belt switches at t = 0, for c = 0, under- and over-damped. g = 8, m = 1,
+// k = 4, mu_k = 0.5: a_k = 1 exactly.
+TEST(ModelOracleAgreement, EdgeStartsAndSwitchesAtZero) {
+  int checked = 0;
+  for (double c : {0.0, 0.8, 10.0}) {
+    for (double mu_s : {0.5, 0.75}) {
+      oscillator_model m;
+      m.gravity = 8.0;
+      m.kinetic_friction = 0.5;
+      m.static_friction = mu_s;
+      m.damping = c;
+      m.belt = markov_belt{{1.0, -1.0, 0.0}, {-2, 1, 1, 1, -2, 1, 1, 1, -2}};
+      m.window = 8.0;
+      const double as = m.static_band_half_width();
+      auto edge = [&](double v, double s) { return s * as - c * v / m.stiffness; };
+      const model_scenario cases[] = {
+          {m, {edge(1.0, 1.0), 1.0, 0}, {}},
+          {m, {edge(-1.0, -1.0), -1.0, 1}, {}},
+          {m, {edge(1.0, -1.0), 1.0, 0}, {}},
+          {m, {edge(1.0, 1.0) + 2.0, 1.0, 0}, {}},
+          {m, {0.4, 0.0, 2}, {{3.0, 0}}},
+          {m, {3.0 * as, 0.0, 2}, {}},
+          {m, {0.0, 1.0, 0}, {{0.0, 1}, {3.0, 2}}},
+          {m, {0.3, -1.0, 0}, {{0.0, 2}}},
+          {m, {edge(1.0, 1.0), 1.0, 0}, {{0.0, 1}, {1.0, 0}}},
+          {m, {0.2, 0.7, 1}, {{0.0, 2}, {0.1, 0}, {0.2, 1}}},
+      };
+      for (const model_scenario& s : cases) {
+        const model_exact_run exact = run_model_exact(s);
+        const model_oracle_result oracle = integrate_model_reference(
+            s.model, s.ic, s.switches, {.steps_per_period = steps_per_period});
+        const tolerance tol = tolerance_for(s, exact, steps_per_period);
+        const auto d = compare(exact.episodes, oracle.episodes);
+        ASSERT_TRUE(d.has_value()) << describe(s) << "\nexact:\n"
+                                   << episodes_text(exact.episodes) << "oracle:\n"
+                                   << episodes_text(oracle.episodes);
+        EXPECT_LE(d->time, tol.time) << describe(s);
+        EXPECT_LE(d->position, tol.position) << describe(s);
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 60);
+}
+
+}  // namespace
+}  // namespace stickslip::reference
