@@ -24,6 +24,7 @@
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/figures.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/io/output_files.hpp"
 #include "stickslip/io/report.hpp"
 #include "stickslip/run/journaled_run.hpp"
 
@@ -39,7 +40,7 @@ struct reproduce_flags {
   std::string seed;                 // empty: the study's documented seed
   std::string threads = "0";
   bool quick = false, no_candidates = false, no_figures = false;
-  bool resume = false, keep_journal = false;
+  bool resume = false, keep_journal = false, overwrite = false;
   std::string shard;  // "i/n"
   double checkpoint_interval = 2.0;  // seconds between journal segments
 };
@@ -113,6 +114,10 @@ void run(const reproduce_flags& f, const invocation& inv) {
     throw invalid_value("-o (output folder)", f.out_dir,
                         "a folder without the journals of an unfinished reproduce (found " + runs +
                             "): add --resume to continue it, or remove " + runs);
+  if (!f.overwrite && !f.resume && !slice)
+    io::refuse_to_replace({f.out_dir + "/report.md", f.out_dir + "/report.html"},
+                          "the report of an earlier reproduce",
+                          "add --overwrite to replace it, or choose another -o DIR");
   auto log = [](const std::string& line) {
     fmt::print(stderr, "reproduce: {}\n", line);
   };
@@ -189,6 +194,8 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
                   "seconds between journal segments (each is fsynced); 0 = after every unit")
       ->type_name("SECONDS")
       ->capture_default_str();
+  cmd->add_flag("--overwrite", flags->overwrite,
+                "replace the report and outputs of an earlier reproduce in DIR");
   cmd->add_flag("--keep-journal", flags->keep_journal,
                 "keep OUT/.runs (the journals of the study's sweeps) after the report");
   cmd->callback([flags, inv] { run(*flags, inv); });

@@ -3,7 +3,8 @@
 # first journal segment exists, then at random points) and continued with
 # --resume until it completes must write the same reproduction as an
 # uninterrupted run; a rerun onto unfinished journals without --resume is
-# refused (exit 2); `--shard i/n` runs of the main sweeps finished by
+# refused (exit 2), and so is one onto a finished reproduction without
+# --overwrite; `--shard i/n` runs of the main sweeps finished by
 # --resume give the same reproduction too.
 #   reproduce_resume.sh STICKSLIP WORKDIR
 set -uo pipefail
@@ -17,6 +18,15 @@ fail() { echo "reproduce_resume: FAILED: $*" >&2; exit 1; }
 
 "$bin" "${args[@]}" -o "$work/ref" 2>/dev/null || fail "reference run"
 [[ -e $work/ref/.runs ]] && fail "journals left after a finished reproduce"
+# A finished reproduction is not replaced silently: exit 2 naming the file,
+# the report untouched; --overwrite replaces it.
+before=$(md5sum "$work/ref/report.md")
+"$bin" "${args[@]}" -o "$work/ref" 2>"$work/again.err"; rc=$?
+((rc == 2)) || fail "rerun onto a finished reproduction: exit $rc, expected 2"
+grep -q "report.md.*--overwrite" "$work/again.err" || fail "refusal message: $(cat "$work/again.err")"
+[[ $(md5sum "$work/ref/report.md") == "$before" ]] || fail "the refused rerun changed report.md"
+"$bin" "${args[@]}" -o "$work/ref" --overwrite 2>/dev/null || fail "--overwrite"
+echo "reproduce_resume: a finished reproduction is refused without --overwrite (exit 2) and replaced with it"
 
 out=$work/killed
 "$bin" "${args[@]}" -o "$out" --checkpoint-interval 0 2>>"$work/log" & pid=$!
