@@ -22,6 +22,7 @@
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/realization_output.hpp"
+#include "stickslip/replay.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -43,20 +44,6 @@ struct simulate_options {
   CLI::Option *times_opt = nullptr, *times_file_opt = nullptr, *trajectory_opt = nullptr;
 };
 
-// Keeps what the outputs need: always the episodes, the events and the
-// closed-form segments only when asked for.
-struct recorder : observer_base {
-  bool keep_events = false, keep_segments = false;
-  io::realization_report* out = nullptr;
-  void on_event(const event& e) {
-    if (keep_events) out->events.push_back(e);
-  }
-  void on_segment(const segment& s) {
-    if (keep_segments) out->segments.push_back(s);
-  }
-  void on_episode(const episode& e) { out->episodes.push_back(e); }
-};
-
 std::optional<std::vector<double>> given_switch_times(const simulate_options& o) {
   if (o.times_opt->count() > 0 && o.times_file_opt->count() > 0)
     throw invalid_value("--switch-times-file", o.switch_times_file,
@@ -73,63 +60,42 @@ int parse_belt_start(const std::string& text) {
   throw invalid_value("--belt-start", text, "+1, -1 or random");
 }
 
-// The spec whose checks this run must pass: the sweep's, for one point. With
-// given switch times the switch rate plays no role, so lambda = 0 is
-// accepted then (and kept in the outputs, which say what was asked).
-void validate_run(sweep_spec spec, bool given_times) {
-  if (given_times && spec.base.switch_rate == 0.0) spec.base.switch_rate = 1.0;
-  validate(spec);  // the model, and e.g. lambda * ta vs max_events
-}
-
+// One realization through the core's replay (the same as Python's
+// stickslip.simulate): drawn as realization R of the sweep point, with any
+// of x0, x'0, the belt start and the switch times fixed by flags.
 io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   io::realization_report run;
-  const auto times = given_switch_times(o);
-  run.given_switches = times.has_value();
-  run.params = apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
-  sweep_spec spec;  // the sweep's defaults: initial-condition law, seed 1
-  spec.seed = run.seed = resolve_seed(o.model, spec.seed);
-  spec.max_events = resolve_max_events(o.model, spec.max_events);
-  run.realization = io::parse_unsigned("--realization", o.realization);
-  spec.base = run.params;
-  validate_run(spec, run.given_switches);
-
-  const auto key = point_key(run.params);
-  run.ic = draw_initial_conditions(spec.initial, spec.seed, key, run.realization);
+  replay_request req;
+  req.switch_times = given_switch_times(o);
+  run.given_switches = req.switch_times.has_value();
+  run.params = req.parameters =
+      apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
+  run.seed = req.seed = resolve_seed(o.model, req.seed);
+  req.max_events = resolve_max_events(o.model, req.max_events);
+  run.realization = req.realization = io::parse_unsigned("--realization", o.realization);
   if (o.x0_opt->count() > 0) {
-    run.ic.position = io::parse_number("--x0 (initial position)", o.x0);
+    req.x0 = io::parse_number("--x0 (initial position)", o.x0);
     run.given_x0 = true;
   }
   if (o.xdot0_opt->count() > 0) {
-    run.ic.velocity = io::parse_number("--xdot0 (initial velocity)", o.xdot0);
+    req.xdot0 = io::parse_number("--xdot0 (initial velocity)", o.xdot0);
     run.given_xdot0 = true;
   }
   if (o.belt_opt->count() > 0) {
     if (const int b = parse_belt_start(o.belt_start); b != 0) {
-      run.ic.belt_direction = b;
+      req.belt_start = b;
       run.given_belt = true;
     }
   }
-  validate(run.ic);
-
-  recorder rec;
-  rec.out = &run;
-  rec.keep_events = o.events;
-  rec.keep_segments = o.trajectory_opt->count() > 0;
-  realization_observer stats(run.params.window);
-  stats.reset(run.realization, run.ic.position, run.ic.velocity, run.ic.belt_direction);
-  observer_pair<recorder, realization_observer> both{rec, stats};
-  if (times) {
-    given_switches sw(*times);
-    run.counts = simulate(run.params, run.ic, sw, both, spec.max_events);
-  } else if (!run.given_x0 && !run.given_xdot0 && !run.given_belt) {
-    run.counts = simulate_realization(spec, run.params, run.realization, both);
-  } else {
-    poisson_switches sw(run.params.switch_rate, spec.seed, key, run.realization);
-    run.counts = simulate(run.params, run.ic, sw, both, spec.max_events);
-  }
-  stats.finish();
-  run.record = stats.record();
-  run.record.events = run.counts;
+  req.keep_events = o.events;
+  req.keep_segments = o.trajectory_opt->count() > 0;
+  auto trace = replay(req);
+  run.ic = trace.initial;
+  run.record = trace.record;
+  run.counts = trace.record.events;
+  run.episodes = std::move(trace.episodes);
+  run.events = std::move(trace.events);
+  run.segments = std::move(trace.segments);
   return run;
 }
 

@@ -40,7 +40,7 @@ struct realization_trace {
 // Throws stickslip::error for invalid parameters, initial state or switch
 // times (naming the parameter, the value and the allowed range), and when the
 // realization exceeds max_events. With given switch times the switch rate is
-// not used and may be anything positive.
+// not used and may also be 0.
 [[nodiscard]] realization_trace replay(const replay_request& r);
 
 }  // namespace stickslip

@@ -24,6 +24,9 @@ struct trace_observer : observer_base {
 realization_trace replay(const replay_request& r) {
   sweep_spec spec;  // the sweep's checks for one point, e.g. lambda * ta vs max_events
   spec.base = r.parameters;
+  // With given switch times the switch rate plays no role, so lambda = 0 is
+  // accepted then (and kept in the outputs, which say what was asked).
+  if (r.switch_times && spec.base.switch_rate == 0.0) spec.base.switch_rate = 1.0;
   spec.seed = r.seed;
   spec.initial = r.initial;
   spec.max_events = r.max_events;
