@@ -20,6 +20,7 @@
 #include "stickslip/io/writers.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/run/journaled_run.hpp"
+#include "stickslip/trajectory.hpp"
 #include "stickslip/version.hpp"
 
 namespace py = pybind11;
@@ -85,28 +86,23 @@ py::dict replay_py(const py::dict& params, std::uint64_t seed, std::uint64_t rea
   return out;
 }
 
-// x, x', v every dt and at both ends of every closed-form piece (the CLI's
-// --trajectory sampling). `rows` holds replay()'s segment tuples.
+// x, x', v every dt and at both ends of every closed-form piece: the one
+// trajectory sampler (trajectory.hpp), as `simulate --trajectory` uses it.
+// `rows` holds replay()'s segment tuples.
 py::list sample_trajectory_py(const py::list& rows, double dt) {
-  py::list out;
+  std::vector<segment> segments;
+  segments.reserve(rows.size());
   for (const auto& row : rows) {
     const auto r = py::cast<py::tuple>(row);
-    segment s{py::cast<std::string>(r[0]) == "stick" ? mode::stick : mode::slip,
-              py::cast<double>(r[1]), py::cast<double>(r[2]), py::cast<double>(r[3]),
-              py::cast<double>(r[4]), py::cast<double>(r[5]), py::cast<double>(r[6]),
-              py::cast<double>(r[7])};
-    auto add = [&](double t) {
-      const auto p = evaluate(s, t);
-      out.append(py::make_tuple(t, p.position, p.velocity, s.belt_velocity));
-    };
-    add(s.start);
-    for (auto k = static_cast<std::uint64_t>(std::floor(s.start / dt)) + 1;; ++k) {
-      const double t = static_cast<double>(k) * dt;
-      if (t >= s.end) break;
-      if (t > s.start) add(t);
-    }
-    if (s.end > s.start) add(s.end);
+    segments.push_back(segment{py::cast<std::string>(r[0]) == "stick" ? mode::stick : mode::slip,
+                               py::cast<double>(r[1]), py::cast<double>(r[2]),
+                               py::cast<double>(r[3]), py::cast<double>(r[4]),
+                               py::cast<double>(r[5]), py::cast<double>(r[6]),
+                               py::cast<double>(r[7])});
   }
+  py::list out;
+  for (const auto& p : sample_trajectory(segments, dt))
+    out.append(py::make_tuple(p.time, p.position, p.velocity, p.belt_velocity));
   return out;
 }
 
