@@ -5,6 +5,7 @@
 #                    no I/O: its interface has fmt, Threads and Random123 only)
 #   stickslip::io    config, writers, journal, figures, report (toml++, netCDF)
 #   stickslip::run   journaled runs (resume, shards, stop), runners, shard merging
+#   stickslip::study the paper study: design, peak refinement, claims, figures, report
 #   stickslip::mpi   the MPI sweep backend, when it was built
 # Each library has its own export set, so a consumer that asks only for
 # `core` needs none of the I/O libraries on its machine.
@@ -19,10 +20,11 @@ include(CMakePackageConfigHelpers)
 set(stickslip_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/stickslip)
 
 # component -> library target (the EXPORT_NAME gives stickslip::<component>)
-set(stickslip_components core io run)
+set(stickslip_components core io run study)
 set(stickslip_target_core stickslip_core)
 set(stickslip_target_io stickslip_io)
 set(stickslip_target_run stickslip_run)
+set(stickslip_target_study stickslip_study)
 if(TARGET stickslip_mpi)
   list(APPEND stickslip_components mpi)
   set(stickslip_target_mpi stickslip_mpi)

@@ -2,13 +2,13 @@
 // printed parameters and under the set its figures were computed with, with
 // figures (gnuplot) and a claim-by-claim report. See docs/reproduction.md.
 //
-//   (a) options -> io::study_options (validated before anything runs)
-//   (b) io::run_paper_study: main sweeps, refinements of the maximum,
+//   (a) options -> study::study_options (validated before anything runs)
+//   (b) study::run_paper_study: main sweeps, refinements of the maximum,
 //       candidates; every sweep is a journaled run of the run layer in
 //       OUT/.runs/<sweep>, so a killed reproduce continues with --resume,
 //       `--shard i/n` runs one slice of the main sweeps, and under mpirun the
 //       work is spread over the ranks
-//   (c) io::write_reproduction: sweep outputs, figures, report.md,
+//   (c) study::write_reproduction: sweep outputs, figures, report.md,
 //       report.html; then OUT/.runs is removed
 #include <fmt/format.h>
 
@@ -22,10 +22,10 @@
 #include "execution.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
-#include "stickslip/io/figures.hpp"
+#include "stickslip/study/figures.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/output_files.hpp"
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 #include "stickslip/run/journaled_run.hpp"
 
 namespace stickslip::app {
@@ -45,8 +45,8 @@ struct reproduce_flags {
   double checkpoint_interval = 2.0;  // seconds between journal segments
 };
 
-io::study_options resolve(const reproduce_flags& f) {
-  io::study_options o = f.quick ? io::quick_options() : io::study_options{};
+study::study_options resolve(const reproduce_flags& f) {
+  study::study_options o = f.quick ? study::quick_options() : study::study_options{};
   if (!f.realizations.empty())
     o.realizations = io::parse_unsigned("--realizations", f.realizations, 2, max_realizations);
   if (!f.refine_realizations.empty())
@@ -84,9 +84,9 @@ run::run_plan plan_for(const std::string& dir, const run::stop_token& stop, doub
 
 // --shard i/n: this process runs its slice of every main sweep (the
 // refinements need their results) and journals it.
-void run_shard(const io::study_options& options, const run::shard& slice, const std::string& out,
+void run_shard(const study::study_options& options, const run::shard& slice, const std::string& out,
                const run::run_plan& base, run::runner& r, const invocation& inv) {
-  for (const auto& [id, spec] : io::main_sweeps(options)) {
+  for (const auto& [id, spec] : study::main_sweeps(options)) {
     auto plan = base;
     plan.dir = runs_dir(out) + "/" + id;
     plan.resume = io::journal_exists(plan.dir);
@@ -138,15 +138,15 @@ void run(const reproduce_flags& f, const invocation& inv) {
                       out.computed_units));
     return std::move(*out.results);
   };
-  const bool render = !f.no_figures && io::gnuplot_available();
+  const bool render = !f.no_figures && study::gnuplot_available();
   if (!f.no_figures && !render)
     log("gnuplot (with pngcairo and svg) not found: writing data and scripts only");
-  auto study = io::run_paper_study(options, log);
+  auto study = study::run_paper_study(options, log);
   study.threads = exec.runner().threads();
   study.ranks = exec.runner().ranks();
   const auto meta = io::make_metadata(inv.argc, inv.argv, "");
   log(fmt::format("study done in {:.1f} s; writing {}", study.seconds, f.out_dir));
-  const auto files = io::write_reproduction(study, meta, f.out_dir, render);
+  const auto files = study::write_reproduction(study, meta, f.out_dir, render);
   if (!f.keep_journal) {
     std::error_code ec;
     std::filesystem::remove_all(runs, ec);

@@ -3,16 +3,16 @@
 #include <gtest/gtest.h>
 
 #include "stickslip/error.hpp"
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 #include "stickslip/presets.hpp"
 
 namespace stickslip {
 namespace {
 
 TEST(Presets, AreTheStudysParameterSets) {
-  EXPECT_EQ(find_preset("--preset", "paper-printed").parameters, io::printed_parameters().base);
+  EXPECT_EQ(find_preset("--preset", "paper-printed").parameters, study::printed_parameters().base);
   EXPECT_EQ(find_preset("--preset", "paper-figures").parameters,
-            io::concluded_parameters().base);
+            study::concluded_parameters().base);
   EXPECT_EQ(find_preset("--preset", "paper-figures").parameters.stiffness, 40.0);
   EXPECT_EQ(find_preset("--preset", "paper-printed").parameters, model_parameters{});
 }

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <random>
 
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 
 namespace {
 
-using stickslip::io::fit_peak;
+using stickslip::study::fit_peak;
 
 // R(lambda) = R* - c ln(lambda/lambda*)^2, the local shape of mean R.
 double curve(double lambda, double lambda_star, double R_star, double c) {
@@ -20,7 +20,7 @@ double curve(double lambda, double lambda_star, double R_star, double c) {
 }
 
 TEST(ReproducePeak, RecoversAnExactQuadraticMaximum) {
-  const auto lam = stickslip::io::refinement_grid(3.5, 0.4, 17);
+  const auto lam = stickslip::study::refinement_grid(3.5, 0.4, 17);
   std::vector<double> mean, se(lam.size(), 1e-4);
   for (double l : lam) mean.push_back(curve(l, 3.71, 0.7823, 0.07));
   const auto p = fit_peak(lam, mean, se, 3.5, 1, 2);
@@ -42,7 +42,7 @@ TEST(ReproducePeak, BootstrapIntervalsCoverTheTruth) {
   // 200 noisy replications; a 95 % interval must cover the true lambda* and
   // R* in about 190 of them. Binomial(200, 0.95) has SD 3.1: accept >= 178
   // (4 SD below), so the test fails only for a real miscalibration.
-  const auto lam = stickslip::io::refinement_grid(3.3, 0.4, 17);
+  const auto lam = stickslip::study::refinement_grid(3.3, 0.4, 17);
   const double se = 0.0012;
   std::mt19937_64 gen(12345);
   std::normal_distribution<double> z;
@@ -61,7 +61,7 @@ TEST(ReproducePeak, BootstrapIntervalsCoverTheTruth) {
 }
 
 TEST(ReproducePeak, SameSeedSameIntervals) {
-  const auto lam = stickslip::io::refinement_grid(3.0, 0.4, 9);
+  const auto lam = stickslip::study::refinement_grid(3.0, 0.4, 9);
   std::vector<double> mean, se(lam.size(), 0.002);
   for (std::size_t i = 0; i < lam.size(); ++i)
     mean.push_back(curve(lam[i], 3.2, 0.5, 0.1) + (i % 2 ? 0.001 : -0.001));
@@ -74,7 +74,7 @@ TEST(ReproducePeak, SameSeedSameIntervals) {
 }
 
 TEST(ReproducePeak, NoMaximumForAnUpwardCurve) {
-  const auto lam = stickslip::io::refinement_grid(1.0, 0.3, 7);
+  const auto lam = stickslip::study::refinement_grid(1.0, 0.3, 7);
   std::vector<double> mean, se(lam.size(), 0.001);
   for (double l : lam) mean.push_back(0.2 + 0.5 * std::log(l) * std::log(l));
   const auto p = fit_peak(lam, mean, se, 1.0, 1, 1);
@@ -87,7 +87,7 @@ TEST(ReproducePeak, TooFewPointsIsNotAFit) {
 }
 
 TEST(ReproduceGrids, PaperGridsHaveTheDocumentedShape) {
-  const auto lam = stickslip::io::paper_lambda_grid();
+  const auto lam = stickslip::study::paper_lambda_grid();
   ASSERT_EQ(lam.size(), 40u);
   EXPECT_TRUE(std::is_sorted(lam.begin(), lam.end()));
   EXPECT_EQ(std::adjacent_find(lam.begin(), lam.end()), lam.end());
@@ -95,7 +95,7 @@ TEST(ReproduceGrids, PaperGridsHaveTheDocumentedShape) {
   EXPECT_DOUBLE_EQ(lam.back(), 30.0);
   EXPECT_NE(std::find(lam.begin(), lam.end(), 3.5), lam.end());
   EXPECT_NE(std::find(lam.begin(), lam.end(), 3.8), lam.end());
-  const auto mu = stickslip::io::paper_mu_grid();
+  const auto mu = stickslip::study::paper_mu_grid();
   ASSERT_EQ(mu.size(), 8u);
   EXPECT_DOUBLE_EQ(mu.front(), 0.5);
   EXPECT_DOUBLE_EQ(mu.back(), 7.0);
@@ -103,7 +103,7 @@ TEST(ReproduceGrids, PaperGridsHaveTheDocumentedShape) {
 }
 
 TEST(ReproduceGrids, RefinementGridIsGeometricAroundTheCenter) {
-  const auto g = stickslip::io::refinement_grid(3.8, 0.4, 5);
+  const auto g = stickslip::study::refinement_grid(3.8, 0.4, 5);
   ASSERT_EQ(g.size(), 5u);
   EXPECT_NEAR(g[2], 3.8, 1e-12);
   EXPECT_NEAR(g.front(), 3.8 * std::exp(-0.4), 1e-12);
@@ -112,10 +112,10 @@ TEST(ReproduceGrids, RefinementGridIsGeometricAroundTheCenter) {
 }
 
 TEST(ReproduceSets, ConcludedSetGivesThePrintedDmax) {
-  auto p = stickslip::io::concluded_parameters().base;
+  auto p = stickslip::study::concluded_parameters().base;
   p.friction_coefficient = 5;
   EXPECT_NEAR(p.max_stick_duration(), 2.5, 0.05);  // the paper's "2.5 s"
-  auto q = stickslip::io::printed_parameters().base;
+  auto q = stickslip::study::printed_parameters().base;
   q.friction_coefficient = 5;
   EXPECT_NEAR(q.max_stick_duration(), 24.525, 1e-9);  // what the printed values give
 }

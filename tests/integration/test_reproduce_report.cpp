@@ -15,9 +15,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "stickslip/io/figures.hpp"
+#include "stickslip/study/figures.hpp"
 #include "stickslip/io/metadata.hpp"
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 
 namespace fs = std::filesystem;
 using namespace stickslip;
@@ -72,7 +72,7 @@ std::vector<std::vector<std::string>> table_after(const std::string& md,
 class ReproduceReport : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    auto o = io::quick_options();
+    auto o = study::quick_options();
     o.realizations = 60;
     o.refine_realizations = 120;
     o.refine_points = 5;
@@ -80,13 +80,13 @@ class ReproduceReport : public ::testing::Test {
     o.candidate_refine_realizations = 40;
     o.lambda = {0.1, 1.0, 3.5, 3.8, 10.0};
     o.threads = 2;
-    study_ = new io::study_result(io::run_paper_study(o));
+    study_ = new study::study_result(study::run_paper_study(o));
     dir_ = new fs::path(fs::temp_directory_path() /
                         ("stickslip_reproduce_test_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     const char* argv[] = {"stickslip", "reproduce", "--quick"};
     const auto meta = io::make_metadata(3, argv, "");
-    files_ = new io::report_files(io::write_reproduction(*study_, meta, dir_->string(), true));
+    files_ = new study::report_files(study::write_reproduction(*study_, meta, dir_->string(), true));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -94,13 +94,13 @@ class ReproduceReport : public ::testing::Test {
     delete dir_;
     delete study_;
   }
-  static io::study_result* study_;
+  static study::study_result* study_;
   static fs::path* dir_;
-  static io::report_files* files_;
+  static study::report_files* files_;
 };
-io::study_result* ReproduceReport::study_ = nullptr;
+study::study_result* ReproduceReport::study_ = nullptr;
 fs::path* ReproduceReport::dir_ = nullptr;
-io::report_files* ReproduceReport::files_ = nullptr;
+study::report_files* ReproduceReport::files_ = nullptr;
 
 TEST_F(ReproduceReport, WritesTheReportTheSweepOutputsAndTheScripts) {
   EXPECT_TRUE(fs::exists(*dir_ / "report.md"));
@@ -124,7 +124,7 @@ TEST_F(ReproduceReport, WritesTheReportTheSweepOutputsAndTheScripts) {
 }
 
 TEST_F(ReproduceReport, PngsAndSvgsAreValid) {
-  if (!io::gnuplot_available()) GTEST_SKIP() << "gnuplot with pngcairo/svg not installed";
+  if (!study::gnuplot_available()) GTEST_SKIP() << "gnuplot with pngcairo/svg not installed";
   ASSERT_TRUE(files_->rendered);
   ASSERT_FALSE(files_->figures.empty());
   for (const auto& rel : files_->figures) {
@@ -154,7 +154,7 @@ TEST_F(ReproduceReport, HtmlEmbedsEveryFigure) {
   const auto html = slurp(*dir_ / "report.html");
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(html.find("</html>"), std::string::npos);
-  if (!io::gnuplot_available()) GTEST_SKIP() << "gnuplot not installed: nothing to embed";
+  if (!study::gnuplot_available()) GTEST_SKIP() << "gnuplot not installed: nothing to embed";
   std::size_t images = 0;
   for (auto p = html.find("data:image/png;base64,"); p != std::string::npos;
        p = html.find("data:image/png;base64,", p + 1))
@@ -167,7 +167,7 @@ TEST_F(ReproduceReport, GridTableHoldsTheComputedNumbers) {
   const auto md = slurp(*dir_ / "report.md");
   for (const auto& s : study_->sets) {
     const auto rows = table_after(md, "### Grid values at μ = 5 (" + s.set.id + ")");
-    const auto pts = io::points_at_mu(s.sweep, 5.0);
+    const auto pts = study::points_at_mu(s.sweep, 5.0);
     ASSERT_EQ(rows.size(), pts.size() + 1) << s.set.id;
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const auto& row = rows[i + 1];
@@ -252,8 +252,8 @@ TEST_F(ReproduceReport, WithoutRenderingWritesScriptsAndNoStaleImages) {
   const auto other = *dir_ / "unrendered";
   const char* argv[] = {"stickslip", "reproduce", "--no-figures"};
   const auto meta = io::make_metadata(3, argv, "");
-  if (io::gnuplot_available()) (void)io::write_reproduction(*study_, meta, other.string(), true);
-  const auto files = io::write_reproduction(*study_, meta, other.string(), false);
+  if (study::gnuplot_available()) (void)study::write_reproduction(*study_, meta, other.string(), true);
+  const auto files = study::write_reproduction(*study_, meta, other.string(), false);
   EXPECT_FALSE(files.rendered);
   EXPECT_TRUE(fs::exists(other / "figures/concluded/fig6b_stick_fraction.gp"));
   EXPECT_TRUE(fs::exists(other / "figures/concluded/fig6b_stick_fraction.dat"));
@@ -269,7 +269,7 @@ TEST(ReproduceFigures, SampledRealizationFollowsTheSegments) {
   model_parameters p = spec.base;
   p.stiffness = 40;
   p.switch_rate = 1;
-  const auto trace = io::sample_realization(spec, p, 0, 0.01, 10.0);
+  const auto trace = study::sample_realization(spec, p, 0, 0.01, 10.0);
   ASSERT_FALSE(trace.empty());
   EXPECT_EQ(trace.front().t, 0.0);
   EXPECT_LE(trace.back().t, 10.0);
@@ -297,7 +297,7 @@ TEST_F(ReproduceReport, QuickReportIsMarkedAsADemoAndNamesItsGridSize) {
   auto full = *study_;
   full.options.quick = false;
   const char* argv[] = {"stickslip", "reproduce"};
-  const auto plain = io::report_markdown(full, io::make_metadata(2, argv, ""), {}, dir_->string());
+  const auto plain = study::report_markdown(full, io::make_metadata(2, argv, ""), {}, dir_->string());
   EXPECT_EQ(plain.find("DEMO"), std::string::npos);
 }
 
@@ -370,15 +370,15 @@ TEST_F(ReproduceReport, Fig4YRangeHoldsBothHistograms) {
 
 TEST(Chi2PoorFit, NinetyFivePercentPointsMatchTheTable) {
   // chi^2 table (Abramowitz & Stegun 26.8 / any statistics text), 95 % points.
-  EXPECT_NEAR(io::chi2_95(5), 11.070, 0.01 * 11.070);
-  EXPECT_NEAR(io::chi2_95(14), 23.685, 0.01 * 23.685);
-  EXPECT_NEAR(io::chi2_95(30), 43.773, 0.01 * 43.773);
-  io::peak_estimate p;
+  EXPECT_NEAR(study::chi2_95(5), 11.070, 0.01 * 11.070);
+  EXPECT_NEAR(study::chi2_95(14), 23.685, 0.01 * 23.685);
+  EXPECT_NEAR(study::chi2_95(30), 43.773, 0.01 * 43.773);
+  study::peak_estimate p;
   p.chi2 = 24.9;  // the fit the issue found unflagged
   p.dof = 14;
-  EXPECT_TRUE(io::poor_fit(p));
+  EXPECT_TRUE(study::poor_fit(p));
   p.chi2 = 14.0;
-  EXPECT_FALSE(io::poor_fit(p));
+  EXPECT_FALSE(study::poor_fit(p));
 }
 
 TEST_F(ReproduceReport, PoorFitsAreFlaggedInTheRefinementTable) {
@@ -390,7 +390,7 @@ TEST_F(ReproduceReport, PoorFitsAreFlaggedInTheRefinementTable) {
       ASSERT_NE(at, std::string::npos) << cell;
       const std::string flag = " **poor fit**";
       const bool flagged = md.compare(at + cell.size(), flag.size(), flag) == 0;
-      EXPECT_EQ(flagged, io::poor_fit(r.peak)) << s.set.id << " mu " << r.mu;
+      EXPECT_EQ(flagged, study::poor_fit(r.peak)) << s.set.id << " mu " << r.mu;
     }
 }
 

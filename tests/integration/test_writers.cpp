@@ -10,7 +10,7 @@
 #include <netcdf>
 
 #include "stickslip/error.hpp"
-#include "writers_detail.hpp"
+#include "output/writers_detail.hpp"
 #include "writers_fixture.hpp"
 
 namespace stickslip::testing {

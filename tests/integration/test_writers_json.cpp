@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <limits>
 
-#include "atomic_file.hpp"
-#include "json_emitter.hpp"
+#include "stickslip/io/atomic_file.hpp"
+#include "output/json_emitter.hpp"
 #include "stickslip/error.hpp"
 #include "writers_fixture.hpp"
 

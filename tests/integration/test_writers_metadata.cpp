@@ -6,7 +6,7 @@
 #include <netcdf>
 #include <string>
 
-#include "writers_detail.hpp"
+#include "output/writers_detail.hpp"
 #include "writers_fixture.hpp"
 
 namespace stickslip::testing {

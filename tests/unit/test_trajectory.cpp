@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "stickslip/io/figures.hpp"
+#include "stickslip/study/figures.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/trajectory.hpp"
 
@@ -62,7 +62,7 @@ TEST(SampleTrajectory, Fig2UsesTheSameSampler) {
   segment_recorder rec;
   (void)simulate_realization(spec, p, 3, rec);
   const auto direct = sample_trajectory(rec.segments, 0.05, 4.0);
-  const auto fig = io::sample_realization(spec, p, 3, 0.05, 4.0);
+  const auto fig = study::sample_realization(spec, p, 3, 0.05, 4.0);
   ASSERT_EQ(direct.size(), fig.size());
   for (std::size_t i = 0; i < fig.size(); ++i) {
     EXPECT_EQ(fig[i].t, direct[i].time);

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "atomic_file.hpp"
+#include "stickslip/io/atomic_file.hpp"
 
 namespace stickslip::io::detail {
 

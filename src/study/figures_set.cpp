@@ -8,7 +8,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/trajectory.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 using detail::gp_preamble;
 using detail::gp_render_loop;
@@ -450,4 +450,4 @@ std::vector<figure> write_set_figures(const set_study& s, const std::string& dir
   return out;
 }
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

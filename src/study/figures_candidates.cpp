@@ -5,7 +5,7 @@
 
 #include "figures_common.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 using detail::gp_string;
 using detail::num;
@@ -79,4 +79,4 @@ std::vector<figure> write_candidate_figures(const study_result& r, const std::st
   return {f};
 }
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

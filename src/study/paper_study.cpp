@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 
 #include "stickslip/error.hpp"
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 namespace {
 
@@ -268,4 +268,4 @@ study_result run_paper_study(const study_options& o, const study_log& log) {
   return r;
 }
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <set>
 
-#include "atomic_file.hpp"
+#include "stickslip/io/atomic_file.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 namespace {
 std::string shell_quote(const std::string& s) {
@@ -43,7 +43,7 @@ bool run_gnuplot(const std::string& dir, const std::string& script) {
 namespace detail {
 
 void write_text_file(const std::string& path, const std::string& text) {
-  write_text_atomically(path, [&](text_sink& out) { out.write(text); });
+  io::detail::write_text_atomically(path, [&](io::detail::text_sink& out) { out.write(text); });
 }
 
 std::string num(double x) {
@@ -141,4 +141,4 @@ std::string parameter_line(const model_parameters& p) {
 }
 
 }  // namespace detail
-}  // namespace stickslip::io
+}  // namespace stickslip::study

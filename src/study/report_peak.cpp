@@ -9,9 +9,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 namespace {
 
@@ -186,4 +186,4 @@ peak_estimate fit_peak(const std::vector<double>& lambda, const std::vector<doub
   return e;
 }
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

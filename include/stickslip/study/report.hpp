@@ -13,7 +13,7 @@
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/sweep.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 // ---------------------------------------------------------------- grids ----
 
@@ -199,12 +199,12 @@ struct report_files {
 // DIR/candidates/<id>/), the figures (DIR/figures/<set id>/), report.md and
 // report.html. With `render` false (or no gnuplot) the scripts and data are
 // written but nothing is rendered.
-report_files write_reproduction(const study_result& study, const run_metadata& meta,
+report_files write_reproduction(const study_result& study, const io::run_metadata& meta,
                                 const std::string& dir, bool render = true);
 
 // The report as Markdown; `figures` carry paths relative to `report_dir`'s
 // parent layout (write_reproduction passes what it rendered).
-[[nodiscard]] std::string report_markdown(const study_result& study, const run_metadata& meta,
+[[nodiscard]] std::string report_markdown(const study_result& study, const io::run_metadata& meta,
                                           const std::vector<figure>& figures,
                                           const std::string& report_dir);
 
@@ -213,4 +213,4 @@ report_files write_reproduction(const study_result& study, const run_metadata& m
 // Text of DIR/<set id>/refinement.csv: one row per (mu, lambda) of the refinement.
 [[nodiscard]] std::string refinement_csv(const set_study& s);
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace stickslip::io::detail {
+namespace stickslip::study::detail {
 
 struct doc_block {
   enum class kind { heading, paragraph, table, image, code, list } type;
@@ -39,4 +39,4 @@ class document {
 [[nodiscard]] std::string base64(const std::string& bytes);
 [[nodiscard]] std::string html_escape(const std::string& s);
 
-}  // namespace stickslip::io::detail
+}  // namespace stickslip::study::detail

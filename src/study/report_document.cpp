@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-namespace stickslip::io::detail {
+namespace stickslip::study::detail {
 
 void document::heading(int level, std::string text) {
   blocks_.push_back({doc_block::kind::heading, level, std::move(text), {}, {}, {}, {}});
@@ -204,4 +204,4 @@ std::string document::html(const std::string& title, const std::string& base_dir
   return o;
 }
 
-}  // namespace stickslip::io::detail
+}  // namespace stickslip::study::detail

@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 const char* to_string(verdict v) noexcept {
   switch (v) {
@@ -317,4 +317,4 @@ double claim_score(const std::vector<claim>& claims, std::size_t set_index) {
   return score;
 }
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

@@ -10,16 +10,16 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "atomic_file.hpp"
+#include "stickslip/io/atomic_file.hpp"
 #include "figures_common.hpp"
 #include "report_document.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
-#include "stickslip/io/figures.hpp"
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/figures.hpp"
+#include "stickslip/study/report.hpp"
 #include "stickslip/io/writers.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 namespace fs = std::filesystem;
 using detail::document;
@@ -517,7 +517,7 @@ void discussion_section(document& d, const study_result& st) {
   d.list(items);
 }
 
-void provenance_section(document& d, const study_result& st, const run_metadata& meta) {
+void provenance_section(document& d, const study_result& st, const io::run_metadata& meta) {
   d.heading(2, "Provenance");
   const auto& o = st.options;
   std::vector<std::vector<std::string>> rows{{"item", "value"}};
@@ -561,7 +561,7 @@ void provenance_section(document& d, const study_result& st, const run_metadata&
               "the global attributes of its results.nc and in summary.json.");
 }
 
-document build(const study_result& st, const run_metadata& meta,
+document build(const study_result& st, const io::run_metadata& meta,
                const std::vector<figure>& figs, const std::string& dir) {
   document d;
   d.heading(1, fmt::format("Reproduction: Role of parameters in the stochastic dynamics of a "
@@ -608,10 +608,10 @@ document build(const study_result& st, const run_metadata& meta,
   return d;
 }
 
-void write_set_files(const set_study& s, const run_metadata& meta, const std::string& dir) {
-  run_metadata m = meta;
-  m.resolved_config = to_toml(s.sweep.spec);
-  write_all(s.sweep, m, dir);
+void write_set_files(const set_study& s, const io::run_metadata& meta, const std::string& dir) {
+  io::run_metadata m = meta;
+  m.resolved_config = io::to_toml(s.sweep.spec);
+  io::write_all(s.sweep, m, dir);
   detail::write_text_file(dir + "/refinement.csv", refinement_csv(s));
   detail::write_text_file(dir + "/peaks.csv", peaks_csv(s));
 }
@@ -647,7 +647,7 @@ std::string refinement_csv(const set_study& s) {
   return o;
 }
 
-std::string report_markdown(const study_result& study, const run_metadata& meta,
+std::string report_markdown(const study_result& study, const io::run_metadata& meta,
                             const std::vector<figure>& figures, const std::string& report_dir) {
   return build(study, meta, figures, report_dir).markdown();
 }
@@ -674,7 +674,7 @@ void mark_as_demo(figure& f, bool render) {
 
 }  // namespace
 
-report_files write_reproduction(const study_result& study, const run_metadata& meta,
+report_files write_reproduction(const study_result& study, const io::run_metadata& meta,
                                 const std::string& dir, bool render) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -710,4 +710,4 @@ report_files write_reproduction(const study_result& study, const run_metadata& m
   return out;
 }
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "atomic_file.hpp"
+#include "stickslip/io/atomic_file.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"

@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "stickslip/io/figures.hpp"
+#include "stickslip/study/figures.hpp"
 
-namespace stickslip::io::detail {
+namespace stickslip::study::detail {
 
 // Writes `text` to `path` atomically.
 void write_text_file(const std::string& path, const std::string& text);
@@ -39,4 +39,4 @@ void finish_figure(figure& f, const std::string& dat, const std::string& script,
 // "m=1 kg, k=40 N/m, g=9.81 m/s^2, V=1 m/s, t_a=50 s" (enhanced-text safe).
 [[nodiscard]] std::string parameter_line(const model_parameters& p);
 
-}  // namespace stickslip::io::detail
+}  // namespace stickslip::study::detail

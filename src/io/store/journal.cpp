@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "atomic_file.hpp"
+#include "stickslip/io/atomic_file.hpp"
 #include "journal_detail.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"

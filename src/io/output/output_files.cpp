@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "atomic_file.hpp"
+#include "stickslip/io/atomic_file.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
 

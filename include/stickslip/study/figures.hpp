@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/io/report.hpp"
+#include "stickslip/study/report.hpp"
 #include "stickslip/sweep.hpp"
 
-namespace stickslip::io {
+namespace stickslip::study {
 
 struct figure {
   std::string key;      // "fig6b", "convergence", ...
@@ -52,4 +52,4 @@ struct trace_point {
 [[nodiscard]] std::vector<figure> write_candidate_figures(const study_result& r,
                                                           const std::string& dir, bool render);
 
-}  // namespace stickslip::io
+}  // namespace stickslip::study
