@@ -2,7 +2,10 @@
 // realizations of one work unit advance together, one event each per round,
 // so that their serial dependency chains overlap and their transcendentals
 // are evaluated as one SIMD vector (Highway: 4 doubles with AVX2, 8 with
-// AVX-512).
+// AVX-512, 2 with SSE4, 1 with the SCALAR baseline). This file is compiled once per Highway
+// target (foreach_target.h re-includes it) and the entry points at its end
+// dispatch at run time to the target of the CPU, the same target the scalar
+// kernels of detail/fast_math.hpp use.
 //
 // Each round, for every lane (= one realization in flight):
 //   1. scalar: start a realization in an idle lane, and run the rare slips
@@ -31,6 +34,19 @@
 // reference engine adds it: every accumulator update happens in the same order.
 // A realization that exceeds max_events makes the whole block rerun on the
 // reference engine, which throws the same error the reference would.
+//
+// The engine is a template over what it does with a finished realization
+// (a collector: statistics for the sweep, or a full trace for the tests) and
+// so over the observer type: it gives the observer every episode with every
+// field, and every event when the observer takes events (observes_events;
+// realization_observer does not, so the sweep builds none), and refuses an
+// observer of segments at compile time.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "fast_lanes.cpp"  // src/core is on the core's include path
+#include <hwy/foreach_target.h>  // must come before highway.h
+
+#include <hwy/highway.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -40,23 +56,33 @@
 #include <numbers>
 #include <vector>
 
+#include "stickslip/belt_switches.hpp"
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/detail/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
+#include "stickslip/observer.hpp"
 #include "stickslip/random_stream.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::detail {
+// Defined once, after the per-target code (HWY_ONCE).
+void count_lane_reference_rerun() noexcept;
+}  // namespace stickslip::detail
+
+HWY_BEFORE_NAMESPACE();
+namespace stickslip::detail {
+namespace HWY_NAMESPACE {
 namespace {
 namespace hn = hwy::HWY_NAMESPACE;
-using simd::dtag;
+namespace sk = simd::HWY_NAMESPACE;
+using sk::dtag;
 
 using vec = hn::Vec<dtag>;
-constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 4 with AVX2
+constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 8 AVX3, 4 AVX2, 2 SSE4, 1 SCALAR
 constexpr int groups = 4;                          // independent vectors per round
 constexpr int lanes = groups * static_cast<int>(N);  // realizations in flight per thread
 static_assert(lanes <= 32, "lane bit masks are 32 bits");
@@ -66,41 +92,16 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct bound_exceeded {};
 
-// The belt switch times of one realization, 32 at a time: the values of
-// poisson_switches (same Philox blocks, u01fixedpt, log kernel, running sum).
-class lane_switches {
- public:
-  static constexpr int blocks = 8, chunk = 4 * blocks;
-  void reset(double rate, std::uint64_t seed, std::uint64_t key, std::uint64_t r) noexcept {
-    rs_ = random_stream(seed, key, r, substream::belt_switches);
-    mean_wait_ = 1.0 / rate;
-    time_ = 0.0;
-    i_ = chunk;
-  }
-  [[nodiscard]] double next() noexcept {
-    if (i_ == chunk) refill();
-    return times_[i_++];
-  }
-
- private:
-  void refill() noexcept {
+// The log kernel of this target, inlined into the switch draws of the lanes:
+// the same bits as fm::log_inplace (which dispatches to this very target),
+// whole vectors only (a chunk of switch times is a whole number of them).
+static_assert(poisson_switches::chunk % N == 0);
+struct target_log_inplace {
+  void operator()(double* HWY_RESTRICT p, std::size_t n) const noexcept {
     const dtag d;
-    HWY_ALIGN double w[chunk];
-    for (int b = 0; b < blocks; ++b) {
-      const auto blk = rs_.next_block();
-      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
-    }
-    for (int j = 0; j < chunk; j += static_cast<int>(hn::Lanes(d)))
-      hn::Store(simd::log(d, hn::Load(d, w + j)), d, w + j);
-    for (int j = 0; j < chunk; ++j) times_[j] = time_ += -w[j] * mean_wait_;
-    i_ = 0;
+    for (std::size_t i = 0; i < n; i += N) hn::StoreU(sk::log(d, hn::LoadU(d, p + i)), d, p + i);
   }
-  random_stream rs_{0, 0, 0, substream::belt_switches};
-  double mean_wait_ = 1.0, time_ = 0.0;
-  int i_ = chunk;
-  HWY_ALIGN double times_[chunk] = {};
 };
-
 
 // Event codes of one round (what the vector step decided for a lane).
 enum : int {
@@ -115,19 +116,105 @@ enum : int {
   ev_slip_rev,    // x' = v outside the band: slip reversal
 };
 
-class lane_engine {
+// Collectors: what the engine does with the realizations it runs.
+//   using observer = ...;                      the per-realization observer
+//   observer make() const;                     a fresh one (pool of the ring)
+//   void begin(observer&, r, ic);              before realization r
+//   void end(observer&, counts);               after its last episode
+//   void deliver(r, observer&);                in realization order
+//   void fallback();                           max_events exceeded: redo on the reference
+
+// The sweep's statistics: realization_observer, then point_statistics::add
+// in realization order into the block of each realization.
+class statistics_collector {
  public:
-  // Realizations [first, last) of one point; realization r goes to
-  // outs[r / block_size - first_block].
-  lane_engine(const sweep_spec& s, const model_parameters& p, std::vector<block_result>& outs,
-              std::uint64_t first_block, std::uint64_t first, std::uint64_t last)
-      : s_(s), p_(p), outs_(outs), first_block_(first_block), first_(first), last_(last),
+  using observer = realization_observer;
+  statistics_collector(const sweep_spec& s, const model_parameters& p,
+                       std::vector<block_result>& outs, std::size_t point,
+                       std::uint64_t first_block)
+      : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
+  [[nodiscard]] observer make() const { return observer(p_.window); }
+  void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
+    o.reset(r, ic.position, ic.velocity, ic.belt_direction);
+  }
+  void end(observer& o, const event_counts& counts) const {
+    o.finish();
+    o.record().events = counts;
+  }
+  void deliver(std::uint64_t r, observer& o) {
+    auto& out = outs_[r / s_.block_size - first_block_];
+    out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
+    if (s_.keep_records) out.records.push_back(o.record());
+  }
+  void fallback() {
+    // Rerun on the reference engine, which throws what the reference throws.
+    count_lane_reference_rerun();
+    for (std::uint64_t b = 0; b < outs_.size(); ++b)
+      outs_[b] = simulate_block_reference(s_, work_unit{point_, first_block_ + b});
+  }
+
+ private:
+  const sweep_spec& s_;
+  const model_parameters& p_;
+  std::vector<block_result>& outs_;
+  std::size_t point_;
+  std::uint64_t first_block_;
+};
+
+// Every episode and event of every realization (the tests' view).
+struct trace_observer : observer_base {
+  realization_trace trace;
+  void on_episode(const episode& e) { trace.episodes.push_back(e); }
+  void on_event(const event& e) { trace.events.push_back(e); }
+};
+static_assert(observes_events<trace_observer> && !observes_segments<trace_observer>);
+static_assert(!observes_events<realization_observer> && !observes_segments<realization_observer>,
+              "the lane engine builds events only for observers that take them");
+
+class trace_collector {
+ public:
+  using observer = trace_observer;
+  trace_collector(const sweep_spec& s, const model_parameters& p, std::uint64_t first,
+                  std::vector<realization_trace>& out)
+      : s_(s), p_(p), first_(first), out_(out) {}
+  [[nodiscard]] observer make() const { return {}; }
+  void begin(observer& o, std::uint64_t, const initial_conditions&) const { o.trace = {}; }
+  void end(observer& o, const event_counts& counts) const { o.trace.counts = counts; }
+  void deliver(std::uint64_t r, observer& o) { out_[r - first_] = std::move(o.trace); }
+  void fallback() {
+    count_lane_reference_rerun();
+    for (std::size_t i = 0; i < out_.size(); ++i) {
+      trace_observer o;
+      o.trace.counts = simulate_realization(s_, p_, first_ + i, o);
+      out_[i] = std::move(o.trace);
+    }
+  }
+
+ private:
+  const sweep_spec& s_;
+  const model_parameters& p_;
+  std::uint64_t first_;
+  std::vector<realization_trace>& out_;
+};
+
+template <class Collector>
+class lane_engine {
+  using observer = typename Collector::observer;
+  static_assert(!observes_segments<observer>,
+                "the lane engine reports no segments: observe them with simulate()");
+  static constexpr bool with_events = observes_events<observer>;
+
+ public:
+  // Realizations [first, last) of one point, handed to `collect` in order.
+  lane_engine(const sweep_spec& s, const model_parameters& p, Collector& collect,
+              std::uint64_t first, std::uint64_t last)
+      : s_(s), p_(p), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), w_(p.natural_frequency()), V_(p.belt_speed), ta_(p.window),
         key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) pool_.emplace_back(p.window);
+    for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());
     done_.assign(n, 0);
     for (int l = 0; l < lanes; ++l) {
       t_[l] = x_[l] = z_[l] = tsw_[l] = 0.0;
@@ -149,10 +236,10 @@ class lane_engine {
   // ---- realization start and end ----
   void start(int l, std::uint64_t r) {
     const auto ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
-    sw_[l].reset(p_.switch_rate, s_.seed, key_, r);
+    sw_[l] = poisson_switches(p_.switch_rate, s_.seed, key_, r);
     r_[l] = r;
     obs_[l] = &pool_[(r - first_) % pool_.size()];
-    obs_[l]->reset(r, ic.position, ic.velocity, ic.belt_direction);
+    collect_.begin(*obs_[l], r, ic);
     active_[l] = true;
     act_[l] = 1.0;
     n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
@@ -161,7 +248,7 @@ class lane_engine {
     const double a = a_, V = V_;
     const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
     t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
-    tsw_[l] = sw_[l].next();
+    tsw_[l] = next_switch(l);
     double sigma = 1.0;
     bool stick = false, grazing = false, after_reversal = false;
     const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
@@ -183,46 +270,53 @@ class lane_engine {
     mir_[l] = 0.0;
     ep_kind_[l] = stick ? mode::stick : mode::slip;
     ep_start_[l] = 0.0;
+    ep_x_[l] = x;
+    ep_v_[l] = v;
   }
 
+  double next_switch(int l) noexcept { return sw_[l].next(target_log_inplace{}); }
+
   void finish_realization(int l) {
-    obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, 0.0, 0.0, true});
-    obs_[l]->finish();
-    obs_[l]->record().events = event_counts{
+    obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true});
+    collect_.end(*obs_[l], event_counts{
         static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
-        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])};
+        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])});
     active_[l] = false;
     act_[l] = 0.0;
     done_[(r_[l] - first_) % pool_.size()] = 1;
     flush();
   }
 
-  // Adds the finished realizations at the head of the order, in order.
+  // Hands the finished realizations at the head of the order over, in order.
   void flush() {
     while (flush_ < last_) {
       const std::size_t slot = (flush_ - first_) % pool_.size();
       if (!done_[slot]) return;
-      auto& o = pool_[slot];
-      auto& out = outs_[flush_ / s_.block_size - first_block_];
-      out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
-      if (s_.keep_records) out.records.push_back(o.record());
+      collect_.deliver(flush_, pool_[slot]);
       done_[slot] = 0;
       ++flush_;
     }
   }
 
-  // simulate()'s close_episode: only kind, start, end and censored matter to
-  // realization_observer.
+  // simulate()'s close_episode: the next episode starts with the state just
+  // after the event (x_, v_ are already updated when this is called).
   void close_episode(int l, double when, mode next_mode) {
-    if (when > ep_start_[l]) obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], when, 0.0, 0.0, false});
+    if (when > ep_start_[l])
+      obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], when, ep_x_[l], ep_v_[l], false});
     ep_kind_[l] = next_mode;
     ep_start_[l] = when;
+    ep_x_[l] = x_[l];
+    ep_v_[l] = v_[l];
+  }
+
+  // simulate()'s on_event, with the state just after the event.
+  void emit(int l, event_kind kind) {
+    if constexpr (with_events) obs_[l]->on_event(event{kind, t_[l], x_[l], z_[l], v_[l]});
   }
 
   void count_step(int l) {
     if ((steps_[l] += 1.0) > max_steps_) throw bound_exceeded{};
   }
-
   // Before the vector step. Every busy lane counts its event (and the
   // max_events bound is checked) in vector form; the scalar prepare() runs
   // only for idle lanes and for lanes whose slip starts at a reversal.
@@ -292,14 +386,15 @@ class lane_engine {
     }
     if (tsw_[l] <= t_root) {
       const double dt = tsw_[l] - t;
-      const double cs = fm::cos(w * dt), sn = fm::sin(w * dt);
+      const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
       x_[l] = c + y * cs + z / w * sn;
       z_[l] = z * cs - wy * sn;
       t_[l] = tsw_[l];
       v_[l] = -v;
       grz_[l] = mir_[l] = 0.0;
       n_sw_[l] += 1.0;
-      tsw_[l] = sw_[l].next();
+      emit(l, event_kind::belt_switch);
+      tsw_[l] = next_switch(l);
       if (z_[l] == v_[l]) {
         contact_at_switch(l);
       } else {
@@ -325,7 +420,10 @@ class lane_engine {
     if (!inside) {
       sig_[l] = -from_sigma;
       arv_[l] = 1.0;
-      if (count_reversal) n_rev_[l] += 1.0;
+      if (count_reversal) {
+        n_rev_[l] += 1.0;
+        emit(l, event_kind::slip_reversal);
+      }
       return;
     }
     x_[l] = std::clamp(x_[l], -a, a);
@@ -337,6 +435,7 @@ class lane_engine {
     }
     stk_[l] = 1.0;
     n_on_[l] += 1.0;
+    emit(l, event_kind::stick_onset);
     close_episode(l, t_[l], mode::stick);
   }
 
@@ -390,17 +489,17 @@ class lane_engine {
       // one division for both kinds of root: |wy| / |z| (mirror return) or
       // atan2_ratio's min(|ay|, |ax|) / max(|ay|, |ax|)
       vec num, den;
-      simd::atan2_ratio_operands(ay[k], ax[k], num, den);
+      sk::atan2_ratio_operands(ay[k], ax[k], num, den);
       const vec q = Div(IfThenElse(mirr[k], hn::Abs(wy[k]), num),
                         IfThenElse(mirr[k], hn::Abs(z[k]), den));
       at[k] = IfThenElse(has_root[k], q, zero);
     }
-    K_LOOP at[k] = simd::atan(d, at[k]);
+    K_LOOP at[k] = sk::atan(d, at[k]);
     vec t_root[K];
     mask sl_ta[K], sl_sw[K], sl_root[K];
     bool any_rot = false;
     K_LOOP {
-      const vec raw = simd::atan2_finish(d, at[k], ay[k], ax[k]);
+      const vec raw = sk::atan2_finish(d, at[k], ay[k], ax[k]);
       const mask neg_ok =
           hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(wy[k], r[k]), zero)),
                   hn::Gt(raw, Set(d, -0.5 * std::numbers::pi)));
@@ -429,8 +528,8 @@ class lane_engine {
           u[k] = hn::Load(d, ph);
         }
       }
-      K_LOOP sn[k] = simd::sin(d, u[k]);
-      K_LOOP cs[k] = simd::cos(d, u[k]);
+      K_LOOP sn[k] = sk::sin(d, u[k]);
+      K_LOOP cs[k] = sk::cos(d, u[k]);
       K_LOOP {
         xr[k] = Add(Add(c[k], Mul(y[k], cs[k])), Mul(Div(z[k], W), sn[k]));
         zr[k] = Sub(Mul(z[k], cs[k]), Mul(wy[k], sn[k]));
@@ -524,6 +623,7 @@ class lane_engine {
   // branches go per group, not per lane through an unpredictable 9-way jump.
   void side_effects() {
     const std::uint32_t pop = pop_, close_stick = close_stick_, close_slip = close_slip_, fin = fin_;
+    if constexpr (with_events) emit_round_events();
     for (unsigned m = close_stick; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
       close_episode(l, t_[l], mode::slip);
@@ -534,14 +634,29 @@ class lane_engine {
     }
     for (unsigned m = pop; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      tsw_[l] = sw_[l].next();
+      tsw_[l] = next_switch(l);
       if (z_[l] == v_[l] && stk_[l] == 0.0 && static_cast<int>(code_[l]) == ev_slip_sw) contact_at_switch(l);
     }
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
+  // The events of the vector step, in simulate()'s order within each lane
+  // (a contact at a switch emits its stick onset later, in the pop loop).
+  void emit_round_events() {
+    for (int l = 0; l < lanes; ++l) {
+      switch (static_cast<int>(code_[l])) {
+        case ev_stick_sw:
+        case ev_slip_sw: emit(l, event_kind::belt_switch); break;
+        case ev_stick_brk: emit(l, event_kind::stick_break); break;
+        case ev_slip_onset: emit(l, event_kind::stick_onset); break;
+        case ev_slip_rev: emit(l, event_kind::slip_reversal); break;
+        default: break;  // idle, t_a, or a grazing touch of the outward edge
+      }
+    }
+  }
+
   static std::uint32_t lane_bits([[maybe_unused]] dtag d, hn::Mask<dtag> m) {
-#if HWY_TARGET == HWY_AVX3
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
     return static_cast<std::uint32_t>(m.raw);  // the AVX-512 mask register itself
 #else
     std::uint8_t b[8] = {};
@@ -552,11 +667,11 @@ class lane_engine {
 
   const sweep_spec& s_;
   const model_parameters& p_;
-  std::vector<block_result>& outs_;
-  std::uint64_t first_block_, first_, last_, next_, flush_;
+  Collector& collect_;
+  std::uint64_t first_, last_, next_, flush_;
   double a_, w_, V_, ta_;
   std::uint64_t key_;
-  std::vector<realization_observer> pool_;
+  std::vector<observer> pool_;
   std::vector<unsigned char> done_;
   // Lane state, one array per variable (structure of arrays): the vector
   // step loads and stores whole vectors of it.
@@ -571,23 +686,29 @@ class lane_engine {
   std::uint32_t pop_ = 0, close_stick_ = 0, close_slip_ = 0, fin_ = 0;
   bool active_[lanes] = {};
   std::uint64_t r_[lanes] = {};
-  double ep_start_[lanes] = {};
+  // The episode in progress: kind, start, and x, v at its start.
+  double ep_start_[lanes] = {}, ep_x_[lanes] = {}, ep_v_[lanes] = {};
   mode ep_kind_[lanes] = {};
-  realization_observer* obs_[lanes] = {};
-  lane_switches sw_[lanes];
+  observer* obs_[lanes] = {};
+  poisson_switches sw_[lanes] = {};
 };
+
+// Runs the engine over [first, last); on max_events, the collector's fallback.
+template <class Collector>
+void run_lanes(const sweep_spec& s, const model_parameters& p, Collector& collect,
+               std::uint64_t first, std::uint64_t last) {
+  if (first >= last) return;
+  try {
+    lane_engine<Collector>(s, p, collect, first, last).run();
+  } catch (const bound_exceeded&) {
+    collect.fallback();
+  }
+}
 
 }  // namespace
 
-namespace {
-std::atomic<std::uint64_t> g_reference_reruns{0};
-}
-std::uint64_t lane_reference_reruns() noexcept {
-  return g_reference_reruns.load(std::memory_order_relaxed);
-}
-
-std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
-                                               std::uint64_t first_block, std::uint64_t count) {
+std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t point,
+                                              std::uint64_t first_block, std::uint64_t count) {
   const auto p = point_parameters(s, point);
   std::vector<block_result> outs(count);
   const std::uint64_t first = first_block * s.block_size;
@@ -596,20 +717,53 @@ std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t
     outs[b].stats = point_statistics(p, s.histograms);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
-  if (first >= last) return outs;
-  try {
-    lane_engine(s, p, outs, first_block, first, last).run();
-  } catch (const bound_exceeded&) {
-    // Rerun on the reference engine, which throws what the reference throws.
-    g_reference_reruns.fetch_add(1, std::memory_order_relaxed);
-    for (std::uint64_t b = 0; b < count; ++b)
-      outs[b] = simulate_block_reference(s, work_unit{point, first_block + b});
-  }
+  statistics_collector collect(s, p, outs, point, first_block);
+  run_lanes(s, p, collect, first, last);
   return outs;
+}
+
+std::vector<realization_trace> TraceRealizationsLanes(const sweep_spec& s, std::size_t point,
+                                                      std::uint64_t first, std::uint64_t last) {
+  const auto p = point_parameters(s, point);
+  std::vector<realization_trace> out(last > first ? last - first : 0);
+  trace_collector collect(s, p, first, out);
+  run_lanes(s, p, collect, first, last);
+  return out;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace stickslip::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stickslip::detail {
+
+namespace {
+std::atomic<std::uint64_t> g_reference_reruns{0};
+}
+void count_lane_reference_rerun() noexcept {
+  g_reference_reruns.fetch_add(1, std::memory_order_relaxed);
+}
+std::uint64_t lane_reference_reruns() noexcept {
+  return g_reference_reruns.load(std::memory_order_relaxed);
+}
+
+HWY_EXPORT(SimulateBlocksLanes);
+HWY_EXPORT(TraceRealizationsLanes);
+
+std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
+                                               std::uint64_t first_block, std::uint64_t count) {
+  return HWY_DYNAMIC_DISPATCH(SimulateBlocksLanes)(s, point, first_block, count);
 }
 
 block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u) {
   return std::move(simulate_blocks_lanes(s, u.point, u.block, 1).front());
 }
 
+std::vector<realization_trace> trace_realizations_lanes(const sweep_spec& s, std::size_t point,
+                                                       std::uint64_t first, std::uint64_t last) {
+  return HWY_DYNAMIC_DISPATCH(TraceRealizationsLanes)(s, point, first, last);
+}
+
 }  // namespace stickslip::detail
+#endif  // HWY_ONCE
