@@ -22,11 +22,15 @@
 //   4. scalar: that bookkeeping, only for the lanes whose bit is set.
 // In the common round (every lane busy, none starting at a reversal) step 1
 // is a vector step as well: count the event, check the max_events bound.
-// The per-event arithmetic is a transcription of `simulate`
-// (include/stickslip/integrator.hpp) with the same operations in the same
-// order, sharing its helpers (root_angle_arguments / root_angle_from_raw,
-// mirror_return_*), so every event time and state is bit-identical to the
-// reference engine (tests/unit/test_fast_path*.cpp).
+// The closed-form steps of an event (stick end, slip orbit, rotation, root
+// position and angle arguments, mirror return) are the templates of
+// detail/event_physics.hpp that `simulate` (include/stickslip/integrator.hpp)
+// calls with doubles, here called with vectors; the scalar paths share
+// simulate's decisions (physics::mode_at_start, physics::resolve_contact) and
+// root-angle helpers. What the vector step repeats in mask form (the contact
+// resolution, the choice among the root angles, the next state of each
+// branch) is held to `simulate` by tests/unit/test_fast_path_episodes.cpp,
+// every episode and event field by bit pattern.
 //
 // Lanes take realizations in order; a finished realization waits in a small
 // ring until all earlier ones are finished, and is then added to the block's
@@ -57,6 +61,7 @@
 #include <vector>
 
 #include "stickslip/belt_switches.hpp"
+#include "stickslip/detail/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/detail/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
@@ -91,6 +96,13 @@ constexpr std::size_t ring = 64;  // finished realizations waiting for their tur
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct bound_exceeded {};
+
+// The closed-form steps of detail/event_physics.hpp, instantiated for this
+// target's vectors (see event_physics_steps.inl); the scalar decisions stay
+// physics:: (stickslip::detail::physics).
+namespace vphysics {
+#include "stickslip/detail/event_physics_steps.inl"
+}  // namespace vphysics
 
 // The log kernel of this target, inlined into the switch draws of the lanes:
 // the same bits as fm::log_inplace (which dispatches to this very target),
@@ -249,24 +261,12 @@ class lane_engine {
     const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
     t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
     tsw_[l] = next_switch(l);
-    double sigma = 1.0;
-    bool stick = false, grazing = false, after_reversal = false;
-    const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
-    if (z == v && std::abs(x) <= a && !on_outward_edge) {
-      stick = true;
-    } else if (z == v && std::abs(x) <= a) {
-      sigma = v > 0 ? 1.0 : -1.0;
-      grazing = true;
-    } else if (z == v) {
-      sigma = x > 0 ? 1.0 : -1.0;
-      after_reversal = true;
-    } else {
-      sigma = v > z ? 1.0 : -1.0;
-    }
-    sig_[l] = sigma;
+    const auto m = physics::mode_at_start(x, z, v, a);
+    const bool stick = m.kind == mode::stick;
+    sig_[l] = m.sigma;
     stk_[l] = stick ? 1.0 : 0.0;
-    grz_[l] = grazing ? 1.0 : 0.0;
-    arv_[l] = after_reversal ? 1.0 : 0.0;
+    grz_[l] = m.grazing ? 1.0 : 0.0;
+    arv_[l] = m.after_reversal ? 1.0 : 0.0;
     mir_[l] = 0.0;
     ep_kind_[l] = stick ? mode::stick : mode::slip;
     ep_start_[l] = 0.0;
@@ -369,14 +369,11 @@ class lane_engine {
   // reversal (after_reversal): all of the sigma region is left to run.
   void scalar_reversal_slip(int l) {
     const double a = a_, w = w_, ta = ta_;
-    double t = t_[l], x = x_[l], z = z_[l], v = v_[l], sigma = sig_[l];
-    const double c = sigma * a;
-    const double y = x - c;
-    const double wy = w * y;
-    const double disc = wy * wy + (z - v) * (z + v);
+    const double t = t_[l], x = x_[l], z = z_[l], v = v_[l], sigma = sig_[l];
+    const auto o = physics::orbit_of(x, z, v, sigma, a, w);
     double t_root = inf;
-    if (grz_[l] == 0.0 && disc > 0.0) {
-      t_root = t + reversal_arc_angle(wy, v, sigma) / w;
+    if (grz_[l] == 0.0 && o.disc > 0.0) {
+      t_root = physics::time_after_phase(t, reversal_arc_angle(o.wy, v, sigma), w);
     }
     const double t_next = std::min(t_root, tsw_[l]);
     arv_[l] = 0.0;
@@ -387,8 +384,8 @@ class lane_engine {
     if (tsw_[l] <= t_root) {
       const double dt = tsw_[l] - t;
       const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
-      x_[l] = c + y * cs + z / w * sn;
-      z_[l] = z * cs - wy * sn;
+      x_[l] = physics::rotated_position(o, z, w, cs, sn);
+      z_[l] = physics::rotated_velocity(o, z, cs, sn);
       t_[l] = tsw_[l];
       v_[l] = -v;
       grz_[l] = mir_[l] = 0.0;
@@ -402,43 +399,41 @@ class lane_engine {
       }
       return;
     }
-    x = c - sigma * std::sqrt(disc) / w;
-    x_[l] = x;
+    x_[l] = physics::root_position(o, sigma, std::sqrt(o.disc), w);
     z_[l] = v;
     t_[l] = t_root;
     root_contact(l, sigma);
   }
 
-  // simulate()'s resolution at a contact x' = v, from the sigma of the slip:
-  // a stick, a grazing touch on the outward edge, or a reversal (counted as
-  // a slip reversal at a root; simulate() counts none when a belt switch
-  // lands exactly on x' = v: contact_at_switch).
+  // simulate()'s contact_at (physics::resolve_contact): a stick, a grazing
+  // touch on the outward edge, or a reversal (counted as a slip reversal at a
+  // root; simulate() counts none when a belt switch lands exactly on x' = v:
+  // contact_at_switch).
   void root_contact(int l, double from_sigma, bool count_reversal = true) {
-    const double a = a_;
     mir_[l] = 0.0;
-    const bool inside = from_sigma > 0 ? x_[l] >= -a : x_[l] <= a;
-    if (!inside) {
-      sig_[l] = -from_sigma;
-      arv_[l] = 1.0;
-      if (count_reversal) {
-        n_rev_[l] += 1.0;
-        emit(l, event_kind::slip_reversal);
-      }
-      return;
+    const auto c = physics::resolve_contact(x_[l], from_sigma, v_[l], a_);
+    x_[l] = c.x;
+    switch (c.outcome) {
+      case physics::contact_outcome::reversal:
+        sig_[l] = c.sigma;
+        arv_[l] = 1.0;
+        if (count_reversal) {
+          n_rev_[l] += 1.0;
+          emit(l, event_kind::slip_reversal);
+        }
+        return;
+      case physics::contact_outcome::grazing:  // zero-length stick
+        sig_[l] = c.sigma;
+        grz_[l] = 1.0;
+        return;
+      case physics::contact_outcome::stick:
+        stk_[l] = 1.0;
+        n_on_[l] += 1.0;
+        emit(l, event_kind::stick_onset);
+        close_episode(l, t_[l], mode::stick);
+        return;
     }
-    x_[l] = std::clamp(x_[l], -a, a);
-    const double s = v_[l] > 0 ? 1.0 : -1.0;
-    if (a - s * x_[l] <= 0.0) {  // onset exactly on the outward edge: zero-length stick
-      sig_[l] = s;
-      grz_[l] = 1.0;
-      return;
-    }
-    stk_[l] = 1.0;
-    n_on_[l] += 1.0;
-    emit(l, event_kind::stick_onset);
-    close_episode(l, t_[l], mode::stick);
   }
-
   // simulate(): a belt switch during a slip landed exactly on x' = v.
   void contact_at_switch(int l) { root_contact(l, x_[l] > 0 ? -1.0 : 1.0, false); }
 
@@ -448,7 +443,7 @@ class lane_engine {
   // before the next phase starts, so that the K dependency chains (sqrt, the
   // divisions, Atan, Sin/Cos) are in flight together instead of one after
   // the other.
-  void vector_step(dtag d) {
+  HWY_NOINLINE void vector_step(dtag d) {  // kept apart: run() stays small enough to inline its helpers
     using hn::Add, hn::Sub, hn::Mul, hn::Div, hn::Min, hn::Max, hn::IfThenElse, hn::Set;
     using mask = hn::Mask<dtag>;
     constexpr int K = groups;
@@ -456,7 +451,8 @@ class lane_engine {
     const vec A = Set(d, a_), W = Set(d, w_), VV = Set(d, V_), TA = Set(d, ta_);
     const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
     const vec mA = hn::Neg(A);
-    vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], c[K], y[K], wy[K], disc[K], sq[K];
+    vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], sq[K];
+    vphysics::slip_orbit<vec> o[K];
     mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K];
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
@@ -470,29 +466,27 @@ class lane_engine {
     K_LOOP {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
       // stick
-      t_edge[k] = Add(t[k], Div(Sub(A, Mul(s[k], x[k])), VV));
+      t_edge[k] = vphysics::stick_edge_time(t[k], A, s[k], x[k], VV);
       st_ta[k] = hn::Ge(Min(t_edge[k], tsw[k]), TA);
       st_sw[k] = hn::AndNot(st_ta[k], hn::Le(tsw[k], t_edge[k]));
       // slip
-      c[k] = Mul(sig[k], A);
-      y[k] = Sub(x[k], c[k]);
-      wy[k] = Mul(W, y[k]);
-      disc[k] = Add(Mul(wy[k], wy[k]), Mul(Sub(z[k], v[k]), Add(z[k], v[k])));
-      has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(disc[k], zero));
-      sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], disc[k]));
+      o[k] = vphysics::orbit_of(x[k], z[k], v[k], sig[k], A, W);
+      has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(o[k].disc, zero));
+      sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], o[k].disc));
     }
     vec r[K], ay[K], ax[K], at[K];
     K_LOOP {
-      r[k] = Mul(hn::Neg(sig[k]), sq[k]);
-      ay[k] = Sub(Mul(z[k], r[k]), Mul(wy[k], v[k]));
-      ax[k] = Add(Mul(z[k], v[k]), Mul(wy[k], r[k]));
+      r[k] = vphysics::root_ordinate(sig[k], sq[k]);
+      const auto q = vphysics::root_angle_arguments(o[k].wy, z[k], v[k], r[k]);
+      ay[k] = q.y;
+      ax[k] = q.x;
       // one division for both kinds of root: |wy| / |z| (mirror return) or
       // atan2_ratio's min(|ay|, |ax|) / max(|ay|, |ax|)
       vec num, den;
       sk::atan2_ratio_operands(ay[k], ax[k], num, den);
-      const vec q = Div(IfThenElse(mirr[k], hn::Abs(wy[k]), num),
-                        IfThenElse(mirr[k], hn::Abs(z[k]), den));
-      at[k] = IfThenElse(has_root[k], q, zero);
+      const vec ratio = Div(IfThenElse(mirr[k], hn::Abs(o[k].wy), num),
+                            IfThenElse(mirr[k], hn::Abs(z[k]), den));
+      at[k] = IfThenElse(has_root[k], ratio, zero);
     }
     K_LOOP at[k] = sk::atan(d, at[k]);
     vec t_root[K];
@@ -501,13 +495,13 @@ class lane_engine {
     K_LOOP {
       const vec raw = sk::atan2_finish(d, at[k], ay[k], ax[k]);
       const mask neg_ok =
-          hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(wy[k], r[k]), zero)),
+          hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(o[k].wy, r[k]), zero)),
                   hn::Gt(raw, Set(d, -0.5 * std::numbers::pi)));
       const vec dt_gen = IfThenElse(hn::Ge(raw, zero), raw,
                                     IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
-      const vec dt_mir = Sub(Set(d, std::numbers::pi), Mul(Set(d, 2.0), at[k]));
+      const vec dt_mir = vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
       const vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
-      t_root[k] = IfThenElse(has_root[k], Add(t[k], Div(dtheta, W)), Set(d, inf));
+      t_root[k] = IfThenElse(has_root[k], vphysics::time_after_phase(t[k], dtheta, W), Set(d, inf));
       sl_ta[k] = hn::Ge(Min(t_root[k], tsw[k]), TA);
       sl_sw[k] = hn::AndNot(sl_ta[k], hn::Le(tsw[k], t_root[k]));
       sl_root[k] = hn::Not(hn::Or(sl_ta[k], sl_sw[k]));
@@ -531,14 +525,14 @@ class lane_engine {
       K_LOOP sn[k] = sk::sin(d, u[k]);
       K_LOOP cs[k] = sk::cos(d, u[k]);
       K_LOOP {
-        xr[k] = Add(Add(c[k], Mul(y[k], cs[k])), Mul(Div(z[k], W), sn[k]));
-        zr[k] = Sub(Mul(z[k], cs[k]), Mul(wy[k], sn[k]));
+        xr[k] = vphysics::rotated_position(o[k], z[k], W, cs[k], sn[k]);
+        zr[k] = vphysics::rotated_velocity(o[k], z[k], cs[k], sn[k]);
       }
     }
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
       // slip: the root, and its resolution
-      const vec x_root = IfThenElse(mirr[k], x[k], Sub(c[k], Div(Mul(sig[k], sq[k]), W)));
+      const vec x_root = IfThenElse(mirr[k], x[k], vphysics::root_position(o[k], sig[k], sq[k], W));
       const mask in_m = hn::MaskFromVec(IfThenElse(hn::Gt(sig[k], zero),
                                                    hn::VecFromMask(d, hn::Ge(x_root, mA)),
                                                    hn::VecFromMask(d, hn::Le(x_root, A))));
@@ -571,7 +565,7 @@ class lane_engine {
       // stick lanes
       const mask stk = stick[k], sta = st_ta[k], ssw2 = st_sw[k];
       const mask st_brk = hn::Not(hn::Or(sta, ssw2));
-      const vec x_sw = Min(Max(Add(x[k], Mul(v[k], Sub(tsw[k], t[k]))), mA), A);
+      const vec x_sw = Min(Max(vphysics::stick_position(x[k], v[k], t[k], tsw[k]), mA), A);
       nx = IfThenElse(stk, IfThenElse(ssw2, x_sw, IfThenElse(st_brk, Mul(s[k], A), x[k])), nx);
       nz = IfThenElse(stk, IfThenElse(sta, z[k], v[k]), nz);
       nt = IfThenElse(stk, IfThenElse(ssw2, tsw[k], IfThenElse(st_brk, t_edge[k], TA)), nt);
