@@ -40,22 +40,27 @@ class poisson_switches {
   // The same values, with the log kernel passed in: log_inplace(p, n) must
   // compute the same bits as detail::fm::log_inplace (the lane engine passes
   // the kernel of its own target, inlined).
+  // always_inline: the common case is inlined into the caller, also into the
+  // lane engine compiled for a SIMD target; the refill (once per 32) is not.
   template <class LogInplace>
-  [[nodiscard]] double next(LogInplace&& log_inplace) noexcept {
-    if (i_ == chunk) refill(log_inplace);
+  [[nodiscard, gnu::always_inline]] double next(LogInplace&& log_inplace) noexcept {
+    if (i_ == chunk) [[unlikely]] refill(log_inplace);
     return times_[i_++];
   }
 
  private:
   template <class LogInplace>
-  void refill(LogInplace& log_inplace) noexcept {
+  [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
     alignas(64) double w[chunk];
     for (int b = 0; b < blocks_per_chunk; ++b) {
       const auto blk = rs_.next_block();
       for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
     }
     log_inplace(w, std::size_t{chunk});
-    for (int j = 0; j < chunk; ++j) times_[j] = time_ += -w[j] * mean_wait_;
+    // The running sum in a register (the stores to times_ could alias time_).
+    double y = time_;
+    for (int j = 0; j < chunk; ++j) times_[j] = y += -w[j] * mean_wait_;
+    time_ = y;
     i_ = 0;
   }
 

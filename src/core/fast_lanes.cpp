@@ -274,7 +274,7 @@ class lane_engine {
     ep_v_[l] = v;
   }
 
-  double next_switch(int l) noexcept { return sw_[l].next(target_log_inplace{}); }
+  HWY_INLINE double next_switch(int l) noexcept { return sw_[l].next(target_log_inplace{}); }
 
   void finish_realization(int l) {
     obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true});
@@ -615,7 +615,7 @@ class lane_engine {
   // ---- after the vector step: counts, episodes, switch draws ----
   // Lanes are grouped by what they have to do (bit masks), so that the
   // branches go per group, not per lane through an unpredictable 9-way jump.
-  void side_effects() {
+  HWY_NOINLINE void side_effects() {  // apart: small enough to inline on_episode
     const std::uint32_t pop = pop_, close_stick = close_stick_, close_slip = close_slip_, fin = fin_;
     if constexpr (with_events) emit_round_events();
     for (unsigned m = close_stick; m != 0; m &= m - 1) {
