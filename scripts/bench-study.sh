@@ -30,6 +30,7 @@ for k in 4 40; do
     done
   done
   f="$tmp/k$k-t2"
+  [[ $k == 4 ]] && echo "SIMD target (chosen at run time): $(grep -m1 -o 'simd_target=[^ ]*' "$f" | cut -d= -f2)"
   s2=$(median study_seconds "$f"); s1=$(median study_seconds "$tmp/k$k-t1")
   fl=$(median floor_seconds "$f")
   echo
