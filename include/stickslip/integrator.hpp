@@ -120,9 +120,13 @@ struct root_angle_args {
 // atan2(|w y|, v): the same angle without the cancellation of acos near 1
 // (reversals just outside the band edge) and with the shared kernel, not
 // libm. Precondition: wy != 0 (B^2 - v^2 = (w y)^2 > 0).
-[[nodiscard]] inline double reversal_arc_angle(double wy, double v, double sigma) noexcept {
-  const double alpha = fm::atan2(std::abs(wy), v);
+// Split in two, like the mirror return, so that the lane engine can take the
+// atan2 with its own target's kernel (the same bits).
+[[nodiscard]] inline double reversal_arc_from_alpha(double alpha, double sigma) noexcept {
   return sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+}
+[[nodiscard]] inline double reversal_arc_angle(double wy, double v, double sigma) noexcept {
+  return reversal_arc_from_alpha(fm::atan2(std::abs(wy), v), sigma);
 }
 
 }  // namespace detail

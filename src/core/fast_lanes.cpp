@@ -373,7 +373,9 @@ class lane_engine {
     const auto o = physics::orbit_of(x, z, v, sigma, a, w);
     double t_root = inf;
     if (grz_[l] == 0.0 && o.disc > 0.0) {
-      t_root = physics::time_after_phase(t, reversal_arc_angle(o.wy, v, sigma), w);
+      // reversal_arc_angle, with this target's atan2 kernel inlined
+      const double alpha = sk::atan21(std::abs(o.wy), v);
+      t_root = physics::time_after_phase(t, reversal_arc_from_alpha(alpha, sigma), w);
     }
     const double t_next = std::min(t_root, tsw_[l]);
     arv_[l] = 0.0;

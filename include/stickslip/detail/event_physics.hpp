@@ -4,8 +4,8 @@
 // of realizations, so both evaluate the same operations in the same order and
 // round alike, bit for bit. Only + - * / appear in them (Highway's vectors
 // overload them for every x86 target); negation goes through Neg(), found for
-// vectors by argument-dependent lookup in Highway's namespace. Derivations: integrator.hpp's
-// header comment and docs/model.md. The decisions (the mode at the start,
+// vectors by argument-dependent lookup in Highway's namespace. Derivations:
+// integrator.hpp's header comment and docs/model.md. The decisions (the mode at the start,
 // the contact resolution at x' = v) are written once for scalars, used by
 // `simulate` and by the lane engine's scalar paths; the lane engine's vector
 // step repeats the contact resolution and the choice of the root angle as
@@ -35,7 +35,9 @@ struct start_mode {
   double sigma;
   bool grazing, after_reversal;
 };
-[[nodiscard]] inline start_mode mode_at_start(double x, double z, double v, double a) noexcept {
+// always_inline (also below): compiled into the lane engine with its target.
+[[nodiscard, gnu::always_inline]] inline start_mode mode_at_start(double x, double z, double v,
+                                                                 double a) noexcept {
   const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
   if (z == v && std::abs(x) <= a && !on_outward_edge) return {mode::stick, 1.0, false, false};
   if (z == v && std::abs(x) <= a) return {mode::slip, v > 0 ? 1.0 : -1.0, true, false};
@@ -53,7 +55,7 @@ struct contact {
   contact_outcome outcome;
   double x, sigma;
 };
-[[nodiscard]] inline contact resolve_contact(double x, double from_sigma, double v,
+[[nodiscard, gnu::always_inline]] inline contact resolve_contact(double x, double from_sigma, double v,
                                              double a) noexcept {
   const bool inside = from_sigma > 0 ? x >= -a : x <= a;
   if (!inside) return {contact_outcome::reversal, x, -from_sigma};
