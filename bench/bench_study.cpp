@@ -6,9 +6,10 @@
 // medians). Release builds only.
 //
 //   stickslip_bench_study [--k 4] [--threads 2] [--realizations 2000]
-//                         [--engine fast|lanes|scalar|reference] [--no-floor]
-//   fast = the default variant of sweep_engine::fast; lanes / scalar pick the
-//   lane engine or the one-realization-at-a-time engine (same results).
+//                         [--engine fast|reference] [--no-floor]
+//   fast = the lane engine (the default), reference = simulate one
+//   realization at a time (same results). The SIMD target is the one chosen
+//   at run time (printed).
 #include <sys/resource.h>
 
 #include <chrono>
@@ -19,7 +20,7 @@
 #include <string>
 
 #include "floor.hpp"
-#include "stickslip/detail/fast_block.hpp"
+#include "stickslip/detail/fast_math.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace {
@@ -64,18 +65,18 @@ int main(int argc, char** argv) {
     else if (a == "--realizations" && has) realizations = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--engine" && has) {
       const std::string e = argv[++i];
-      engine = e == "reference" ? stickslip::sweep_engine::reference
-                                : stickslip::sweep_engine::fast;
-      // fast = the default fast variant; lanes / scalar pick one explicitly.
-      if (e == "lanes") stickslip::detail::set_fast_variant(stickslip::detail::fast_variant::lanes);
-      if (e == "scalar")
-        stickslip::detail::set_fast_variant(stickslip::detail::fast_variant::one_at_a_time);
+      if (e == "reference") engine = stickslip::sweep_engine::reference;
+      else if (e == "fast" || e == "lanes") engine = stickslip::sweep_engine::fast;
+      else {
+        std::fprintf(stderr, "%s: --engine %s: expected fast or reference\n", argv[0], e.c_str());
+        return 2;
+      }
     }
     else if (a == "--no-floor") floor = false;
     else if (a == "--block-size" && has) block_size = std::strtoull(argv[++i], nullptr, 10);
     else {
       std::fprintf(stderr, "usage: %s [--k K] [--threads N] [--realizations R] "
-                   "[--engine fast|lanes|scalar|reference] [--block-size B] [--no-floor]\n", argv[0]);
+                   "[--engine fast|reference] [--block-size B] [--no-floor]\n", argv[0]);
       return 2;
     }
   }
@@ -90,11 +91,8 @@ int main(int argc, char** argv) {
   for (const auto& p : rs.points) ev += p.stats.events;
   const double wall = rs.elapsed_seconds;
   const double n_real = static_cast<double>(s.realizations) * static_cast<double>(rs.points.size());
-  std::printf("k=%g threads=%u engine=%s%s\n", k, threads, stickslip::to_string(engine),
-              engine == stickslip::sweep_engine::reference ? ""
-              : stickslip::detail::get_fast_variant() == stickslip::detail::fast_variant::lanes
-                  ? " (lanes)"
-                  : " (one realization at a time)");
+  std::printf("k=%g threads=%u engine=%s simd_target=%s\n", k, threads,
+              stickslip::to_string(engine), stickslip::detail::fm::target_name());
   std::printf("study_seconds=%.4f\nstudy_cpu_seconds=%.4f\n", wall, cpu);
   std::printf("realizations=%.0f\nrealizations_per_s=%.4g\n", n_real, n_real / wall);
   std::printf("events=%llu\nevents_per_s=%.4g\n", static_cast<unsigned long long>(ev.total()),

@@ -1,9 +1,14 @@
-// See floor.hpp. Compiled with the SIMD flags of the lane engine
-// (bench/study.cmake): the same static Highway target, AVX-512 or AVX2.
-#include "floor.hpp"
+// See floor.hpp. Compiled once per Highway target like the lane engine
+// (foreach_target.h) and dispatched at run time to the same target (AVX-512,
+// AVX2, ...), so that its Log runs at the engine's vector width.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "floor.cpp"  // bench/ is on this target's include path
+#include <hwy/foreach_target.h>  // must come before highway.h
 
 #include <hwy/highway.h>
 #include <hwy/contrib/math/math-inl.h>
+
+#include "floor.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,14 +19,15 @@
 
 #include "stickslip/random_stream.hpp"
 
+HWY_BEFORE_NAMESPACE();
 namespace stickslip::bench {
+namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-namespace {
 
 // Draws the switch times of one realization; returns how many fall below t_a
 // and adds their sum to `sum`.
-std::uint64_t draw_realization(double rate, double window, std::uint64_t seed, std::uint64_t key,
+inline std::uint64_t draw_realization(double rate, double window, std::uint64_t seed, std::uint64_t key,
                                std::uint64_t r, double& sum) {
   const hn::ScalableTag<double> d;
   const auto neg_mean = hn::Set(d, -1.0 / rate);
@@ -47,9 +53,7 @@ std::uint64_t draw_realization(double rate, double window, std::uint64_t seed, s
   }
 }
 
-}  // namespace
-
-floor_result draw_all_switch_times(const sweep_spec& s, unsigned threads) {
+floor_result DrawAllSwitchTimes(const sweep_spec& s, unsigned threads) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t points = point_count(s);
   std::vector<std::size_t> order(points);
@@ -94,4 +98,15 @@ floor_result draw_all_switch_times(const sweep_spec& s, unsigned threads) {
   return out;
 }
 
+}  // namespace HWY_NAMESPACE
 }  // namespace stickslip::bench
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stickslip::bench {
+HWY_EXPORT(DrawAllSwitchTimes);
+floor_result draw_all_switch_times(const sweep_spec& s, unsigned threads) {
+  return HWY_DYNAMIC_DISPATCH(DrawAllSwitchTimes)(s, threads);
+}
+}  // namespace stickslip::bench
+#endif  // HWY_ONCE

@@ -6,8 +6,8 @@
 # scaling 1 -> 2 threads. Needs a Release build with benchmarks:
 #   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release && ninja -C build stickslip_bench_study
 # Usage: scripts/bench-study.sh [build-dir] [runs]   (default: build 5)
-# STUDY_ENGINE=fast|lanes|scalar|reference selects the engine (default fast,
-# i.e. sweep_engine::fast with its default variant; see bench_study.cpp).
+# STUDY_ENGINE=fast|reference selects the engine (default fast,
+# the lane engine; see bench_study.cpp).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-5}
@@ -30,6 +30,7 @@ for k in 4 40; do
     done
   done
   f="$tmp/k$k-t2"
+  [[ $k == 4 ]] && echo "SIMD target (chosen at run time): $(grep -m1 -o 'simd_target=[^ ]*' "$f" | cut -d= -f2)"
   s2=$(median study_seconds "$f"); s1=$(median study_seconds "$tmp/k$k-t1")
   fl=$(median floor_seconds "$f")
   echo

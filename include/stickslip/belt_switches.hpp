@@ -7,6 +7,7 @@
 //   poisson_switches: W_j ~ Exp(lambda) i.i.d., Y_j = W_1 + ... + W_j (paper, Sec. 3).
 //   given_switches:   a replayed, measured or hand-made list.
 #pragma once
+#include <array>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -16,29 +17,58 @@
 
 namespace stickslip {
 
+// The one Poisson switch source of every engine. Inverse-transform
+// exponential: W_j = -log(U_j) / lambda, U_j = u01fixedpt of the j-th 64-bit
+// word of the realization's belt-switch substream (on (0, 1)), and
+// Y_j = Y_{j-1} + W_j, summed in order. The logs are taken `chunk` at a time
+// so that the Philox rounds and the vector logs of a chunk overlap in the
+// pipeline; the values do not depend on this (the log kernel is lane-wise).
 class poisson_switches {
  public:
+  static constexpr int blocks_per_chunk = 8;        // Philox blocks per refill
+  static constexpr int chunk = 4 * blocks_per_chunk;  // switch times per refill
+
   poisson_switches(double rate, std::uint64_t seed, std::uint64_t point,
                    std::uint64_t realization) noexcept
       : mean_wait_(1.0 / rate), rs_(seed, point, realization, substream::belt_switches) {}
+  // A placeholder (rate 1, seed 0) to be assigned a real source later.
+  poisson_switches() noexcept : poisson_switches(1.0, 0, 0, 0) {}
 
-  // Inverse-transform exponential: W = -log(U)/lambda with U on (0,1).
-  [[nodiscard]] double next() noexcept {
-    if (left_ == 0) {
-      block_ = rs_.next_block();
-      left_ = 4;
-    }
-    const double u = random_stream::open_uniform(block_.v[4 - left_--]);
-    time_ += -detail::fm::log(u) * mean_wait_;  // the shared kernel (fast_math.hpp)
-    return time_;
+  // The shared log kernel, dispatched to the SIMD target of the CPU.
+  [[nodiscard]] double next() noexcept { return next(detail::fm::log_inplace); }
+
+  // The same values, with the log kernel passed in: log_inplace(p, n) must
+  // compute the same bits as detail::fm::log_inplace (the lane engine passes
+  // the kernel of its own target, inlined).
+  // always_inline: the common case is inlined into the caller, also into the
+  // lane engine compiled for a SIMD target; the refill (once per 32) is not.
+  template <class LogInplace>
+  [[nodiscard, gnu::always_inline]] double next(LogInplace&& log_inplace) noexcept {
+    if (i_ == chunk) [[unlikely]] refill(log_inplace);
+    return times_[i_++];
   }
 
  private:
+  template <class LogInplace>
+  [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
+    alignas(64) double w[chunk];
+    for (int b = 0; b < blocks_per_chunk; ++b) {
+      const auto blk = rs_.next_block();
+      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
+    }
+    log_inplace(w, std::size_t{chunk});
+    // The running sum in a register (the stores to times_ could alias time_).
+    double y = time_;
+    for (int j = 0; j < chunk; ++j) times_[j] = y += -w[j] * mean_wait_;
+    time_ = y;
+    i_ = 0;
+  }
+
   double mean_wait_;
   double time_ = 0.0;
   random_stream rs_;
-  random_stream::philox::ctr_type block_{};
-  int left_ = 0;
+  int i_ = chunk;
+  alignas(64) std::array<double, chunk> times_{};
 };
 
 class given_switches {

@@ -32,6 +32,7 @@
 #include <limits>
 #include <numbers>
 
+#include "stickslip/detail/event_physics.hpp"
 #include "stickslip/detail/fast_math.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/error.hpp"
@@ -85,12 +86,12 @@ struct root_angle_args {
 };
 [[nodiscard]] inline root_angle_args root_angle_arguments(double wy, double z, double v,
                                                           double sigma, double sqrt_disc) noexcept {
-  const double r = -sigma * sqrt_disc;
-  return {z * r - wy * v, z * v + wy * r};
+  const auto q = physics::root_angle_arguments(wy, z, v, physics::root_ordinate(sigma, sqrt_disc));
+  return {q.y, q.x};
 }
 [[nodiscard]] inline double root_angle_from_raw(double raw, double wy, double v, double sigma,
                                                 double sqrt_disc) noexcept {
-  const double r = -sigma * sqrt_disc;
+  const double r = physics::root_ordinate(sigma, sqrt_disc);
   if (raw >= 0.0) return raw;
   if ((sigma * v <= 0.0 || wy * r > 0.0) && raw > -0.5 * std::numbers::pi) return 0.0;
   return raw + two_pi;
@@ -107,7 +108,7 @@ struct root_angle_args {
   return std::abs(wy) / std::abs(z);
 }
 [[nodiscard]] inline double mirror_return_from_atan(double atan_ratio) noexcept {
-  return std::numbers::pi - 2.0 * atan_ratio;
+  return physics::mirror_return_from_atan(atan_ratio, std::numbers::pi, 2.0);
 }
 [[nodiscard]] inline double mirror_return_angle(double wy, double z) noexcept {
   return mirror_return_from_atan(fm::atan(mirror_return_ratio(wy, z)));
@@ -119,9 +120,13 @@ struct root_angle_args {
 // atan2(|w y|, v): the same angle without the cancellation of acos near 1
 // (reversals just outside the band edge) and with the shared kernel, not
 // libm. Precondition: wy != 0 (B^2 - v^2 = (w y)^2 > 0).
-[[nodiscard]] inline double reversal_arc_angle(double wy, double v, double sigma) noexcept {
-  const double alpha = fm::atan2(std::abs(wy), v);
+// Split in two, like the mirror return, so that the lane engine can take the
+// atan2 with its own target's kernel (the same bits).
+[[nodiscard]] inline double reversal_arc_from_alpha(double alpha, double sigma) noexcept {
   return sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+}
+[[nodiscard]] inline double reversal_arc_angle(double wy, double v, double sigma) noexcept {
+  return reversal_arc_from_alpha(fm::atan2(std::abs(wy), v), sigma);
 }
 
 }  // namespace detail
@@ -142,40 +147,41 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   double v = ic.belt_direction >= 0 ? V : -V;
   double t_switch = switches.next();
 
-  mode m;
-  double sigma = 1.0;        // friction direction while slipping
-  bool grazing = false;      // on the grazing orbit after a stick break
-  bool after_reversal = false;
+  // The mode at t = 0, and how the slip started (integrator.hpp header).
+  const auto start = detail::physics::mode_at_start(x, z, v, a);
+  mode m = start.kind;
+  double sigma = start.sigma;  // friction direction while slipping
+  bool grazing = start.grazing;  // on the grazing orbit after a stick break
+  bool after_reversal = start.after_reversal;
   bool mirror = false;       // slip started by a belt switch that ended a stick
 
-  // Resolve the mode at relative velocity zero (x' == v).
-  auto resolve_at_contact = [&](double from_sigma) {
-    const bool inside = from_sigma > 0 ? x >= -a : x <= a;
-    if (inside) {
-      x = std::clamp(x, -a, a);
-      m = mode::stick;
-    } else {
-      m = mode::slip;
-      sigma = -from_sigma;
-      after_reversal = true;
+  // Relative velocity zero (x' == v) reached by a slip of direction
+  // from_sigma: a stick (reported), a grazing touch of the outward edge, or
+  // a reversal (reported when count_reversal; a belt switch that lands
+  // exactly on x' = v reverses without a slip reversal event).
+  auto contact_at = [&](double from_sigma, bool count_reversal) {
+    const auto c = detail::physics::resolve_contact(x, from_sigma, v, a);
+    x = c.x;
+    sigma = c.sigma;
+    switch (c.outcome) {
+      case detail::physics::contact_outcome::stick:
+        m = mode::stick;
+        return true;
+      case detail::physics::contact_outcome::grazing:  // a zero-length stick
+        m = mode::slip;
+        grazing = true;
+        return false;
+      case detail::physics::contact_outcome::reversal:
+        m = mode::slip;
+        after_reversal = true;
+        if (count_reversal) {
+          ++counts.slip_reversals;
+          obs.on_event(event{event_kind::slip_reversal, t, x, z, v});
+        }
+        return false;
     }
+    return false;
   };
-
-  const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
-  if (z == v && std::abs(x) <= a && !on_outward_edge) {
-    m = mode::stick;
-  } else if (z == v && std::abs(x) <= a) {  // the grazing contact: a zero-length stick
-    m = mode::slip;
-    sigma = v > 0 ? 1.0 : -1.0;
-    grazing = true;
-  } else if (z == v) {
-    m = mode::slip;
-    sigma = x > 0 ? 1.0 : -1.0;
-    after_reversal = true;
-  } else {
-    m = mode::slip;
-    sigma = v > z ? 1.0 : -1.0;
-  }
 
   episode ep{m, 0.0, 0.0, x, v, false};
   // Zero-length episodes (only possible at t = 0: a belt switch at t = 0) are
@@ -192,16 +198,16 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
 
     if (m == mode::stick) {
       const double s = v > 0 ? 1.0 : -1.0;
-      const double t_edge = t + (a - s * x) / V;
+      const double t_edge = detail::physics::stick_edge_time(t, a, s, x, V);
       const double t_next = std::min(t_edge, t_switch);
       obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w});
       if (t_next >= ta) {
-        x += v * (ta - t);
+        x = detail::physics::stick_position(x, v, t, ta);
         t = ta;
         break;
       }
       if (t_switch <= t_edge) {  // belt switch ends the stick
-        x = std::clamp(x + v * (t_switch - t), -a, a);
+        x = std::clamp(detail::physics::stick_position(x, v, t, t_switch), -a, a);
         z = v;
         t = t_switch;
         v = -v;
@@ -229,10 +235,8 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     }
 
     // --- slip ---
-    const double c = sigma * a;
-    const double y = x - c;
-    const double wy = w * y;
-    const double disc = wy * wy + (z - v) * (z + v);  // B^2 - v^2
+    const auto o = detail::physics::orbit_of(x, z, v, sigma, a, w);
+    const double c = o.c, wy = o.wy, disc = o.disc;  // disc = B^2 - v^2
     double t_root = inf;
     if (!grazing && disc > 0.0) {
       // Arc of the current sigma region still to run before the root.
@@ -244,36 +248,24 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       } else {
         dtheta = detail::root_angle(wy, z, v, sigma, std::sqrt(disc));
       }
-      t_root = t + dtheta / w;
+      t_root = detail::physics::time_after_phase(t, dtheta, w);
     }
     const double t_next = std::min(t_root, t_switch);
     obs.on_segment(segment{mode::slip, t, std::min(t_next, ta), x, z, v, c, w});
-    if (t_next >= ta) {
-      const double dt = ta - t;
-      const double cs = detail::fm::cos(w * dt), sn = detail::fm::sin(w * dt);
-      x = c + y * cs + z / w * sn;
-      z = z * cs - wy * sn;
-      t = ta;
-      break;
-    }
-    if (t_switch <= t_root) {  // belt switch during a slip
-      const double dt = t_switch - t;
-      const double cs = detail::fm::cos(w * dt), sn = detail::fm::sin(w * dt);
-      x = c + y * cs + z / w * sn;
-      z = z * cs - wy * sn;
-      t = t_switch;
-      v = -v;
+    if (t_next >= ta || t_switch <= t_root) {  // the slip runs to t_a or to a belt switch
+      const double t_end = std::min(t_switch, ta);
+      const double cs = detail::fm::cos(w * (t_end - t)), sn = detail::fm::sin(w * (t_end - t));
+      x = detail::physics::rotated_position(o, z, w, cs, sn);
+      z = detail::physics::rotated_velocity(o, z, cs, sn);
+      t = t_end;
+      if (t_next >= ta) break;
+      v = -v;  // belt switch during a slip
       grazing = after_reversal = mirror = false;
       ++counts.belt_switches;
       obs.on_event(event{event_kind::belt_switch, t, x, z, v});
       t_switch = switches.next();
       if (z == v) {  // measure zero: landed exactly on relative rest
-        resolve_at_contact(x > 0 ? -1.0 : 1.0);
-        if (m == mode::stick && a - (v > 0 ? x : -x) <= 0.0) {  // outward edge: grazing
-          m = mode::slip;
-          sigma = v > 0 ? 1.0 : -1.0;
-          grazing = true;
-        } else if (m == mode::stick) {
+        if (contact_at(x > 0 ? -1.0 : 1.0, false)) {
           ++counts.stick_onsets;
           obs.on_event(event{event_kind::stick_onset, t, x, z, v});
           close_episode(t, mode::stick);
@@ -285,26 +277,14 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     }
     // Relative velocity reaches zero: x' = v, x from the conserved B (on a
     // mirror return x is where the stick ended, exactly).
-    if (!mirror) x = c - sigma * std::sqrt(disc) / w;
+    if (!mirror) x = detail::physics::root_position(o, sigma, std::sqrt(disc), w);
     z = v;
     t = t_root;
-    const double from_sigma = sigma;
     after_reversal = mirror = false;
-    resolve_at_contact(from_sigma);
-    if (m == mode::stick) {
-      const double s = v > 0 ? 1.0 : -1.0;
-      if (a - s * x <= 0.0) {  // onset exactly on the outward edge: zero-length stick
-        m = mode::slip;
-        sigma = s;
-        grazing = true;
-        continue;
-      }
+    if (contact_at(sigma, true)) {
       ++counts.stick_onsets;
       obs.on_event(event{event_kind::stick_onset, t, x, z, v});
       close_episode(t, mode::stick);
-    } else {
-      ++counts.slip_reversals;
-      obs.on_event(event{event_kind::slip_reversal, t, x, z, v});
     }
   }
   ep.end = ta;

@@ -29,8 +29,9 @@ class random_stream {
                 substream s) noexcept
       : key_{{seed, point}}, ctr_{{realization, static_cast<std::uint64_t>(s), 0, 0}} {}
 
-  // Four fresh 64-bit words; advances the block counter.
-  [[nodiscard]] philox::ctr_type next_block() noexcept {
+  // Four fresh 64-bit words; advances the block counter. always_inline: the
+  // SIMD lane engine (compiled per target) gets it inlined with its target.
+  [[nodiscard, gnu::always_inline]] philox::ctr_type next_block() noexcept {
     auto r = philox{}(ctr_, key_);
     ++ctr_.v[2];
     return r;

@@ -23,15 +23,17 @@ struct axis {
   friend bool operator==(const axis&, const axis&) = default;
 };
 
-// Which engine simulates a work unit. Both run the same exact integrator and
-// give bit-identical statistics for a given seed (tests/unit/test_fast_path*.cpp):
+// Which engine simulates a work unit. Both run the same exact physics and
+// give bit-identical episodes, events and statistics for a given seed
+// (tests/unit/test_fast_path*.cpp):
 //   fast       the lane engine: 32 realizations per thread advanced together as
-//              AVX-512 vectors (16 as AVX2 vectors), one event per lane per
-//              round, finished realizations
-//              added to the statistics in realization order
-//              (src/core/fast_lanes.cpp; docs/performance.md); the default;
-//   reference  poisson_switches + realization_observer + point_statistics::add,
-//              the plain path, kept as the oracle.
+//              AVX-512 vectors (16 as AVX2 vectors, 8 on SSE4, 4 on SCALAR), one
+//              event per lane per round, the SIMD target chosen at run time,
+//              finished realizations added to the statistics in realization
+//              order (src/core/fast_lanes.cpp; docs/performance.md); the default;
+//   reference  `simulate` one realization at a time, poisson_switches +
+//              realization_observer + point_statistics::add: the plain path,
+//              kept as the oracle.
 enum class sweep_engine : unsigned char { fast, reference };
 inline constexpr const char* to_string(sweep_engine e) noexcept {
   return e == sweep_engine::fast ? "fast" : "reference";
@@ -94,7 +96,7 @@ struct block_result {
 [[nodiscard]] std::vector<block_result> simulate_units(const sweep_spec& s,
                                                        const std::vector<work_unit>& units);
 // How many consecutive units a scheduler should hand out together for
-// simulate_units to gain from: 20 with the lane engine, else 1.
+// simulate_units to gain from: 20 with the lane engine (fast), else 1.
 [[nodiscard]] std::uint64_t units_per_batch(const sweep_spec& s) noexcept;
 
 // Simulate one realization of one grid point (what `simulate` replays).
@@ -200,40 +202,7 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
 [[nodiscard]] result_set run_sweep(const sweep_spec& s, unsigned threads = 0,
                                    const sweep_hooks& hooks = {});
 
-namespace detail {
-// One realization at a time with the exact integrator and the belt switch
-// source `Switches` (poisson_switches: the reference engine;
-// batched_poisson_switches: the one-at-a-time fast engine; both give the
-// same switch times), statistics through realization_observer and
-// point_statistics::add in realization order.
-template <class Switches>
-[[nodiscard]] block_result simulate_block_with(const sweep_spec& s, const work_unit& u);
-}  // namespace detail
-
 // ---- implementation of the templates ----
-template <class Switches>
-block_result detail::simulate_block_with(const sweep_spec& s, const work_unit& u) {
-  const auto p = point_parameters(s, u.point);
-  block_result out;
-  out.stats = point_statistics(p, s.histograms);
-  const std::uint64_t first = u.block * s.block_size;
-  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
-  if (s.keep_records) out.records.reserve(last - first);
-  const auto key = point_key(p);
-  realization_observer obs(p.window);
-  for (std::uint64_t r = first; r < last; ++r) {
-    const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
-    Switches sw(p.switch_rate, s.seed, key, r);
-    obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
-    const auto counts = simulate(p, ic, sw, obs, s.max_events);
-    obs.finish();
-    obs.record().events = counts;
-    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
-    if (s.keep_records) out.records.push_back(obs.record());
-  }
-  return out;
-}
-
 template <class Observer>
 event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
                                   std::uint64_t realization, Observer& obs) {

@@ -2,7 +2,10 @@
 // realizations of one work unit advance together, one event each per round,
 // so that their serial dependency chains overlap and their transcendentals
 // are evaluated as one SIMD vector (Highway: 4 doubles with AVX2, 8 with
-// AVX-512).
+// AVX-512, 2 with SSE4, 1 with the SCALAR baseline). This file is compiled once per Highway
+// target (foreach_target.h re-includes it) and the entry points at its end
+// dispatch at run time to the target of the CPU, the same target the scalar
+// kernels of detail/fast_math.hpp use.
 //
 // Each round, for every lane (= one realization in flight):
 //   1. scalar: start a realization in an idle lane, and run the rare slips
@@ -19,11 +22,15 @@
 //   4. scalar: that bookkeeping, only for the lanes whose bit is set.
 // In the common round (every lane busy, none starting at a reversal) step 1
 // is a vector step as well: count the event, check the max_events bound.
-// The per-event arithmetic is a transcription of `simulate`
-// (include/stickslip/integrator.hpp) with the same operations in the same
-// order, sharing its helpers (root_angle_arguments / root_angle_from_raw,
-// mirror_return_*), so every event time and state is bit-identical to the
-// reference engine (tests/unit/test_fast_path*.cpp).
+// The closed-form steps of an event (stick end, slip orbit, rotation, root
+// position and angle arguments, mirror return) are the templates of
+// detail/event_physics.hpp that `simulate` (include/stickslip/integrator.hpp)
+// calls with doubles, here called with vectors; the scalar paths share
+// simulate's decisions (physics::mode_at_start, physics::resolve_contact) and
+// root-angle helpers. What the vector step repeats in mask form (the contact
+// resolution, the choice among the root angles, the next state of each
+// branch) is held to `simulate` by tests/unit/test_fast_path_episodes.cpp,
+// every episode and event field by bit pattern.
 //
 // Lanes take realizations in order; a finished realization waits in a small
 // ring until all earlier ones are finished, and is then added to the block's
@@ -31,6 +38,19 @@
 // reference engine adds it: every accumulator update happens in the same order.
 // A realization that exceeds max_events makes the whole block rerun on the
 // reference engine, which throws the same error the reference would.
+//
+// The engine is a template over what it does with a finished realization
+// (a collector: statistics for the sweep, or a full trace for the tests) and
+// so over the observer type: it gives the observer every episode with every
+// field, and every event when the observer takes events (observes_events;
+// realization_observer does not, so the sweep builds none), and refuses an
+// observer of segments at compile time.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "fast_lanes.cpp"  // src/core is on the core's include path
+#include <hwy/foreach_target.h>  // must come before highway.h
+
+#include <hwy/highway.h>
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -40,23 +60,34 @@
 #include <numbers>
 #include <vector>
 
+#include "stickslip/belt_switches.hpp"
+#include "stickslip/detail/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/detail/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
+#include "stickslip/observer.hpp"
 #include "stickslip/random_stream.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::detail {
+// Defined once, after the per-target code (HWY_ONCE).
+void count_lane_reference_rerun() noexcept;
+}  // namespace stickslip::detail
+
+HWY_BEFORE_NAMESPACE();
+namespace stickslip::detail {
+namespace HWY_NAMESPACE {
 namespace {
 namespace hn = hwy::HWY_NAMESPACE;
-using simd::dtag;
+namespace sk = simd::HWY_NAMESPACE;
+using sk::dtag;
 
 using vec = hn::Vec<dtag>;
-constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 4 with AVX2
+constexpr std::size_t N = hn::MaxLanes(dtag());  // doubles per vector: 8 AVX3, 4 AVX2, 2 SSE4, 1 SCALAR
 constexpr int groups = 4;                          // independent vectors per round
 constexpr int lanes = groups * static_cast<int>(N);  // realizations in flight per thread
 static_assert(lanes <= 32, "lane bit masks are 32 bits");
@@ -66,41 +97,23 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct bound_exceeded {};
 
-// The belt switch times of one realization, 32 at a time: the values of
-// poisson_switches (same Philox blocks, u01fixedpt, log kernel, running sum).
-class lane_switches {
- public:
-  static constexpr int blocks = 8, chunk = 4 * blocks;
-  void reset(double rate, std::uint64_t seed, std::uint64_t key, std::uint64_t r) noexcept {
-    rs_ = random_stream(seed, key, r, substream::belt_switches);
-    mean_wait_ = 1.0 / rate;
-    time_ = 0.0;
-    i_ = chunk;
-  }
-  [[nodiscard]] double next() noexcept {
-    if (i_ == chunk) refill();
-    return times_[i_++];
-  }
+// The closed-form steps of detail/event_physics.hpp, instantiated for this
+// target's vectors (see event_physics_steps.inl); the scalar decisions stay
+// physics:: (stickslip::detail::physics).
+namespace vphysics {
+#include "stickslip/detail/event_physics_steps.inl"
+}  // namespace vphysics
 
- private:
-  void refill() noexcept {
+// The log kernel of this target, inlined into the switch draws of the lanes:
+// the same bits as fm::log_inplace (which dispatches to this very target),
+// whole vectors only (a chunk of switch times is a whole number of them).
+static_assert(poisson_switches::chunk % N == 0);
+struct target_log_inplace {
+  void operator()(double* HWY_RESTRICT p, std::size_t n) const noexcept {
     const dtag d;
-    HWY_ALIGN double w[chunk];
-    for (int b = 0; b < blocks; ++b) {
-      const auto blk = rs_.next_block();
-      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
-    }
-    for (int j = 0; j < chunk; j += static_cast<int>(hn::Lanes(d)))
-      hn::Store(simd::log(d, hn::Load(d, w + j)), d, w + j);
-    for (int j = 0; j < chunk; ++j) times_[j] = time_ += -w[j] * mean_wait_;
-    i_ = 0;
+    for (std::size_t i = 0; i < n; i += N) hn::StoreU(sk::log(d, hn::LoadU(d, p + i)), d, p + i);
   }
-  random_stream rs_{0, 0, 0, substream::belt_switches};
-  double mean_wait_ = 1.0, time_ = 0.0;
-  int i_ = chunk;
-  HWY_ALIGN double times_[chunk] = {};
 };
-
 
 // Event codes of one round (what the vector step decided for a lane).
 enum : int {
@@ -115,19 +128,105 @@ enum : int {
   ev_slip_rev,    // x' = v outside the band: slip reversal
 };
 
-class lane_engine {
+// Collectors: what the engine does with the realizations it runs.
+//   using observer = ...;                      the per-realization observer
+//   observer make() const;                     a fresh one (pool of the ring)
+//   void begin(observer&, r, ic);              before realization r
+//   void end(observer&, counts);               after its last episode
+//   void deliver(r, observer&);                in realization order
+//   void fallback();                           max_events exceeded: redo on the reference
+
+// The sweep's statistics: realization_observer, then point_statistics::add
+// in realization order into the block of each realization.
+class statistics_collector {
  public:
-  // Realizations [first, last) of one point; realization r goes to
-  // outs[r / block_size - first_block].
-  lane_engine(const sweep_spec& s, const model_parameters& p, std::vector<block_result>& outs,
-              std::uint64_t first_block, std::uint64_t first, std::uint64_t last)
-      : s_(s), p_(p), outs_(outs), first_block_(first_block), first_(first), last_(last),
+  using observer = realization_observer;
+  statistics_collector(const sweep_spec& s, const model_parameters& p,
+                       std::vector<block_result>& outs, std::size_t point,
+                       std::uint64_t first_block)
+      : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
+  [[nodiscard]] observer make() const { return observer(p_.window); }
+  void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
+    o.reset(r, ic.position, ic.velocity, ic.belt_direction);
+  }
+  void end(observer& o, const event_counts& counts) const {
+    o.finish();
+    o.record().events = counts;
+  }
+  void deliver(std::uint64_t r, observer& o) {
+    auto& out = outs_[r / s_.block_size - first_block_];
+    out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
+    if (s_.keep_records) out.records.push_back(o.record());
+  }
+  void fallback() {
+    // Rerun on the reference engine, which throws what the reference throws.
+    count_lane_reference_rerun();
+    for (std::uint64_t b = 0; b < outs_.size(); ++b)
+      outs_[b] = simulate_block_reference(s_, work_unit{point_, first_block_ + b});
+  }
+
+ private:
+  const sweep_spec& s_;
+  const model_parameters& p_;
+  std::vector<block_result>& outs_;
+  std::size_t point_;
+  std::uint64_t first_block_;
+};
+
+// Every episode and event of every realization (the tests' view).
+struct trace_observer : observer_base {
+  realization_trace trace;
+  void on_episode(const episode& e) { trace.episodes.push_back(e); }
+  void on_event(const event& e) { trace.events.push_back(e); }
+};
+static_assert(observes_events<trace_observer> && !observes_segments<trace_observer>);
+static_assert(!observes_events<realization_observer> && !observes_segments<realization_observer>,
+              "the lane engine builds events only for observers that take them");
+
+class trace_collector {
+ public:
+  using observer = trace_observer;
+  trace_collector(const sweep_spec& s, const model_parameters& p, std::uint64_t first,
+                  std::vector<realization_trace>& out)
+      : s_(s), p_(p), first_(first), out_(out) {}
+  [[nodiscard]] observer make() const { return {}; }
+  void begin(observer& o, std::uint64_t, const initial_conditions&) const { o.trace = {}; }
+  void end(observer& o, const event_counts& counts) const { o.trace.counts = counts; }
+  void deliver(std::uint64_t r, observer& o) { out_[r - first_] = std::move(o.trace); }
+  void fallback() {
+    count_lane_reference_rerun();
+    for (std::size_t i = 0; i < out_.size(); ++i) {
+      trace_observer o;
+      o.trace.counts = simulate_realization(s_, p_, first_ + i, o);
+      out_[i] = std::move(o.trace);
+    }
+  }
+
+ private:
+  const sweep_spec& s_;
+  const model_parameters& p_;
+  std::uint64_t first_;
+  std::vector<realization_trace>& out_;
+};
+
+template <class Collector>
+class lane_engine {
+  using observer = typename Collector::observer;
+  static_assert(!observes_segments<observer>,
+                "the lane engine reports no segments: observe them with simulate()");
+  static constexpr bool with_events = observes_events<observer>;
+
+ public:
+  // Realizations [first, last) of one point, handed to `collect` in order.
+  lane_engine(const sweep_spec& s, const model_parameters& p, Collector& collect,
+              std::uint64_t first, std::uint64_t last)
+      : s_(s), p_(p), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), w_(p.natural_frequency()), V_(p.belt_speed), ta_(p.window),
         key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) pool_.emplace_back(p.window);
+    for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());
     done_.assign(n, 0);
     for (int l = 0; l < lanes; ++l) {
       t_[l] = x_[l] = z_[l] = tsw_[l] = 0.0;
@@ -149,10 +248,10 @@ class lane_engine {
   // ---- realization start and end ----
   void start(int l, std::uint64_t r) {
     const auto ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
-    sw_[l].reset(p_.switch_rate, s_.seed, key_, r);
+    sw_[l] = poisson_switches(p_.switch_rate, s_.seed, key_, r);
     r_[l] = r;
     obs_[l] = &pool_[(r - first_) % pool_.size()];
-    obs_[l]->reset(r, ic.position, ic.velocity, ic.belt_direction);
+    collect_.begin(*obs_[l], r, ic);
     active_[l] = true;
     act_[l] = 1.0;
     n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
@@ -161,68 +260,63 @@ class lane_engine {
     const double a = a_, V = V_;
     const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
     t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
-    tsw_[l] = sw_[l].next();
-    double sigma = 1.0;
-    bool stick = false, grazing = false, after_reversal = false;
-    const bool on_outward_edge = a - (v > 0 ? x : -x) <= 0.0;
-    if (z == v && std::abs(x) <= a && !on_outward_edge) {
-      stick = true;
-    } else if (z == v && std::abs(x) <= a) {
-      sigma = v > 0 ? 1.0 : -1.0;
-      grazing = true;
-    } else if (z == v) {
-      sigma = x > 0 ? 1.0 : -1.0;
-      after_reversal = true;
-    } else {
-      sigma = v > z ? 1.0 : -1.0;
-    }
-    sig_[l] = sigma;
+    tsw_[l] = next_switch(l);
+    const auto m = physics::mode_at_start(x, z, v, a);
+    const bool stick = m.kind == mode::stick;
+    sig_[l] = m.sigma;
     stk_[l] = stick ? 1.0 : 0.0;
-    grz_[l] = grazing ? 1.0 : 0.0;
-    arv_[l] = after_reversal ? 1.0 : 0.0;
+    grz_[l] = m.grazing ? 1.0 : 0.0;
+    arv_[l] = m.after_reversal ? 1.0 : 0.0;
     mir_[l] = 0.0;
     ep_kind_[l] = stick ? mode::stick : mode::slip;
     ep_start_[l] = 0.0;
+    ep_x_[l] = x;
+    ep_v_[l] = v;
   }
 
+  HWY_INLINE double next_switch(int l) noexcept { return sw_[l].next(target_log_inplace{}); }
+
   void finish_realization(int l) {
-    obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, 0.0, 0.0, true});
-    obs_[l]->finish();
-    obs_[l]->record().events = event_counts{
+    obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true});
+    collect_.end(*obs_[l], event_counts{
         static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
-        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])};
+        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])});
     active_[l] = false;
     act_[l] = 0.0;
     done_[(r_[l] - first_) % pool_.size()] = 1;
     flush();
   }
 
-  // Adds the finished realizations at the head of the order, in order.
+  // Hands the finished realizations at the head of the order over, in order.
   void flush() {
     while (flush_ < last_) {
       const std::size_t slot = (flush_ - first_) % pool_.size();
       if (!done_[slot]) return;
-      auto& o = pool_[slot];
-      auto& out = outs_[flush_ / s_.block_size - first_block_];
-      out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
-      if (s_.keep_records) out.records.push_back(o.record());
+      collect_.deliver(flush_, pool_[slot]);
       done_[slot] = 0;
       ++flush_;
     }
   }
 
-  // simulate()'s close_episode: only kind, start, end and censored matter to
-  // realization_observer.
+  // simulate()'s close_episode: the next episode starts with the state just
+  // after the event (x_, v_ are already updated when this is called).
   void close_episode(int l, double when, mode next_mode) {
-    if (when > ep_start_[l]) obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], when, 0.0, 0.0, false});
+    if (when > ep_start_[l])
+      obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], when, ep_x_[l], ep_v_[l], false});
     ep_kind_[l] = next_mode;
     ep_start_[l] = when;
+    ep_x_[l] = x_[l];
+    ep_v_[l] = v_[l];
+  }
+
+  // simulate()'s on_event, with the state just after the event.
+  void emit(int l, event_kind kind) {
+    if constexpr (with_events) obs_[l]->on_event(event{kind, t_[l], x_[l], z_[l], v_[l]});
   }
 
   void count_step(int l) {
     if ((steps_[l] += 1.0) > max_steps_) throw bound_exceeded{};
   }
-
   // Before the vector step. Every busy lane counts its event (and the
   // max_events bound is checked) in vector form; the scalar prepare() runs
   // only for idle lanes and for lanes whose slip starts at a reversal.
@@ -275,14 +369,13 @@ class lane_engine {
   // reversal (after_reversal): all of the sigma region is left to run.
   void scalar_reversal_slip(int l) {
     const double a = a_, w = w_, ta = ta_;
-    double t = t_[l], x = x_[l], z = z_[l], v = v_[l], sigma = sig_[l];
-    const double c = sigma * a;
-    const double y = x - c;
-    const double wy = w * y;
-    const double disc = wy * wy + (z - v) * (z + v);
+    const double t = t_[l], x = x_[l], z = z_[l], v = v_[l], sigma = sig_[l];
+    const auto o = physics::orbit_of(x, z, v, sigma, a, w);
     double t_root = inf;
-    if (grz_[l] == 0.0 && disc > 0.0) {
-      t_root = t + reversal_arc_angle(wy, v, sigma) / w;
+    if (grz_[l] == 0.0 && o.disc > 0.0) {
+      // reversal_arc_angle, with this target's atan2 kernel inlined
+      const double alpha = sk::atan21(std::abs(o.wy), v);
+      t_root = physics::time_after_phase(t, reversal_arc_from_alpha(alpha, sigma), w);
     }
     const double t_next = std::min(t_root, tsw_[l]);
     arv_[l] = 0.0;
@@ -292,14 +385,15 @@ class lane_engine {
     }
     if (tsw_[l] <= t_root) {
       const double dt = tsw_[l] - t;
-      const double cs = fm::cos(w * dt), sn = fm::sin(w * dt);
-      x_[l] = c + y * cs + z / w * sn;
-      z_[l] = z * cs - wy * sn;
+      const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
+      x_[l] = physics::rotated_position(o, z, w, cs, sn);
+      z_[l] = physics::rotated_velocity(o, z, cs, sn);
       t_[l] = tsw_[l];
       v_[l] = -v;
       grz_[l] = mir_[l] = 0.0;
       n_sw_[l] += 1.0;
-      tsw_[l] = sw_[l].next();
+      emit(l, event_kind::belt_switch);
+      tsw_[l] = next_switch(l);
       if (z_[l] == v_[l]) {
         contact_at_switch(l);
       } else {
@@ -307,39 +401,41 @@ class lane_engine {
       }
       return;
     }
-    x = c - sigma * std::sqrt(disc) / w;
-    x_[l] = x;
+    x_[l] = physics::root_position(o, sigma, std::sqrt(o.disc), w);
     z_[l] = v;
     t_[l] = t_root;
     root_contact(l, sigma);
   }
 
-  // simulate()'s resolution at a contact x' = v, from the sigma of the slip:
-  // a stick, a grazing touch on the outward edge, or a reversal (counted as
-  // a slip reversal at a root; simulate() counts none when a belt switch
-  // lands exactly on x' = v: contact_at_switch).
+  // simulate()'s contact_at (physics::resolve_contact): a stick, a grazing
+  // touch on the outward edge, or a reversal (counted as a slip reversal at a
+  // root; simulate() counts none when a belt switch lands exactly on x' = v:
+  // contact_at_switch).
   void root_contact(int l, double from_sigma, bool count_reversal = true) {
-    const double a = a_;
     mir_[l] = 0.0;
-    const bool inside = from_sigma > 0 ? x_[l] >= -a : x_[l] <= a;
-    if (!inside) {
-      sig_[l] = -from_sigma;
-      arv_[l] = 1.0;
-      if (count_reversal) n_rev_[l] += 1.0;
-      return;
+    const auto c = physics::resolve_contact(x_[l], from_sigma, v_[l], a_);
+    x_[l] = c.x;
+    switch (c.outcome) {
+      case physics::contact_outcome::reversal:
+        sig_[l] = c.sigma;
+        arv_[l] = 1.0;
+        if (count_reversal) {
+          n_rev_[l] += 1.0;
+          emit(l, event_kind::slip_reversal);
+        }
+        return;
+      case physics::contact_outcome::grazing:  // zero-length stick
+        sig_[l] = c.sigma;
+        grz_[l] = 1.0;
+        return;
+      case physics::contact_outcome::stick:
+        stk_[l] = 1.0;
+        n_on_[l] += 1.0;
+        emit(l, event_kind::stick_onset);
+        close_episode(l, t_[l], mode::stick);
+        return;
     }
-    x_[l] = std::clamp(x_[l], -a, a);
-    const double s = v_[l] > 0 ? 1.0 : -1.0;
-    if (a - s * x_[l] <= 0.0) {  // onset exactly on the outward edge: zero-length stick
-      sig_[l] = s;
-      grz_[l] = 1.0;
-      return;
-    }
-    stk_[l] = 1.0;
-    n_on_[l] += 1.0;
-    close_episode(l, t_[l], mode::stick);
   }
-
   // simulate(): a belt switch during a slip landed exactly on x' = v.
   void contact_at_switch(int l) { root_contact(l, x_[l] > 0 ? -1.0 : 1.0, false); }
 
@@ -349,7 +445,7 @@ class lane_engine {
   // before the next phase starts, so that the K dependency chains (sqrt, the
   // divisions, Atan, Sin/Cos) are in flight together instead of one after
   // the other.
-  void vector_step(dtag d) {
+  HWY_NOINLINE void vector_step(dtag d) {  // kept apart: run() stays small enough to inline its helpers
     using hn::Add, hn::Sub, hn::Mul, hn::Div, hn::Min, hn::Max, hn::IfThenElse, hn::Set;
     using mask = hn::Mask<dtag>;
     constexpr int K = groups;
@@ -357,7 +453,8 @@ class lane_engine {
     const vec A = Set(d, a_), W = Set(d, w_), VV = Set(d, V_), TA = Set(d, ta_);
     const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
     const vec mA = hn::Neg(A);
-    vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], c[K], y[K], wy[K], disc[K], sq[K];
+    vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], sq[K];
+    vphysics::slip_orbit<vec> o[K];
     mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K];
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
@@ -371,44 +468,42 @@ class lane_engine {
     K_LOOP {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
       // stick
-      t_edge[k] = Add(t[k], Div(Sub(A, Mul(s[k], x[k])), VV));
+      t_edge[k] = vphysics::stick_edge_time(t[k], A, s[k], x[k], VV);
       st_ta[k] = hn::Ge(Min(t_edge[k], tsw[k]), TA);
       st_sw[k] = hn::AndNot(st_ta[k], hn::Le(tsw[k], t_edge[k]));
       // slip
-      c[k] = Mul(sig[k], A);
-      y[k] = Sub(x[k], c[k]);
-      wy[k] = Mul(W, y[k]);
-      disc[k] = Add(Mul(wy[k], wy[k]), Mul(Sub(z[k], v[k]), Add(z[k], v[k])));
-      has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(disc[k], zero));
-      sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], disc[k]));
+      o[k] = vphysics::orbit_of(x[k], z[k], v[k], sig[k], A, W);
+      has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(o[k].disc, zero));
+      sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], o[k].disc));
     }
     vec r[K], ay[K], ax[K], at[K];
     K_LOOP {
-      r[k] = Mul(hn::Neg(sig[k]), sq[k]);
-      ay[k] = Sub(Mul(z[k], r[k]), Mul(wy[k], v[k]));
-      ax[k] = Add(Mul(z[k], v[k]), Mul(wy[k], r[k]));
+      r[k] = vphysics::root_ordinate(sig[k], sq[k]);
+      const auto q = vphysics::root_angle_arguments(o[k].wy, z[k], v[k], r[k]);
+      ay[k] = q.y;
+      ax[k] = q.x;
       // one division for both kinds of root: |wy| / |z| (mirror return) or
       // atan2_ratio's min(|ay|, |ax|) / max(|ay|, |ax|)
       vec num, den;
-      simd::atan2_ratio_operands(ay[k], ax[k], num, den);
-      const vec q = Div(IfThenElse(mirr[k], hn::Abs(wy[k]), num),
-                        IfThenElse(mirr[k], hn::Abs(z[k]), den));
-      at[k] = IfThenElse(has_root[k], q, zero);
+      sk::atan2_ratio_operands(ay[k], ax[k], num, den);
+      const vec ratio = Div(IfThenElse(mirr[k], hn::Abs(o[k].wy), num),
+                            IfThenElse(mirr[k], hn::Abs(z[k]), den));
+      at[k] = IfThenElse(has_root[k], ratio, zero);
     }
-    K_LOOP at[k] = simd::atan(d, at[k]);
+    K_LOOP at[k] = sk::atan(d, at[k]);
     vec t_root[K];
     mask sl_ta[K], sl_sw[K], sl_root[K];
     bool any_rot = false;
     K_LOOP {
-      const vec raw = simd::atan2_finish(d, at[k], ay[k], ax[k]);
+      const vec raw = sk::atan2_finish(d, at[k], ay[k], ax[k]);
       const mask neg_ok =
-          hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(wy[k], r[k]), zero)),
+          hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(o[k].wy, r[k]), zero)),
                   hn::Gt(raw, Set(d, -0.5 * std::numbers::pi)));
       const vec dt_gen = IfThenElse(hn::Ge(raw, zero), raw,
                                     IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
-      const vec dt_mir = Sub(Set(d, std::numbers::pi), Mul(Set(d, 2.0), at[k]));
+      const vec dt_mir = vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
       const vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
-      t_root[k] = IfThenElse(has_root[k], Add(t[k], Div(dtheta, W)), Set(d, inf));
+      t_root[k] = IfThenElse(has_root[k], vphysics::time_after_phase(t[k], dtheta, W), Set(d, inf));
       sl_ta[k] = hn::Ge(Min(t_root[k], tsw[k]), TA);
       sl_sw[k] = hn::AndNot(sl_ta[k], hn::Le(tsw[k], t_root[k]));
       sl_root[k] = hn::Not(hn::Or(sl_ta[k], sl_sw[k]));
@@ -429,17 +524,17 @@ class lane_engine {
           u[k] = hn::Load(d, ph);
         }
       }
-      K_LOOP sn[k] = simd::sin(d, u[k]);
-      K_LOOP cs[k] = simd::cos(d, u[k]);
+      K_LOOP sn[k] = sk::sin(d, u[k]);
+      K_LOOP cs[k] = sk::cos(d, u[k]);
       K_LOOP {
-        xr[k] = Add(Add(c[k], Mul(y[k], cs[k])), Mul(Div(z[k], W), sn[k]));
-        zr[k] = Sub(Mul(z[k], cs[k]), Mul(wy[k], sn[k]));
+        xr[k] = vphysics::rotated_position(o[k], z[k], W, cs[k], sn[k]);
+        zr[k] = vphysics::rotated_velocity(o[k], z[k], cs[k], sn[k]);
       }
     }
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
       // slip: the root, and its resolution
-      const vec x_root = IfThenElse(mirr[k], x[k], Sub(c[k], Div(Mul(sig[k], sq[k]), W)));
+      const vec x_root = IfThenElse(mirr[k], x[k], vphysics::root_position(o[k], sig[k], sq[k], W));
       const mask in_m = hn::MaskFromVec(IfThenElse(hn::Gt(sig[k], zero),
                                                    hn::VecFromMask(d, hn::Ge(x_root, mA)),
                                                    hn::VecFromMask(d, hn::Le(x_root, A))));
@@ -472,7 +567,7 @@ class lane_engine {
       // stick lanes
       const mask stk = stick[k], sta = st_ta[k], ssw2 = st_sw[k];
       const mask st_brk = hn::Not(hn::Or(sta, ssw2));
-      const vec x_sw = Min(Max(Add(x[k], Mul(v[k], Sub(tsw[k], t[k]))), mA), A);
+      const vec x_sw = Min(Max(vphysics::stick_position(x[k], v[k], t[k], tsw[k]), mA), A);
       nx = IfThenElse(stk, IfThenElse(ssw2, x_sw, IfThenElse(st_brk, Mul(s[k], A), x[k])), nx);
       nz = IfThenElse(stk, IfThenElse(sta, z[k], v[k]), nz);
       nt = IfThenElse(stk, IfThenElse(ssw2, tsw[k], IfThenElse(st_brk, t_edge[k], TA)), nt);
@@ -522,8 +617,9 @@ class lane_engine {
   // ---- after the vector step: counts, episodes, switch draws ----
   // Lanes are grouped by what they have to do (bit masks), so that the
   // branches go per group, not per lane through an unpredictable 9-way jump.
-  void side_effects() {
+  HWY_NOINLINE void side_effects() {  // apart: small enough to inline on_episode
     const std::uint32_t pop = pop_, close_stick = close_stick_, close_slip = close_slip_, fin = fin_;
+    if constexpr (with_events) emit_round_events();
     for (unsigned m = close_stick; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
       close_episode(l, t_[l], mode::slip);
@@ -534,14 +630,29 @@ class lane_engine {
     }
     for (unsigned m = pop; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      tsw_[l] = sw_[l].next();
+      tsw_[l] = next_switch(l);
       if (z_[l] == v_[l] && stk_[l] == 0.0 && static_cast<int>(code_[l]) == ev_slip_sw) contact_at_switch(l);
     }
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
+  // The events of the vector step, in simulate()'s order within each lane
+  // (a contact at a switch emits its stick onset later, in the pop loop).
+  void emit_round_events() {
+    for (int l = 0; l < lanes; ++l) {
+      switch (static_cast<int>(code_[l])) {
+        case ev_stick_sw:
+        case ev_slip_sw: emit(l, event_kind::belt_switch); break;
+        case ev_stick_brk: emit(l, event_kind::stick_break); break;
+        case ev_slip_onset: emit(l, event_kind::stick_onset); break;
+        case ev_slip_rev: emit(l, event_kind::slip_reversal); break;
+        default: break;  // idle, t_a, or a grazing touch of the outward edge
+      }
+    }
+  }
+
   static std::uint32_t lane_bits([[maybe_unused]] dtag d, hn::Mask<dtag> m) {
-#if HWY_TARGET == HWY_AVX3
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
     return static_cast<std::uint32_t>(m.raw);  // the AVX-512 mask register itself
 #else
     std::uint8_t b[8] = {};
@@ -552,11 +663,11 @@ class lane_engine {
 
   const sweep_spec& s_;
   const model_parameters& p_;
-  std::vector<block_result>& outs_;
-  std::uint64_t first_block_, first_, last_, next_, flush_;
+  Collector& collect_;
+  std::uint64_t first_, last_, next_, flush_;
   double a_, w_, V_, ta_;
   std::uint64_t key_;
-  std::vector<realization_observer> pool_;
+  std::vector<observer> pool_;
   std::vector<unsigned char> done_;
   // Lane state, one array per variable (structure of arrays): the vector
   // step loads and stores whole vectors of it.
@@ -571,23 +682,29 @@ class lane_engine {
   std::uint32_t pop_ = 0, close_stick_ = 0, close_slip_ = 0, fin_ = 0;
   bool active_[lanes] = {};
   std::uint64_t r_[lanes] = {};
-  double ep_start_[lanes] = {};
+  // The episode in progress: kind, start, and x, v at its start.
+  double ep_start_[lanes] = {}, ep_x_[lanes] = {}, ep_v_[lanes] = {};
   mode ep_kind_[lanes] = {};
-  realization_observer* obs_[lanes] = {};
-  lane_switches sw_[lanes];
+  observer* obs_[lanes] = {};
+  poisson_switches sw_[lanes] = {};
 };
+
+// Runs the engine over [first, last); on max_events, the collector's fallback.
+template <class Collector>
+void run_lanes(const sweep_spec& s, const model_parameters& p, Collector& collect,
+               std::uint64_t first, std::uint64_t last) {
+  if (first >= last) return;
+  try {
+    lane_engine<Collector>(s, p, collect, first, last).run();
+  } catch (const bound_exceeded&) {
+    collect.fallback();
+  }
+}
 
 }  // namespace
 
-namespace {
-std::atomic<std::uint64_t> g_reference_reruns{0};
-}
-std::uint64_t lane_reference_reruns() noexcept {
-  return g_reference_reruns.load(std::memory_order_relaxed);
-}
-
-std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
-                                               std::uint64_t first_block, std::uint64_t count) {
+std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t point,
+                                              std::uint64_t first_block, std::uint64_t count) {
   const auto p = point_parameters(s, point);
   std::vector<block_result> outs(count);
   const std::uint64_t first = first_block * s.block_size;
@@ -596,20 +713,53 @@ std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t
     outs[b].stats = point_statistics(p, s.histograms);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
-  if (first >= last) return outs;
-  try {
-    lane_engine(s, p, outs, first_block, first, last).run();
-  } catch (const bound_exceeded&) {
-    // Rerun on the reference engine, which throws what the reference throws.
-    g_reference_reruns.fetch_add(1, std::memory_order_relaxed);
-    for (std::uint64_t b = 0; b < count; ++b)
-      outs[b] = simulate_block_reference(s, work_unit{point, first_block + b});
-  }
+  statistics_collector collect(s, p, outs, point, first_block);
+  run_lanes(s, p, collect, first, last);
   return outs;
+}
+
+std::vector<realization_trace> TraceRealizationsLanes(const sweep_spec& s, std::size_t point,
+                                                      std::uint64_t first, std::uint64_t last) {
+  const auto p = point_parameters(s, point);
+  std::vector<realization_trace> out(last > first ? last - first : 0);
+  trace_collector collect(s, p, first, out);
+  run_lanes(s, p, collect, first, last);
+  return out;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace stickslip::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stickslip::detail {
+
+namespace {
+std::atomic<std::uint64_t> g_reference_reruns{0};
+}
+void count_lane_reference_rerun() noexcept {
+  g_reference_reruns.fetch_add(1, std::memory_order_relaxed);
+}
+std::uint64_t lane_reference_reruns() noexcept {
+  return g_reference_reruns.load(std::memory_order_relaxed);
+}
+
+HWY_EXPORT(SimulateBlocksLanes);
+HWY_EXPORT(TraceRealizationsLanes);
+
+std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
+                                               std::uint64_t first_block, std::uint64_t count) {
+  return HWY_DYNAMIC_DISPATCH(SimulateBlocksLanes)(s, point, first_block, count);
 }
 
 block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u) {
   return std::move(simulate_blocks_lanes(s, u.point, u.block, 1).front());
 }
 
+std::vector<realization_trace> trace_realizations_lanes(const sweep_spec& s, std::size_t point,
+                                                       std::uint64_t first, std::uint64_t last) {
+  return HWY_DYNAMIC_DISPATCH(TraceRealizationsLanes)(s, point, first, last);
+}
+
 }  // namespace stickslip::detail
+#endif  // HWY_ONCE

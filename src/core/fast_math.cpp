@@ -1,49 +1,56 @@
-// Scalar entry points of the shared kernels: see detail/fast_math.hpp.
-#include "stickslip/detail/fast_math.hpp"
+// Scalar entry points of the shared kernels, dispatched at run time to the
+// SIMD target of the CPU: see detail/fast_math.hpp. This file is compiled
+// once per Highway target (foreach_target.h re-includes it).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "fast_math.cpp"  // src/core is on the core's include path
+#include <hwy/foreach_target.h>  // must come before highway.h
 
+#include <hwy/highway.h>
+
+#include "stickslip/detail/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
 
+HWY_BEFORE_NAMESPACE();
 namespace stickslip::detail::fm {
-namespace {
-namespace hn = hwy::HWY_NAMESPACE;
-using simd::dtag;
-}  // namespace
+namespace HWY_NAMESPACE {
+namespace sk = simd::HWY_NAMESPACE;
 
-double log(double x) noexcept {
-  const dtag d;
-  return hn::GetLane(simd::log(d, hn::Set(d, x)));
-}
-double atan(double x) noexcept {
-  const dtag d;
-  return hn::GetLane(simd::atan(d, hn::Set(d, x)));
-}
-double atan2(double y, double x) noexcept {
-  const dtag d;
-  return hn::GetLane(simd::atan2(d, hn::Set(d, y), hn::Set(d, x)));
-}
-double sin(double x) noexcept {
-  const dtag d;
-  return hn::GetLane(simd::sin(d, hn::Set(d, reduce_phase(x))));
-}
-double cos(double x) noexcept {
-  const dtag d;
-  return hn::GetLane(simd::cos(d, hn::Set(d, reduce_phase(x))));
-}
+double Log(double x) { return sk::log1(x); }
+double Atan(double x) { return sk::atan1(x); }
+double Atan2(double y, double x) { return sk::atan21(y, x); }
+double Sin(double x) { return sk::sin1(x); }
+double Cos(double x) { return sk::cos1(x); }
+void LogInplace(double* p, std::size_t n) { sk::log_inplace(p, n); }
+std::int64_t Target() { return HWY_TARGET; }
 
-void log_inplace(double* p, std::size_t n) noexcept {
-  const dtag d;
-  const std::size_t N = hn::Lanes(d);
-  std::size_t i = 0;
-  for (; i + N <= n; i += N) hn::StoreU(simd::log(d, hn::LoadU(d, p + i)), d, p + i);
-  for (; i < n; ++i) p[i] = log(p[i]);
-}
+}  // namespace HWY_NAMESPACE
+}  // namespace stickslip::detail::fm
+HWY_AFTER_NAMESPACE();
 
-const char* target_name() noexcept {
-#if HWY_TARGET == HWY_AVX2
-  return "avx2+fma";
-#else
-  return hwy::TargetName(HWY_TARGET);
-#endif
+#if HWY_ONCE
+namespace stickslip::detail::fm {
+
+HWY_EXPORT(Log);
+HWY_EXPORT(Atan);
+HWY_EXPORT(Atan2);
+HWY_EXPORT(Sin);
+HWY_EXPORT(Cos);
+HWY_EXPORT(LogInplace);
+HWY_EXPORT(Target);
+
+double log(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Log)(x); }
+double atan(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Atan)(x); }
+double atan2(double y, double x) noexcept { return HWY_DYNAMIC_DISPATCH(Atan2)(y, x); }
+double sin(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Sin)(x); }
+double cos(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Cos)(x); }
+void log_inplace(double* p, std::size_t n) noexcept { HWY_DYNAMIC_DISPATCH(LogInplace)(p, n); }
+
+std::int64_t target() noexcept { return HWY_DYNAMIC_DISPATCH(Target)(); }
+const char* target_name() noexcept { return hwy::TargetName(target()); }
+bool target_fuses_multiply_add() noexcept {
+  const std::int64_t t = target();
+  return t == HWY_AVX2 || t == HWY_AVX3 || t == HWY_AVX3_DL;
 }
 
 }  // namespace stickslip::detail::fm
+#endif  // HWY_ONCE

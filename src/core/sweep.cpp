@@ -136,15 +136,11 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
 
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
   if (s.engine == sweep_engine::reference) return simulate_block_reference(s, u);
-  return detail::get_fast_variant() == detail::fast_variant::lanes
-             ? detail::simulate_block_lanes(s, u)
-             : detail::simulate_block_fast(s, u);
+  return detail::simulate_block_lanes(s, u);
 }
 
 std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
-  const bool lanes = s.engine == sweep_engine::fast &&
-                     detail::get_fast_variant() == detail::fast_variant::lanes;
-  return lanes ? 20 : 1;  // 20 x 50 realizations
+  return s.engine == sweep_engine::fast ? 20 : 1;  // 20 x 50 realizations
 }
 
 std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<work_unit>& units) {
@@ -167,8 +163,28 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
   return results;
 }
 
+// One realization at a time: simulate with poisson_switches, statistics
+// through realization_observer and point_statistics::add in realization order.
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
-  return detail::simulate_block_with<poisson_switches>(s, u);
+  const auto p = point_parameters(s, u.point);
+  block_result out;
+  out.stats = point_statistics(p, s.histograms);
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  if (s.keep_records) out.records.reserve(last - first);
+  const auto key = point_key(p);
+  realization_observer obs(p.window);
+  for (std::uint64_t r = first; r < last; ++r) {
+    const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
+    poisson_switches sw(p.switch_rate, s.seed, key, r);
+    obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
+    const auto counts = simulate(p, ic, sw, obs, s.max_events);
+    obs.finish();
+    obs.record().events = counts;
+    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    if (s.keep_records) out.records.push_back(obs.record());
+  }
+  return out;
 }
 
 ordered_merger::ordered_merger(const sweep_spec& s)

@@ -1,7 +1,6 @@
 // The lane engine (detail::simulate_block_lanes, what sweep_engine::fast
 // runs: several realizations per thread in lock step, transcendentals as SIMD
-// vectors) against the reference engine and the one-at-a-time fast engine:
-// every statistic and record bit for bit, for any block size (including
+// vectors) against the reference engine: every statistic and record bit for bit, for any block size (including
 // blocks longer than the lane engine's reorder ring), seed, stiffness and
 // thread count; the same error when a realization exceeds max_events; and the
 // shared kernels (detail/fast_math.hpp) against libm.
@@ -38,15 +37,13 @@ sweep_spec study(double stiffness, std::uint64_t realizations, std::uint64_t blo
   return s;
 }
 
-// Every unit of the spec, three engines, bit for bit.
+// Every unit of the spec, both engines, bit for bit.
 void expect_units_agree(const sweep_spec& s) {
   for (std::uint64_t i = 0; i < unit_count(s); ++i) {
     const auto u = unit_at(s, i);
     const auto ref = simulate_block_reference(s, u);
     const auto lanes = detail::simulate_block_lanes(s, u);
-    const auto fast = detail::simulate_block_fast(s, u);
     EXPECT_TRUE(same_bits(ref.stats, lanes.stats)) << "unit " << i;
-    EXPECT_TRUE(same_bits(ref.stats, fast.stats)) << "unit " << i;
     ASSERT_EQ(ref.records.size(), lanes.records.size());
     for (std::size_t j = 0; j < ref.records.size(); ++j)
       EXPECT_TRUE(same_bits(ref.records[j], lanes.records[j])) << "unit " << i << " record " << j;
@@ -67,7 +64,7 @@ TEST(FastPathLanes, BlockLongerThanTheReorderRing) {
 }
 
 // Several consecutive blocks of a point in one lane engine (what run_units
-// does with the lanes variant): each block's result is the reference's.
+// does with the fast engine): each block's result is the reference's.
 TEST(FastPathLanes, ConsecutiveBlocksAtOnceEqualTheReferencePerBlock) {
   for (double k : {4.0, 40.0}) {
     auto s = study(k, 47, 7);  // 7 blocks, the last one partial
@@ -89,9 +86,7 @@ TEST(FastPathLanes, SweepIsBitIdenticalForAnyThreadCount) {
   auto s = study(40.0, 40, 9);
   s.engine = sweep_engine::reference;
   const auto ref = run_sweep(s, 1);
-  s.engine = sweep_engine::fast;
-  const auto before = detail::get_fast_variant();
-  detail::set_fast_variant(detail::fast_variant::lanes);  // through simulate_block and run_units
+  s.engine = sweep_engine::fast;  // the lane engine, through simulate_block and run_units
   for (unsigned threads : {1u, 2u, 3u}) {
     const auto r = run_sweep(s, threads);
     ASSERT_EQ(ref.points.size(), r.points.size());
@@ -103,7 +98,6 @@ TEST(FastPathLanes, SweepIsBitIdenticalForAnyThreadCount) {
                               r.points[i].stats.convergence[j].R_mean));
     }
   }
-  detail::set_fast_variant(before);
 }
 
 // Passes of simulate()'s event loop (what max_events bounds): one segment

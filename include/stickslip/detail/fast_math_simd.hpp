@@ -1,13 +1,30 @@
-// Vector forms of the kernels of detail/fast_math.hpp. Include only from the
-// translation units compiled with the SIMD target flags (fast_math.cpp,
-// fast_lanes.cpp): both must see the same static Highway target.
-#pragma once
+// Vector forms of the kernels of detail/fast_math.hpp, for every SIMD target.
+// Include only from translation units that are compiled once per Highway
+// target (hwy/foreach_target.h: src/core/fast_math.cpp, src/core/fast_lanes.cpp):
+// like Highway's own -inl headers it is re-included for each target, and
+// defines stickslip::detail::simd::HWY_NAMESPACE (N_AVX3, N_AVX2, N_SSE4, ...).
+// Highway's math is lane-wise (no cross-lane step), so a lane's result does
+// not depend on its neighbours or on the vector width: AVX2 and AVX3 give the
+// same bits (same polynomials, same fused multiply-adds).
+
+// Per-target include guard (Highway's pattern for -inl headers).
+#if defined(STICKSLIP_DETAIL_FAST_MATH_SIMD_HPP_) == defined(HWY_TARGET_TOGGLE)
+#ifdef STICKSLIP_DETAIL_FAST_MATH_SIMD_HPP_
+#undef STICKSLIP_DETAIL_FAST_MATH_SIMD_HPP_
+#else
+#define STICKSLIP_DETAIL_FAST_MATH_SIMD_HPP_
+#endif
+
 #include <hwy/highway.h>
 #include <hwy/contrib/math/math-inl.h>
 
 #include <numbers>
 
+#include "stickslip/detail/fast_math.hpp"
+
+HWY_BEFORE_NAMESPACE();
 namespace stickslip::detail::simd {
+namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 using dtag = hn::ScalableTag<double>;
 using vec = hn::Vec<dtag>;
@@ -48,4 +65,41 @@ HWY_INLINE vec cos(dtag d, vec x) {
   return hn::IfThenElse(hn::Lt(hn::Abs(x), hn::Set(d, 1e-8)), hn::Set(d, 1.0), hn::Cos(d, x));
 }
 
+// p[i] = log(p[i]) for i < n (the batched draw of belt switch waits).
+HWY_INLINE void log_inplace(double* HWY_RESTRICT p, std::size_t n) {
+  const dtag d;
+  const std::size_t N = hn::Lanes(d);
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) hn::StoreU(log(d, hn::LoadU(d, p + i)), d, p + i);
+  for (; i < n; ++i) p[i] = hn::GetLane(log(d, hn::Set(d, p[i])));
+}
+
+// The scalar kernels of this target: the vector kernel on a broadcast
+// argument, lane 0. fm::log etc. (fast_math.cpp) dispatch to these; the lane
+// engine calls them directly, inside the same target.
+HWY_INLINE double log1(double x) {
+  const dtag d;
+  return hn::GetLane(log(d, hn::Set(d, x)));
+}
+HWY_INLINE double atan1(double x) {
+  const dtag d;
+  return hn::GetLane(atan(d, hn::Set(d, x)));
+}
+HWY_INLINE double atan21(double y, double x) {
+  const dtag d;
+  return hn::GetLane(atan2(d, hn::Set(d, y), hn::Set(d, x)));
+}
+HWY_INLINE double sin1(double x) {
+  const dtag d;
+  return hn::GetLane(sin(d, hn::Set(d, fm::reduce_phase(x))));
+}
+HWY_INLINE double cos1(double x) {
+  const dtag d;
+  return hn::GetLane(cos(d, hn::Set(d, fm::reduce_phase(x))));
+}
+
+}  // namespace HWY_NAMESPACE
 }  // namespace stickslip::detail::simd
+HWY_AFTER_NAMESPACE();
+
+#endif  // per-target include guard
