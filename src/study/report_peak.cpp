@@ -1,6 +1,6 @@
 // Locating the maximum of mean R in lambda: a weighted quadratic fit in
 // u = ln(lambda / center) with delta-method errors and a parametric bootstrap.
-// The math is written out in include/stickslip/io/report.hpp.
+// The math is written out in include/stickslip/study/report.hpp.
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
 
