@@ -21,9 +21,14 @@ gtests=(unit_tests property_tests regression_tests reference_tests resume_tests)
 which=${1:-all}
 
 existing_targets() {  # the gtest targets this tree defines
+  # The help text is read once into a variable: `cmake ... | grep -q` under
+  # pipefail fails at random once the text is long (grep exits early, cmake
+  # gets SIGPIPE), and the target would be dropped.
   local dir=$1; shift
+  local help
+  help=$(cmake --build "$dir" --target help 2>/dev/null)
   for t in "$@"; do
-    if cmake --build "$dir" --target help 2>/dev/null | grep -qE "(^|[ /])$t(:| )"; then echo "$t"; fi
+    if grep -qE "(^|[ /])$t(:| )" <<<"$help"; then echo "$t"; fi
   done
 }
 
@@ -33,6 +38,7 @@ if [[ $which == all || $which == asan ]]; then
   cmake -S . -B build-asan "${gen[@]}" "${common[@]}" -DSTICKSLIP_SANITIZE=address,undefined \
     -DCMAKE_CXX_FLAGS="-fno-sanitize-recover=all" >/dev/null
   mapfile -t targets < <(existing_targets build-asan "${gtests[@]}")
+  ((${#targets[@]} > 0)) || { echo "sanitizers.sh: no test targets found in build-asan" >&2; exit 1; }
   cmake --build build-asan -j "$jobs" --target "${targets[@]}"
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

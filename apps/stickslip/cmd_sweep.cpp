@@ -211,7 +211,10 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
     report(spec, plan, out, exec.runner());
   } catch (const error& e) {
     bar.finish();
-    if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
+    if (e.code() == exit_code::io_failure) {
+      exec.release();  // std::_Exit skips the destructors: let the MPI workers return first
+      exit_after_failed_write(e);
+    }
     throw;
   }
 }

@@ -28,7 +28,11 @@ execution::execution(unsigned threads) : threads_(threads) {
   runner_ = std::make_unique<run::thread_runner>(threads);
 }
 
-execution::~execution() {
+execution::~execution() { release(); }
+
+void execution::release() noexcept {
+  if (released_) return;
+  released_ = true;
 #ifdef STICKSLIP_HAVE_MPI
   if (mpi_ && mpi_->session.is_root()) mpi::cancel(mpi_->session);
 #endif

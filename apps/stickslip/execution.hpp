@@ -20,12 +20,16 @@ class execution {
   void serve();
   // Rank 0 (or the only process): the runner for every sweep of the command.
   [[nodiscard]] run::runner& runner() noexcept { return *runner_; }
+  // Rank 0: lets the workers return (they wait for the next sweep). The
+  // destructor does it too; call it before leaving with std::_Exit.
+  void release() noexcept;
 
  private:
   struct mpi_state;
   std::unique_ptr<mpi_state> mpi_;
   std::unique_ptr<run::runner> runner_;
   unsigned threads_;
+  bool released_ = false;
 };
 
 }  // namespace stickslip::app

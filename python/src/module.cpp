@@ -137,13 +137,25 @@ bool run_interruptibly(Work&& work, run::stop_token& stop, const py::object& pro
       if (finished) break;
     }
     if (interrupted) continue;
-    if (PyErr_CheckSignals() != 0) {  // KeyboardInterrupt (or another signal's exception)
+    // A pending Python exception -- Ctrl-C, or one the progress callback
+    // raised (KeyboardInterrupt may land inside tqdm) -- stops the sweep: it
+    // is kept, no unit starts any more, and it is raised once the worker has
+    // finished the units in flight (never while the worker runs: a joinable
+    // std::thread must not be destroyed).
+    bool pending = PyErr_CheckSignals() != 0;
+    if (!pending && !progress.is_none()) {
+      try {
+        progress(done.load(), total.load());
+      } catch (py::error_already_set& e) {
+        e.restore();
+        pending = true;
+      }
+    }
+    if (pending) {
       PyErr_Fetch(&type, &value, &trace);
       interrupted = true;
       stop.request(SIGINT);
-      continue;
     }
-    if (!progress.is_none()) progress(done.load(), total.load());
   }
   worker.join();
   if (interrupted) {

@@ -164,3 +164,28 @@ def test_ctrl_c_stops_and_resume_completes_identically(tmp_path):
                               output=str(out), resume=True)
     whole = stickslip.sweep(lam=[0.1, 1, 5, 20], mu=[0.5, 5], ta=400, realizations=8000)
     assert_same_dataset(resumed, whole)
+
+
+def test_an_exception_in_the_progress_callback_stops_the_sweep_cleanly(tmp_path):
+    # KeyboardInterrupt may land inside tqdm's refresh: the exception must stop
+    # the sweep and be raised after the units in flight, not abort the process.
+    script = textwrap.dedent("""
+        import sys, stickslip._stickslip as core
+        calls = []
+        def cb(done, total):
+            calls.append(done)
+            raise RuntimeError("callback failed")
+        try:
+            core.run_sweep({"ta": 400.0}, [("lambda", [0.1, 1.0, 5.0, 20.0])], 4000, 1, 50, 50, False,
+                           "fast", core.default_max_events, 1, sys.argv[1], False, False, 0.0,
+                           sys.argv[1] + "/r.nc", "test", cb)
+        except RuntimeError as e:
+            print("raised:", e, flush=True)
+            sys.exit(0)
+        sys.exit(3)
+    """)
+    out = tmp_path / "cb"
+    p = subprocess.run([sys.executable, "-c", script, str(out)], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
+    assert "raised: callback failed" in p.stdout
+    assert (out / ".journal").exists()  # the finished units are journaled for a resume

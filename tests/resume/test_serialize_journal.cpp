@@ -261,3 +261,21 @@ TEST(Journal, AJournalOfFormatVersion1IsReportedAndRecomputed) {
   for (const auto& p : problems)
     EXPECT_NE(p.find("format version 1 (this program reads 2)"), std::string::npos) << p;
 }
+
+// One process journaling the same directory twice within a second (a Python
+// sweep interrupted, then resumed at once): the second writer's segments must
+// not replace the first one's (they were named by time, pid and a sequence
+// number that restarts with every writer).
+TEST(Journal, TwoWritersOfOneProcessKeepEachOthersSegments) {
+  temp_dir d;
+  const auto s = small_spec();
+  const io::run_metadata meta{"cmd", "cfg", "v", "g", "t"};
+  const auto n = unit_count(s);
+  ASSERT_GE(n, 2u);
+  for (std::uint64_t i = 0; i < 2; ++i) {
+    io::journal_writer w(d.path.string(), s, meta, "run", std::chrono::seconds(0));
+    w.add(unit_at(s, i), simulate_block(s, unit_at(s, i)));
+  }
+  const auto j = io::read_journal(d.path.string(), &s);
+  EXPECT_EQ(j.units.size(), 2u);
+}

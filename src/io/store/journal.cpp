@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include <atomic>
+
 #include "stickslip/io/atomic_file.hpp"
 #include "journal_detail.hpp"
 #include "stickslip/error.hpp"
@@ -105,7 +107,7 @@ void write_file_durably(const std::string& tmp, const std::string& final_path,
 }
 
 std::string unique_suffix() {
-  static unsigned counter = 0;
+  static std::atomic<unsigned> counter{0};  // several sweeps may run at once (Python threads)
   return fmt::format("{}-{}", static_cast<long>(::getpid()), counter++);
 }
 
@@ -114,14 +116,21 @@ std::string unique_suffix() {
 namespace {
 
 // Run ids sort by start time, so segments are read back in the order written.
+// Unique per writer: the process id alone is not enough, since one process
+// (a Python session) may journal the same directory twice within a second
+// (interrupted, then resumed), and the second writer's segments must not
+// replace the first one's.
 std::string make_run_id(const std::string& tag) {
+  static std::atomic<unsigned> writers{0};
   const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  ::gmtime_r(&now, &utc);
   char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%S", std::gmtime(&now));
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%S", &utc);
   std::string clean;
   for (char c : tag) clean.push_back(std::isalnum(static_cast<unsigned char>(c)) ? c : '-');
-  return fmt::format("{}-{}-{}", clean.empty() ? "run" : clean, stamp,
-                     static_cast<long>(::getpid()));
+  return fmt::format("{}-{}-{}-{}", clean.empty() ? "run" : clean, stamp,
+                     static_cast<long>(::getpid()), writers++);
 }
 
 }  // namespace
