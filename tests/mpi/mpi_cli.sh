@@ -19,6 +19,7 @@ for np in 1 2 4; do
     "${launch[@]}" -np $np "$bin" "${args[@]}" --threads $t -o "$work/np$np-t$t" 2>"$work/np$np.err" \
       || { cat "$work/np$np.err"; fail "mpirun -np $np --threads $t"; }
     $compare "$work/single" "$work/np$np-t$t" >/dev/null || fail "-np $np --threads $t differs"
+    grep -q "\"ranks\": $np," "$work/np$np-t$t/summary.json" || fail "-np $np: summary.json does not record $np ranks"
   done
   echo "mpi_cli: mpirun -np $np (1 and 2 threads per rank) == single process"
 done
