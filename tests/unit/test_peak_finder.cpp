@@ -192,3 +192,26 @@ TEST(PeakFinder, SameEvaluationsGiveTheSameResult) {
   EXPECT_EQ(a.argmax_lo, b.argmax_lo);
   EXPECT_EQ(a.realizations, b.realizations);
 }
+
+TEST(PeakFinder, ReportsAnUnmetTargetWhenTheBudgetRunsOut) {
+  const curve c = gamma_shape(3.0, 2.5, 0.4, 0.2);
+  sp::peak_options o;
+  o.lo = 0.3;
+  o.hi = 30.0;
+  o.log_scan = true;
+  o.target_halfwidth = 1e-4;
+  o.max_total_realizations = 200'000;
+  const auto r = sp::find_peak(noisy(c, 11), o);
+  EXPECT_FALSE(r.target_met);
+  EXPECT_LE(r.realizations, o.max_total_realizations);
+  EXPECT_GT(r.halfwidth(), o.target_halfwidth);
+  EXPECT_LE(r.argmax_lo, r.argmax);
+  EXPECT_LE(r.argmax, r.argmax_hi);
+}
+
+TEST(PeakFinder, StageSeedsDifferFromEachOtherAndFromTheSeed) {
+  EXPECT_NE(sp::stage_seed(1, 0), sp::stage_seed(1, 1));
+  EXPECT_NE(sp::stage_seed(1, 1), sp::stage_seed(2, 0));
+  EXPECT_NE(sp::stage_seed(1, 0), 1u);
+  EXPECT_EQ(sp::stage_seed(7, 3), sp::stage_seed(7, 3));
+}
