@@ -35,8 +35,8 @@ void validate(const peak_options& o);
 struct peak_result {
   double argmax = 0.0;
   double argmax_lo = 0.0, argmax_hi = 0.0;  // 95 %: sampling + local-model bias
-  double sampling_halfwidth = 0.0;          // 1.96 x the delta-method standard error
-  double model_bias = 0.0;                  // |quadratic - cubic maximizer|
+  double sampling_halfwidth = 0.0;  // 1.96 x the delta-method standard error of x_c
+  double model_bias = 0.0;  // max(|x_4 - x_c|, |x_q - x_c| / 2): quartic, cubic, quadratic maximizers
   double max = 0.0;
   double max_lo = 0.0, max_hi = 0.0;
   double window_lo = 0.0, window_hi = 0.0;  // the last local fit's window

@@ -103,6 +103,8 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
     const auto cubic = fit_polynomial(in, 3, c, w);
     const auto mq = maximize(quad, tlo, thi);
     const auto mc = maximize(cubic, tlo, thi);
+    const auto quartic = fit_polynomial(in, 4, c, w);
+    const auto m4 = maximize(quartic, tlo, thi);
     const double p_fit = chi2_upper_tail(cubic.chi2, cubic.dof);
 
     if (!mq.interior) {
@@ -118,13 +120,16 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
       w *= 0.7;
       continue;
     }
-    // The estimate is the cubic's maximizer (bias O(w^3)); its sampling part
-    // is the cubic's delta-method error, and the distance to the quadratic's
-    // maximizer (bias O(w^2)) bounds what a still higher order would change.
+    // The estimate is the cubic's maximizer (bias O(w^3)) with the cubic's
+    // delta-method error. Its bias is estimated by the distance to the
+    // quartic's maximizer, floored at half the distance to the quadratic's
+    // (the stop rule favours stages where the quartic difference is small by
+    // chance; without the floor the synthetic coverage drops to ~94 %).
     const double xc = c + w * mc.t;
     r.argmax = xc;
     r.sampling_halfwidth = z95 * w * mc.t_std_error;
-    r.model_bias = std::abs(xq - xc);
+    r.model_bias =
+        m4.interior ? std::max(std::abs(c + w * m4.t - xc), 0.5 * std::abs(xq - xc)) : w;
     const double hw = r.sampling_halfwidth + r.model_bias;
     r.argmax_lo = xc - hw;
     r.argmax_hi = xc + hw;
