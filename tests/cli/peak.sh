@@ -1,0 +1,54 @@
+# `stickslip peak`: the JSON fields, the same result for any thread count,
+# and bad input (exit 2, the flag, the value and the allowed range, nothing
+# on stdout).
+source "$(dirname "$0")/lib.sh"
+
+# A small problem (t_a = 10, a coarse target) so that it runs in a second.
+args=(peak --mu 5 --k 40 --ta 10 --range 0.3:30 --target-halfwidth 0.3
+      --initial-realizations 200 --format json)
+run_ok "${args[@]}" --threads 1 && cp "$WORK/stdout" one.json
+run_ok "${args[@]}" --threads 2 && cp "$WORK/stdout" two.json
+"$PY" - one.json two.json <<'PY' || fail "peak JSON"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for key in ("argmax", "argmax_ci95", "max", "max_ci95", "realizations", "elapsed_seconds",
+            "target_met", "statistic", "over"):
+    assert key in a, key
+lo, hi = a["argmax_ci95"]
+assert lo <= a["argmax"] <= hi, a
+assert (hi - lo) / 2 <= 0.3 * (1 + 1e-12) and a["target_met"] is True, a
+mlo, mhi = a["max_ci95"]
+assert mlo <= a["max"] <= mhi and 0 < a["max"] < 1, a
+assert isinstance(a["realizations"], int) and a["realizations"] > 0, a
+assert a["statistic"] == "R" and a["over"] == "lambda", a
+# Any thread count: the same numbers, bit for bit (only the timings differ).
+for key in a:
+    if key not in ("elapsed_seconds", "cpu_seconds"):
+        assert a[key] == b[key], (key, a[key], b[key])
+PY
+pass
+
+# Bad input: exit 2, the flag, the value, the allowed values; nothing on stdout.
+expect_peak_error() {
+  local phrases=$1
+  shift
+  expect_fail "$phrases" peak "$@"
+  "$BIN" peak "$@" >"$WORK/stdout" 2>/dev/null
+  expect_eq "exit status of peak $*" "$?" 2
+  expect_eq "stdout of failed peak $*" "$(cat "$WORK/stdout")" ""
+}
+expect_peak_error "--target-halfwidth|-1|> 0" --target-halfwidth -1
+expect_peak_error "--target-halfwidth|'abc'" --target-halfwidth abc
+expect_peak_error "--range (upper end)|1|> the lower end 5" --range 5:1
+expect_peak_error "--range (lower end)|0|> 0" --range 0:5
+expect_peak_error "--range|'3'|LO:HI" --range 3
+expect_peak_error "--statistic|'D'|R, sticks_per_time" --statistic D
+expect_peak_error "--over|'omega'|lambda" --over omega
+expect_peak_error "--range|required unless --over lambda" --over mu
+expect_peak_error "--lambda|'2'|--over lambda" --lambda 2
+expect_peak_error "--initial-realizations|'1'" --initial-realizations 1
+expect_peak_error "mu (friction coefficient)|0|> 0" --mu 0
+expect_peak_error "upper end|widen the range" --mu 5 --k 40 --ta 10 --range 0.05:0.3 \
+  --initial-realizations 200
+
+finish

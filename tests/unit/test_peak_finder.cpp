@@ -1,0 +1,219 @@
+// The peak finder (include/stickslip/precision/peak_finder.hpp) against
+// curves whose maximizer is known in closed form, evaluated with the sweep's
+// noise model: the mean of n independent realizations of a quantity with
+// standard deviation sigma(x), reported with its estimated standard error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+
+#include "stickslip/error.hpp"
+#include "stickslip/precision/peak_finder.hpp"
+
+namespace sp = stickslip::precision;
+
+namespace {
+
+// A standard normal from a portable generator (std::normal_distribution is
+// not specified bit for bit): Box-Muller.
+double normal(std::mt19937_64& g) {
+  const double u1 = (static_cast<double>(g() >> 11) + 0.5) * 0x1.0p-53;
+  const double u2 = (static_cast<double>(g() >> 11) + 0.5) * 0x1.0p-53;
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+}
+
+struct curve {
+  const char* name;
+  double argmax;
+  std::function<double(double)> mean;
+  std::function<double(double)> sigma;  // per-realization standard deviation
+};
+
+// The sweep's noise model: the sample mean of n realizations is normal with
+// sd sigma/sqrt(n) (n >= 100 here), and its standard error is estimated from
+// the sample variance, which has relative sd ~ 1/sqrt(2(n - 1)).
+sp::evaluator noisy(const curve& c, std::uint64_t problem_seed) {
+  return [c, problem_seed](const std::vector<double>& xs, std::uint64_t n, std::uint64_t stage) {
+    std::mt19937_64 g(sp::stage_seed(problem_seed, stage));
+    std::vector<sp::evaluation> out;
+    for (double x : xs) {
+      const double se = c.sigma(x) / std::sqrt(static_cast<double>(n));
+      const double mean = c.mean(x) + se * normal(g);
+      const double se_hat =
+          se * std::abs(1.0 + normal(g) / std::sqrt(2.0 * static_cast<double>(n - 1)));
+      out.push_back({x, mean, se_hat});
+    }
+    return out;
+  };
+}
+
+// Curves shaped like R(lambda): a rise and a slower fall.
+curve gamma_shape(double x0, double a, double height, double sigma) {
+  // h (x/x0)^a exp(a (1 - x/x0)): maximizer x0 (d/dx ln f = a/x - a/x0).
+  return {"gamma", x0,
+          [=](double x) { return height * std::pow(x / x0, a) * std::exp(a * (1 - x / x0)); },
+          [=](double x) { return sigma * (0.7 + 0.3 * x / x0 / (1 + x / x0)); }};
+}
+curve lognormal_shape(double x0, double s, double height, double sigma) {
+  // h exp(-(ln x - ln x0 + s^2)^2 / (2 s^2)) ... written with its mode:
+  // maximizer of exp(-(ln x - m)^2/(2 s^2)) in x is exp(m) (symmetric in ln x,
+  // skewed in x).
+  return {"lognormal", x0,
+          [=](double x) {
+            const double u = std::log(x / x0);
+            return 0.1 + height * std::exp(-u * u / (2 * s * s));
+          },
+          [=](double) { return sigma; }};
+}
+curve skewed_quartic(double x0, double height, double sigma) {
+  // h - (u^2 - 0.8 u^3 + 0.3 u^4) with u = x - x0: derivative
+  // u (2 - 2.4 u + 1.2 u^2), whose quadratic factor has no real root, so x0
+  // is the only stationary point and the curve is strongly asymmetric.
+  return {"skewed", x0,
+          [=](double x) {
+            const double u = x - x0;
+            return height - 0.05 * (u * u - 0.8 * u * u * u + 0.3 * u * u * u * u);
+          },
+          [=](double) { return sigma; }};
+}
+
+}  // namespace
+
+TEST(LocalFit, RecoversAnExactCubicAndItsMaximizer) {
+  // p(t) = 1 + 0.5 t - 2 t^2 + 0.3 t^3: p'(t) = 0.5 - 4 t + 0.9 t^2 = 0 at
+  // t = (4 - sqrt(16 - 1.8)) / 1.8.
+  std::vector<sp::evaluation> pts;
+  for (int i = -5; i <= 5; ++i) {
+    const double t = i / 5.0;
+    pts.push_back({3 + 2 * t, 1 + 0.5 * t - 2 * t * t + 0.3 * t * t * t, 0.01});
+  }
+  const auto f = sp::fit_polynomial(pts, 3, 3.0, 2.0);
+  EXPECT_NEAR(f.coef[0], 1.0, 1e-12);
+  EXPECT_NEAR(f.coef[1], 0.5, 1e-12);
+  EXPECT_NEAR(f.coef[2], -2.0, 1e-12);
+  EXPECT_NEAR(f.coef[3], 0.3, 1e-12);
+  EXPECT_NEAR(f.chi2, 0.0, 1e-12);
+  const auto m = sp::maximize(f, -1, 1);
+  ASSERT_TRUE(m.interior);
+  EXPECT_NEAR(m.t, (4 - std::sqrt(16 - 1.8)) / 1.8, 1e-12);
+}
+
+TEST(LocalFit, ArgmaxStandardErrorMatchesTheSpreadOverReplicates) {
+  // The delta-method standard error of the quadratic's maximizer against the
+  // spread of the maximizer over 2000 independent noisy replicates.
+  std::mt19937_64 g(7);
+  const double se = 0.02;
+  double sum = 0, sum2 = 0, reported = 0;
+  const int reps = 2000;
+  for (int k = 0; k < reps; ++k) {
+    std::vector<sp::evaluation> pts;
+    for (int i = -4; i <= 4; ++i) {
+      const double t = i / 4.0;
+      pts.push_back({t, 1 - (t - 0.1) * (t - 0.1) + se * normal(g), se});
+    }
+    const auto m = sp::maximize(sp::fit_polynomial(pts, 2, 0, 1), -1, 1);
+    ASSERT_TRUE(m.interior);
+    sum += m.t;
+    sum2 += m.t * m.t;
+    reported += m.t_std_error;
+  }
+  const double mean = sum / reps, sd = std::sqrt(sum2 / reps - mean * mean);
+  // The sd of a sample sd of 2000 is ~1.6 %; allow 4 of those.
+  EXPECT_NEAR(reported / reps / sd, 1.0, 0.065);
+  EXPECT_NEAR(mean, 0.1, 4 * sd / std::sqrt(reps) + 1e-3);
+}
+
+TEST(PeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
+  // 240 problems: three families (one symmetric in ln x, two asymmetric),
+  // maximizers from 0.5 to 8, targets from 0.005 to 0.05 relative.
+  int covered = 0, met = 0, total = 0, max_covered = 0;
+  double work = 0;  // sum of realizations / (sigma/target)^2, a cost per unit precision
+  for (int i = 0; i < 240; ++i) {
+    const double x0 = 0.5 * std::pow(16.0, (i % 40) / 39.0);
+    curve c = i % 3 == 0   ? gamma_shape(x0, 1.5 + (i % 7) * 0.5, 0.4, 0.2)
+              : i % 3 == 1 ? lognormal_shape(x0, 0.6 + (i % 5) * 0.2, 0.3, 0.25)
+                           : skewed_quartic(x0, 0.5, 0.05);
+    sp::peak_options o;
+    o.lo = x0 / (3.0 + (i % 4));
+    o.hi = x0 * (4.0 + (i % 5));
+    o.log_scan = true;
+    o.target_halfwidth = x0 * (i % 2 ? 0.01 : 0.03);
+    o.initial_realizations = 400;
+    o.max_total_realizations = std::uint64_t{1} << 40;
+    o.max_stages = 60;
+    const auto r = sp::find_peak(noisy(c, 1000 + i), o);
+    ++total;
+    met += r.target_met;
+    work += std::log(static_cast<double>(r.realizations));
+    if (r.argmax_lo <= c.argmax && c.argmax <= r.argmax_hi) {
+      ++covered;
+    } else {  // allowed while the coverage stays >= 93 %
+      std::printf("not covered: %s x0 %g [%g, %g] bias %g\n", c.name, x0, r.argmax_lo,
+                  r.argmax_hi, r.model_bias);
+    }
+    if (r.max_lo <= c.mean(c.argmax) && c.mean(c.argmax) <= r.max_hi) ++max_covered;
+    if (r.target_met) {
+      EXPECT_LE(r.halfwidth(), o.target_halfwidth * (1 + 1e-12));
+    }
+  }
+  const double coverage = static_cast<double>(covered) / total;
+  std::printf("argmax coverage %d/%d = %.3f, max coverage %d/%d, target met %d/%d, mean ln realizations %.3f\n",
+              covered, total, coverage, max_covered, total, met, total, work / total);
+  EXPECT_GE(coverage, 0.93);
+  EXPECT_EQ(met, total);
+  EXPECT_GE(static_cast<double>(max_covered) / total, 0.93);
+}
+
+TEST(PeakFinder, RefusesAMaximumAtTheEndOfTheRange) {
+  const curve c = gamma_shape(10.0, 2.0, 0.4, 0.2);
+  sp::peak_options o;
+  o.lo = 0.5;
+  o.hi = 3.0;  // the curve still rises at 3
+  o.log_scan = true;
+  try {
+    (void)sp::find_peak(noisy(c, 1), o);
+    FAIL() << "no error";
+  } catch (const stickslip::error& e) {
+    EXPECT_EQ(e.code(), stickslip::exit_code::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("upper end"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PeakFinder, SameEvaluationsGiveTheSameResult) {
+  const curve c = skewed_quartic(2.0, 0.5, 0.05);
+  sp::peak_options o;
+  o.lo = 0.5;
+  o.hi = 6.0;
+  o.target_halfwidth = 0.02;
+  const auto a = sp::find_peak(noisy(c, 5), o), b = sp::find_peak(noisy(c, 5), o);
+  EXPECT_EQ(a.argmax, b.argmax);
+  EXPECT_EQ(a.argmax_lo, b.argmax_lo);
+  EXPECT_EQ(a.realizations, b.realizations);
+}
+
+TEST(PeakFinder, ReportsAnUnmetTargetWhenTheBudgetRunsOut) {
+  const curve c = gamma_shape(3.0, 2.5, 0.4, 0.2);
+  sp::peak_options o;
+  o.lo = 0.3;
+  o.hi = 30.0;
+  o.log_scan = true;
+  o.target_halfwidth = 1e-4;
+  o.max_total_realizations = 200'000;
+  const auto r = sp::find_peak(noisy(c, 11), o);
+  EXPECT_FALSE(r.target_met);
+  EXPECT_LE(r.realizations, o.max_total_realizations);
+  EXPECT_GT(r.halfwidth(), o.target_halfwidth);
+  EXPECT_LE(r.argmax_lo, r.argmax);
+  EXPECT_LE(r.argmax, r.argmax_hi);
+}
+
+TEST(PeakFinder, StageSeedsDifferFromEachOtherAndFromTheSeed) {
+  EXPECT_NE(sp::stage_seed(1, 0), sp::stage_seed(1, 1));
+  EXPECT_NE(sp::stage_seed(1, 1), sp::stage_seed(2, 0));
+  EXPECT_NE(sp::stage_seed(1, 0), 1u);
+  EXPECT_EQ(sp::stage_seed(7, 3), sp::stage_seed(7, 3));
+}
