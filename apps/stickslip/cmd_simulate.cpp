@@ -64,39 +64,21 @@ int parse_belt_start(const std::string& text) {
 // stickslip.simulate): drawn as realization R of the sweep point, with any
 // of x0, x'0, the belt start and the switch times fixed by flags.
 io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
-  io::realization_report run;
   replay_request req;
   req.switch_times = given_switch_times(o);
-  run.given_switches = req.switch_times.has_value();
-  run.params = req.parameters =
-      apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
-  run.seed = req.seed = resolve_seed(o.model, req.seed);
+  req.parameters = apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
+  req.seed = resolve_seed(o.model, req.seed);
   req.max_events = resolve_max_events(o.model, req.max_events);
-  run.realization = req.realization = io::parse_unsigned("--realization", o.realization);
-  if (o.x0_opt->count() > 0) {
-    req.x0 = io::parse_number("--x0 (initial position)", o.x0);
-    run.given_x0 = true;
-  }
-  if (o.xdot0_opt->count() > 0) {
+  req.realization = io::parse_unsigned("--realization", o.realization);
+  if (o.x0_opt->count() > 0) req.x0 = io::parse_number("--x0 (initial position)", o.x0);
+  if (o.xdot0_opt->count() > 0)
     req.xdot0 = io::parse_number("--xdot0 (initial velocity)", o.xdot0);
-    run.given_xdot0 = true;
-  }
-  if (o.belt_opt->count() > 0) {
-    if (const int b = parse_belt_start(o.belt_start); b != 0) {
-      req.belt_start = b;
-      run.given_belt = true;
-    }
-  }
+  if (o.belt_opt->count() > 0)
+    if (const int b = parse_belt_start(o.belt_start); b != 0) req.belt_start = b;
   req.keep_events = o.events;
   req.keep_segments = o.trajectory_opt->count() > 0;
   auto trace = replay(req);
-  run.ic = trace.initial;
-  run.record = trace.record;
-  run.counts = trace.record.events;
-  run.episodes = std::move(trace.episodes);
-  run.events = std::move(trace.events);
-  run.segments = std::move(trace.segments);
-  return run;
+  return {std::move(req), std::move(trace)};
 }
 
 // A file next to the -o output, or in the current directory for stdout.
@@ -135,9 +117,9 @@ void run_simulate(const CLI::App& cmd, const simulate_options& o) {
     if (!(dt > 0)) throw invalid_parameter("--trajectory (sampling step DT)", dt, "> 0");
   }
   const auto run = run_one(cmd, o);
-  if (dt > 0 && run.params.window / dt > 1e7)
+  if (dt > 0 && run.request.parameters.window / dt > 1e7)
     throw invalid_parameter("--trajectory (sampling step DT)", dt,
-                            fmt::format(">= t_a / 1e7 = {}", run.params.window / 1e7));
+                            fmt::format(">= t_a / 1e7 = {}", run.request.parameters.window / 1e7));
 
   // All files or none, and none replaced unless asked.
   const auto files = planned_files(o, run, dt);
@@ -150,9 +132,10 @@ void run_simulate(const CLI::App& cmd, const simulate_options& o) {
     std::fwrite(table.data(), 1, table.size(), stdout);
   }
 
-  const auto& s = run.record;
+  const auto& s = run.trace.record;
   fmt::print(stderr, "seed {} realization {}: S_T = {}, S_L = {}, R = {:.6g} ({} events)\n",
-             run.seed, run.realization, s.sticks, s.slips, s.stick_fraction, run.counts.total());
+             run.request.seed, run.request.realization, s.sticks, s.slips, s.stick_fraction,
+             s.events.total());
 }
 
 }  // namespace

@@ -6,26 +6,15 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/episode.hpp"
-#include "stickslip/initial_conditions.hpp"
-#include "stickslip/integrator.hpp"
-#include "stickslip/parameters.hpp"
-#include "stickslip/statistics.hpp"
+#include "stickslip/replay.hpp"
 
 namespace stickslip::io {
 
-// Everything the integrator reported about one realization, and how its
-// inputs were chosen (drawn from the streams or given for a replay).
+// One realization as replay() computed it, with what was asked: the
+// parameters, seed and index, and which inputs were given rather than drawn.
 struct realization_report {
-  model_parameters params;
-  std::uint64_t seed = 1, realization = 0;
-  initial_conditions ic;
-  bool given_x0 = false, given_xdot0 = false, given_belt = false, given_switches = false;
-  event_counts counts;
-  realization_record record;
-  std::vector<episode> episodes;
-  std::vector<event> events;
-  std::vector<segment> segments;
+  replay_request request;
+  realization_trace trace;
 };
 
 // mode,start,end,x_start,belt_velocity,censored (one row per episode).

@@ -11,7 +11,7 @@ namespace stickslip::io {
 
 std::string episodes_csv(const realization_report& r) {
   std::string out = "mode,start,end,x_start,belt_velocity,censored\n";
-  for (const auto& e : r.episodes)
+  for (const auto& e : r.trace.episodes)
     out += fmt::format("{},{},{},{},{},{}\n", to_string(e.kind), e.start, e.end,
                        e.position_at_start, e.belt_velocity, e.censored ? 1 : 0);
   return out;
@@ -19,7 +19,7 @@ std::string episodes_csv(const realization_report& r) {
 
 std::string events_csv(const realization_report& r) {
   std::string out = "kind,time,x,xdot,v\n";
-  for (const auto& e : r.events)
+  for (const auto& e : r.trace.events)
     out += fmt::format("{},{},{},{},{}\n", to_string(e.kind), e.time, e.position, e.velocity,
                        e.belt_velocity);
   return out;
@@ -27,7 +27,7 @@ std::string events_csv(const realization_report& r) {
 
 std::string trajectory_csv(const realization_report& r, double step) {
   std::string out = "t,x,xdot,v,mode\n";
-  for (const auto& q : sample_trajectory(r.segments, step))
+  for (const auto& q : sample_trajectory(r.trace.segments, step))
     out += fmt::format("{},{},{},{},{}\n", q.time, q.position, q.velocity, q.belt_velocity,
                        to_string(q.kind));
   return out;
@@ -41,20 +41,20 @@ using detail::layout;
 void emit_initial_conditions(json_emitter& j, const realization_report& r) {
   j.key("initial_conditions");
   j.begin_object();
-  j.member("x0", r.ic.position);
-  j.member("xdot0", r.ic.velocity);
-  j.member("belt_start", r.ic.belt_direction);
+  j.member("x0", r.trace.initial.position);
+  j.member("xdot0", r.trace.initial.velocity);
+  j.member("belt_start", r.trace.initial.belt_direction);
   j.key("given");
   j.begin_object();
-  j.member("x0", r.given_x0);
-  j.member("xdot0", r.given_xdot0);
-  j.member("belt_start", r.given_belt);
+  j.member("x0", r.request.x0.has_value());
+  j.member("xdot0", r.request.xdot0.has_value());
+  j.member("belt_start", r.request.belt_start.has_value());
   j.end_object();
   j.end_object();
 }
 
 void emit_statistics(json_emitter& j, const realization_report& r) {
-  const auto& s = r.record;
+  const auto& s = r.trace.record;
   j.key("statistics");
   j.begin_object();
   j.member("sticks", static_cast<std::uint64_t>(s.sticks));
@@ -68,17 +68,17 @@ void emit_statistics(json_emitter& j, const realization_report& r) {
   j.end_object();
   j.key("event_counts");
   j.begin_object();
-  j.member("belt_switch", r.counts.belt_switches);
-  j.member("stick_onset", r.counts.stick_onsets);
-  j.member("stick_break", r.counts.stick_breaks);
-  j.member("slip_reversal", r.counts.slip_reversals);
+  j.member("belt_switch", r.trace.record.events.belt_switches);
+  j.member("stick_onset", r.trace.record.events.stick_onsets);
+  j.member("stick_break", r.trace.record.events.stick_breaks);
+  j.member("slip_reversal", r.trace.record.events.slip_reversals);
   j.end_object();
 }
 
 void emit_episodes(json_emitter& j, const realization_report& r) {
   j.key("episodes");
   j.begin_array(layout::multi_line);
-  for (const auto& e : r.episodes) {
+  for (const auto& e : r.trace.episodes) {
     j.begin_object();
     j.member("mode", to_string(e.kind));
     j.member("start", e.start);
@@ -94,7 +94,7 @@ void emit_episodes(json_emitter& j, const realization_report& r) {
 void emit_events(json_emitter& j, const realization_report& r) {
   j.key("events");
   j.begin_array(layout::multi_line);
-  for (const auto& e : r.events) {
+  for (const auto& e : r.trace.events) {
     j.begin_object();
     j.member("kind", to_string(e.kind));
     j.member("time", e.time);
@@ -114,12 +114,12 @@ std::string realization_json(const realization_report& r, bool with_events) {
   j.begin_object(layout::multi_line);
   j.key("parameters");
   j.begin_object();
-  for (const char* name : parameter_names) j.member(name, parameter_by_name(r.params, name));
+  for (const char* name : parameter_names) j.member(name, parameter_by_name(r.request.parameters, name));
   j.end_object();
-  j.member("seed", r.seed);
-  j.member("realization", r.realization);
+  j.member("seed", r.request.seed);
+  j.member("realization", r.request.realization);
   emit_initial_conditions(j, r);
-  j.member("switch_times", r.given_switches ? "given" : "poisson");
+  j.member("switch_times", r.request.switch_times.has_value() ? "given" : "poisson");
   emit_statistics(j, r);
   emit_episodes(j, r);
   if (with_events) emit_events(j, r);
