@@ -77,7 +77,7 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
     auto in_file = std::find_if(spec.axes.begin(), spec.axes.end(),
                                 [&](const axis& a) { return a.name == sym; });
     if (io::is_single_value(flag->text)) {
-      parameter_by_name(spec.base, sym) = io::parse_number(flag_label(sym), flag->text);
+      set_parameter(spec.base, sym, io::parse_number(flag_label(sym), flag->text));
       if (in_file != spec.axes.end()) spec.axes.erase(in_file);
       continue;
     }

@@ -30,9 +30,9 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
         kind == flag_values::grid
             ? fmt::format("{} [{}]: a value, a list 'a,b,c', 'lin:a:b:n' or 'log:a:b:n' "
                           "(default {})",
-                          info.description, info.units, parameter_by_name(defaults, symbol))
+                          info.description, info.units, parameter_value(defaults, symbol))
             : fmt::format("{} [{}] (default {})", info.description, info.units,
-                          parameter_by_name(defaults, symbol));
+                          parameter_value(defaults, symbol));
     flag.option = cmd.add_option(fmt::format("--{},--{}", symbol, info.long_name), flag.text, what)
                       ->type_name(kind == flag_values::grid ? "GRID" : "X")
                       ->group("Model parameters (the paper's symbols)");
@@ -77,7 +77,7 @@ model_parameters apply_preset(const model_flags& f, model_parameters base) {
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
   for (const auto* flag : given_model_flags(cmd, f))
-    parameter_by_name(base, flag->symbol) = io::parse_number(flag_label(flag->symbol), flag->text);
+    set_parameter(base, flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text));
   return base;
 }
 

@@ -30,7 +30,7 @@ namespace {
 
 model_parameters parameters_from(const py::dict& values) {
   model_parameters p;
-  for (const auto& [k, v] : values) parameter_by_name(p, py::cast<std::string>(k)) = py::cast<double>(v);
+  for (const auto& [k, v] : values) set_parameter(p, py::cast<std::string>(k), py::cast<double>(v));
   return p;
 }
 

@@ -24,8 +24,11 @@ void validate(const initial_condition_law& law) {
   if (law.velocity_min > law.velocity_max)
     throw invalid_parameter("xdot0 range minimum", law.velocity_min,
                             fmt::format("<= maximum {}", law.velocity_max));
-  if (law.belt_start < -1 || law.belt_start > 1)
-    throw invalid_parameter("belt-start", law.belt_start, "+1, -1 or random");
+  // The level count is checked with the model (sweep.cpp): +1 / -1 on two
+  // levels, 1..n on n levels.
+  if (law.belt_start < -1)
+    throw invalid_parameter("belt-start", law.belt_start,
+                            "+1 (first level), -1 (second level), a level number, or stationary");
 }
 
 void validate(const initial_conditions& ic) {

@@ -113,7 +113,7 @@ void read_model(const context& cx, const toml::table& t, model_parameters& p) {
     if (std::find_if(std::begin(parameter_names), std::end(parameter_names),
                      [&](const char* s) { return key == s; }) == std::end(parameter_names))
       cx.unknown_key(dotted, k, "[model] takes m, k, g, mu, V, lambda, ta");
-    parameter_by_name(p, key) = read_number(cx, dotted, n);
+    set_parameter(p, key, read_number(cx, dotted, n));
   }
 }
 
@@ -308,7 +308,7 @@ sweep_spec read_sweep_toml_file(const std::string& path) {
 std::string to_toml(const sweep_spec& s) {
   std::string out = "# stickslip sweep configuration, fully resolved (docs/config.md)\n\n[model]\n";
   for (const char* name : parameter_names)
-    out += fmt::format("{} = {}\n", name, toml_float(parameter_by_name(s.base, name)));
+    out += fmt::format("{} = {}\n", name, toml_float(parameter_value(s.base, name)));
 
   const auto& law = s.initial;
   out += fmt::format("\n[initial]\nx0 = [{}, {}]\nxdot0 = [{}, {}]\nbelt_start = \"{}\"\n",

@@ -44,7 +44,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
   const auto& s = p.stats;
   j.begin_object();
   for (const auto& sym : point_parameter_symbols(spec))
-    j.member(sym, parameter_by_name(p.parameters, sym));
+    j.member(sym, parameter_value(p.parameters, sym));
   j.member("realizations", s.realizations);
   for (const auto& q : quantities()) {
     j.key(q.summary_name);
@@ -93,7 +93,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
       j.key(sym);
       j.null();
     } else {
-      j.member(sym, parameter_by_name(s.base, sym));
+      j.member(sym, parameter_value(s.base, sym));
     }
   }
   j.end_object();

@@ -159,7 +159,7 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
                                     info.description),
                         false);
     v.putAtt("symbol", sym);
-    put_grid<double>(v, rs, [&](const point_result& p) { return parameter_by_name(p.parameters, sym); });
+    put_grid<double>(v, rs, [&](const point_result& p) { return parameter_value(p.parameters, sym); });
   }
   auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
                       "a = mu m g / k: the mass can stick only while |x| <= a", false);
@@ -384,7 +384,7 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   const auto sw = swept_symbols(s);
   for (const char* sym : parameter_names)
     if (std::find(sw.begin(), sw.end(), sym) == sw.end())
-      f.putAtt(sym, nc::ncDouble, parameter_by_name(s.base, sym));
+      f.putAtt(sym, nc::ncDouble, parameter_value(s.base, sym));
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
