@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "stickslip/error.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/presets.hpp"
 #include "stickslip/io/config.hpp"
@@ -22,7 +23,7 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
           ->type_name("NAME")
           ->group("Model parameters (the paper's symbols)");
   for (std::size_t i = 0; i < f.params.size(); ++i) {
-    const std::string symbol = parameter_names[i];
+    const std::string symbol = recorded_parameter_names[i];
     const auto& info = info_for(symbol);
     auto& flag = f.params[i];
     flag.symbol = symbol;
@@ -33,10 +34,24 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
                           info.description, info.units, parameter_value(defaults, symbol))
             : fmt::format("{} [{}] (default {})", info.description, info.units,
                           parameter_value(defaults, symbol));
-    flag.option = cmd.add_option(fmt::format("--{},--{}", symbol, info.long_name), flag.text, what)
+    const bool family = i >= std::size(parameter_names);
+    flag.option = cmd.add_option(fmt::format("{},--{}", flag_name(symbol), info.long_name), flag.text, what)
                       ->type_name(kind == flag_values::grid ? "GRID" : "X")
-                      ->group("Model parameters (the paper's symbols)");
+                      ->group(family ? "Model family (docs/models.md)"
+                                     : "Model parameters (the paper's symbols)");
   }
+  f.belt_levels_option =
+      cmd.add_option("--belt-levels", f.belt_levels,
+                     "belt velocity levels v1,v2,... [m/s]: n >= 2 distinct values, any sign, 0 "
+                     "allowed (default +V,-V); more than two need a generator in TOML")
+          ->type_name("LIST")
+          ->group("Model family (docs/models.md)");
+  f.belt_rates_option =
+      cmd.add_option("--belt-rates", f.belt_rates,
+                     "two-level belt: the rates r1,r2 [1/s] of leaving the first and the second "
+                     "level (default lambda,lambda)")
+          ->type_name("R1,R2")
+          ->group("Model family (docs/models.md)");
   f.seed_option = cmd.add_option("--seed", f.seed_text,
                                  "seed of the random streams, 0 .. 2^64-1 (default 1)")
                       ->type_name("S");
@@ -56,11 +71,31 @@ std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
       if (flag.option == opt &&
           std::find(given.begin(), given.end(), &flag) == given.end())
         given.push_back(&flag);
+  std::stable_partition(given.begin(), given.end(),
+                        [](const model_flags::flag* g) { return g->symbol == "mu"; });
   return given;
 }
 
+std::string flag_name(const std::string& symbol) {
+  std::string name = "--" + symbol;
+  std::replace(name.begin(), name.end(), '_', '-');
+  return name;
+}
+
 std::string flag_label(const std::string& symbol) {
-  return fmt::format("--{} ({})", symbol, info_for(symbol).description);
+  return fmt::format("{} ({})", flag_name(symbol), info_for(symbol).description);
+}
+
+model_parameters apply_belt_flags(const model_flags& f, model_parameters base) {
+  if (f.belt_levels_option && f.belt_levels_option->count() > 0) {
+    base.belt_levels = io::parse_value_list("--belt-levels", f.belt_levels);
+    if (base.belt_levels.size() < 2)
+      throw invalid_parameter("--belt-levels (count)", static_cast<double>(base.belt_levels.size()),
+                              "at least 2 levels");
+  }
+  if (f.belt_rates_option && f.belt_rates_option->count() > 0)
+    base.belt_rates = io::parse_value_list("--belt-rates", f.belt_rates);
+  return base;
 }
 
 model_parameters apply_preset(const model_flags& f, model_parameters base) {
@@ -76,6 +111,7 @@ model_parameters apply_preset(const model_flags& f, model_parameters base) {
 
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
+  base = apply_belt_flags(f, std::move(base));
   for (const auto* flag : given_model_flags(cmd, f))
     set_parameter(base, flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text));
   return base;

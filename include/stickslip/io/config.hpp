@@ -48,6 +48,29 @@ namespace stickslip::io {
 // Round trip: parse_sweep_toml(to_toml(s), ...) == s for any spec.
 [[nodiscard]] std::string to_toml(const sweep_spec& s);
 
+// A replayed belt: switch times, and the level each switch goes to.
+struct switch_schedule {
+  std::vector<double> times;
+  std::vector<std::size_t> levels;  // level index (0-based), or empty: alternate two levels
+};
+// One switch per line, "t" (two levels: go to the other one) or "t level"
+// (level number 1..level_count), not mixed; blank lines and '#' comments are
+// ignored. Times validated as below; a level outside 1..level_count is an
+// error naming origin:line, the value and the range.
+[[nodiscard]] switch_schedule parse_switch_schedule(std::string_view text, std::string_view origin,
+                                                    std::size_t level_count);
+[[nodiscard]] switch_schedule read_switch_schedule_file(const std::string& path,
+                                                        std::size_t level_count);
+
+// "+1", "-1", "stationary" (or the older "random") on two levels; a level
+// number 1..n or "stationary" on n levels: initial_condition_law::belt_start.
+[[nodiscard]] int parse_belt_start(std::string_view key, std::string_view text,
+                                   std::size_t level_count);
+// The inverse, for outputs: "stationary", "+1", "-1", "3".
+[[nodiscard]] std::string belt_start_text(int belt_start);
+// "1,-1,0": finite numbers (belt levels, rates); errors name the entry.
+[[nodiscard]] std::vector<double> parse_value_list(std::string_view key, std::string_view text);
+
 // One switch time per line; blank lines and '#' comments are ignored.
 // Validated: finite, >= 0, strictly increasing; errors name origin:line.
 [[nodiscard]] std::vector<double> parse_switch_times(std::string_view text, std::string_view origin);

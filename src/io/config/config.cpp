@@ -207,22 +207,81 @@ std::vector<double> parse_grid(std::string_view key, std::string_view text) {
   return values;
 }
 
-std::vector<double> parse_switch_times(std::string_view text, std::string_view origin) {
-  std::vector<double> times;
+switch_schedule parse_switch_schedule(std::string_view text, std::string_view origin,
+                                      std::size_t level_count) {
+  switch_schedule out;
   std::vector<std::string> where;
-  std::size_t line_no = 0;
+  std::size_t line_no = 0, with_level = 0;
   for (auto line : split(text, '\n')) {
     ++line_no;
     if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    if (trim(line).empty()) continue;
+    line = trim(line);
+    if (line.empty()) continue;
+    const auto gap = line.find_first_of(" \t");
+    const auto time_text = line.substr(0, gap);
     where.push_back(fmt::format("switch time at {}:{}", origin, line_no));
-    times.push_back(switch_time(where.back(), line));
+    out.times.push_back(switch_time(where.back(), time_text));
+    if (gap == std::string_view::npos) continue;
+    const std::string level_where = fmt::format("belt level at {}:{}", origin, line_no);
+    const auto level_text = trim(line.substr(gap));
+    const std::uint64_t level =
+        parse_unsigned(level_where, level_text, 1, std::max<std::size_t>(level_count, 1));
+    out.levels.resize(out.times.size() - 1, 0);  // marks lines without a level (checked below)
+    out.levels.push_back(static_cast<std::size_t>(level - 1));
+    ++with_level;
   }
-  return validated_times(std::move(times), std::move(where));
+  if (with_level > 0 && with_level != out.times.size())
+    throw invalid_value(fmt::format("switch lines of {}", origin),
+                        fmt::format("{} of {} lines with a level", with_level, out.times.size()),
+                        "every line 't level', or every line 't' (two levels: go to the other one)");
+  if (with_level == 0 && level_count > 2 && !out.times.empty())
+    throw invalid_value(fmt::format("switch lines of {}", origin), "lines 't' without a level",
+                        fmt::format("lines 't level' (level 1..{}): the belt has {} levels",
+                                    level_count, level_count));
+  out.times = validated_times(std::move(out.times), std::move(where));
+  return out;
+}
+
+switch_schedule read_switch_schedule_file(const std::string& path, std::size_t level_count) {
+  return parse_switch_schedule(read_text_file(path), path, level_count);
+}
+
+std::vector<double> parse_switch_times(std::string_view text, std::string_view origin) {
+  return parse_switch_schedule(text, origin, 2).times;
 }
 
 std::vector<double> read_switch_times_file(const std::string& path) {
   return parse_switch_times(read_text_file(path), path);
+}
+
+int parse_belt_start(std::string_view key, std::string_view text, std::size_t level_count) {
+  const auto t = trim(text);
+  const std::string allowed =
+      level_count == 2 ? "+1 (first level), -1 (second level) or stationary"
+                       : fmt::format("a level number 1..{}, or stationary", level_count);
+  if (t == "stationary" || t == "random") return 0;
+  if (t == "-1" && level_count == 2) return -1;
+  if (t == "+1") return 1;
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (t.empty() || ec != std::errc{} || ptr != t.data() + t.size() || v < 1 ||
+      v > (level_count == 2 ? 1 : level_count))
+    throw invalid_value(std::string(key), std::string(text), allowed);
+  return static_cast<int>(v);
+}
+
+std::string belt_start_text(int belt_start) {
+  if (belt_start == 0) return "stationary";
+  if (belt_start == 1) return "+1";
+  return fmt::format("{}", belt_start);
+}
+
+std::vector<double> parse_value_list(std::string_view key, std::string_view text) {
+  std::vector<double> values;
+  const auto items = split(trim(text), ',');
+  for (std::size_t i = 0; i < items.size(); ++i)
+    values.push_back(parse_number(fmt::format("{} entry #{}", key, i + 1), items[i]));
+  return values;
 }
 
 std::vector<double> parse_switch_time_list(std::string_view key, std::string_view text) {

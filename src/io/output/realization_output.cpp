@@ -114,7 +114,7 @@ std::string realization_json(const realization_report& r, bool with_events) {
   j.begin_object(layout::multi_line);
   j.key("parameters");
   j.begin_object();
-  for (const char* name : parameter_names) j.member(name, parameter_value(r.request.parameters, name));
+  emit_model_members(j, r.request.parameters);
   j.end_object();
   j.member("seed", r.request.seed);
   j.member("realization", r.request.realization);

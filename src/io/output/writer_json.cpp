@@ -83,19 +83,9 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.begin_object(layout::multi_line);
   // A swept parameter has no single value: null in "base", named in "swept".
   const auto swept = swept_symbols(s);
-  const auto is_swept = [&](const char* sym) {
-    return std::find(swept.begin(), swept.end(), sym) != swept.end();
-  };
   j.key("base");
   j.begin_object();
-  for (const char* sym : parameter_names) {
-    if (is_swept(sym)) {
-      j.key(sym);
-      j.null();
-    } else {
-      j.member(sym, parameter_value(s.base, sym));
-    }
-  }
+  emit_model_members(j, s.base, swept);
   j.end_object();
   j.key("swept");
   j.begin_array();
@@ -105,7 +95,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.begin_array(layout::multi_line);
   for (const auto& ax : s.axes) {
     j.begin_object();
-    j.member("name", info_for(ax.name).symbol);
+    j.member("name", canonical_symbol(ax.name));
     j.key("values");
     j.begin_array();
     for (double v : ax.values) j.value(v);
@@ -119,7 +109,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("position_max", s.initial.position_max);
   j.member("velocity_min", s.initial.velocity_min);
   j.member("velocity_max", s.initial.velocity_max);
-  j.member("belt_start", belt_start_name(s.initial.belt_start));
+  j.member("belt_start", belt_start_text(s.initial.belt_start));
   j.end_object();
   j.member("seed", s.seed);
   j.member("realizations", s.realizations);
