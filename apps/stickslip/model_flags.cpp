@@ -52,6 +52,13 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
                      "level (default lambda,lambda)")
           ->type_name("R1,R2")
           ->group("Model family (docs/models.md)");
+  f.belt_generator_option =
+      cmd.add_option("--belt-generator", f.belt_generator,
+                     "the belt's generator Q [1/s] for any number of levels: rows separated by "
+                     "';', rates by ',' (q_ij >= 0 off the diagonal, each row summing to 0), "
+                     "e.g. '-2,1,1;1,-1,0;0.5,0.5,-1'")
+          ->type_name("Q")
+          ->group("Model family (docs/models.md)");
   f.seed_option = cmd.add_option("--seed", f.seed_text,
                                  "seed of the random streams, 0 .. 2^64-1 (default 1)")
                       ->type_name("S");
@@ -95,6 +102,22 @@ model_parameters apply_belt_flags(const model_flags& f, model_parameters base) {
   }
   if (f.belt_rates_option && f.belt_rates_option->count() > 0)
     base.belt_rates = io::parse_value_list("--belt-rates", f.belt_rates);
+  if (f.belt_generator_option && f.belt_generator_option->count() > 0) {
+    base.belt_generator.clear();
+    std::size_t rows = 0, start = 0;
+    const std::string& text = f.belt_generator;
+    while (start <= text.size()) {
+      const std::size_t end = std::min(text.find(';', start), text.size());
+      const auto row = io::parse_value_list(fmt::format("--belt-generator row {}", rows + 1),
+                                            text.substr(start, end - start));
+      base.belt_generator.insert(base.belt_generator.end(), row.begin(), row.end());
+      ++rows;
+      start = end + 1;
+    }
+    if (base.belt_generator.size() != rows * rows)
+      throw invalid_value("--belt-generator", text,
+                          fmt::format("a square matrix: {} rows need {} rates each", rows, rows));
+  }
   return base;
 }
 

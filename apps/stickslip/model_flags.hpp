@@ -22,7 +22,9 @@ struct model_flags {
   };
   std::array<flag, std::size(recorded_parameter_names)> params;
   std::string belt_levels, belt_rates;  // lists "v1,v2,..." and "r1,r2"
+  std::string belt_generator;           // rows "q11,q12;q21,q22"
   CLI::Option* belt_levels_option = nullptr;
+  CLI::Option* belt_generator_option = nullptr;
   CLI::Option* belt_rates_option = nullptr;
   std::string seed_text, max_events_text, preset;
   CLI::Option* seed_option = nullptr;

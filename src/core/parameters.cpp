@@ -72,6 +72,16 @@ void validate_family(const model_parameters& p) {
   if (!p.belt_levels.empty() && p.belt_levels.size() < 2)
     throw invalid_parameter("belt-levels (count)", static_cast<double>(p.belt_levels.size()),
                             "at least 2 levels");
+  for (std::size_t i = 0; i < p.belt_levels.size(); ++i) {
+    const double v = p.belt_levels[i];
+    if (!std::isfinite(v) || std::abs(v) > max_magnitude)
+      throw invalid_parameter(fmt::format("belt level v{}", i + 1), v,
+                              "a finite number with |value| <= 1e60");
+    for (std::size_t j = 0; j < i; ++j)
+      if (p.belt_levels[j] == v)
+        throw invalid_parameter(fmt::format("belt level v{}", i + 1), v,
+                                fmt::format("distinct from every other level (equals v{})", j + 1));
+  }
   const std::size_t n = p.levels().size();
   if (!p.belt_rates.empty() && !p.belt_generator.empty())
     throw invalid_value("belt-rates", "given with a belt generator",
@@ -90,8 +100,8 @@ void validate_family(const model_parameters& p) {
                               "a finite rate > 0");
   if (n > 2 && p.belt_generator.empty())
     throw invalid_value("belt generator", "(missing)",
-                        fmt::format("an {} x {} rate matrix for {} belt levels (TOML "
-                                    "[model.belt] generator)",
+                        fmt::format("a {} x {} rate matrix for {} belt levels (--belt-generator, "
+                                    "or belt_generator in TOML [model])",
                                     n, n, n));
   if (!p.belt_generator.empty() && p.belt_generator.size() != n * n)
     throw invalid_parameter("belt generator (entries)",

@@ -62,10 +62,42 @@ void check_has_effect(const model_parameters& base, const std::string& sym) {
   if (why) throw invalid_value("grid axis", sym, fmt::format("an axis that has an effect: {}", why));
 }
 
+// Friction coefficients and belt levels and rates constrain each other
+// (mu_k <= mu_s, distinct levels): every combination of their axes is
+// checked, with the other axes at their first value.
+void check_coupled_axes(const sweep_spec& s, const model_parameters& first) {
+  std::vector<const axis*> coupled;
+  double combinations = 1.0;
+  for (const auto& ax : s.axes) {
+    const std::string sym = canonical_symbol(ax.name);
+    if (sym == "mu_s" || sym == "mu_k" || sym[0] == 'v' || sym[0] == 'r') {
+      coupled.push_back(&ax);
+      combinations *= static_cast<double>(ax.values.size());
+    }
+  }
+  if (coupled.size() < 2 || combinations > 1e6) return;
+  std::vector<std::size_t> at(coupled.size(), 0);
+  while (true) {
+    model_parameters p = first;
+    for (std::size_t i = 0; i < coupled.size(); ++i)
+      set_parameter(p, coupled[i]->name, coupled[i]->values[at[i]]);
+    validate(p);
+    std::size_t i = 0;
+    while (i < coupled.size() && ++at[i] == coupled[i]->values.size()) at[i++] = 0;
+    if (i == coupled.size()) return;
+  }
+}
+
 }  // namespace
 
 void validate(const sweep_spec& s) {
-  validate(s.base);
+  // The first grid point stands for the base: a base value that every axis
+  // replaces (mu_k = mu = 5 above a swept mu_s) must not make the grid fail.
+  model_parameters first = s.base;
+  for (const auto& ax : s.axes)
+    if (!ax.values.empty() && is_parameter_symbol(ax.name))
+      set_parameter(first, canonical_symbol(ax.name), ax.values.front());
+  validate(first);
   validate(s.initial);
   const std::size_t levels = s.base.levels().size();
   check_belt_start(s.initial.belt_start, levels);
@@ -79,12 +111,13 @@ void validate(const sweep_spec& s) {
     check_has_effect(s.base, sym);
     check_distinct(ax);
     for (double v : ax.values) {
-      model_parameters p = s.base;
+      model_parameters p = first;
       set_parameter(p, sym, v);
       if (!std::isfinite(v)) throw invalid_parameter(sym, v, "finite");
       validate(p);
     }
   }
+  check_coupled_axes(s, first);
   for (const auto& ax : s.axes)
     for (const auto& other : s.axes)
       if (canonical_symbol(ax.name) == "mu" &&
