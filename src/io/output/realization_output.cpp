@@ -119,7 +119,10 @@ std::string realization_json(const realization_report& r, bool with_events) {
   j.member("seed", r.request.seed);
   j.member("realization", r.request.realization);
   emit_initial_conditions(j, r);
-  j.member("switch_times", r.request.switch_times.has_value() ? "given" : "poisson");
+  // "poisson" for the paper's telegraph belt, "markov" for any other belt.
+  j.member("switch_times", r.request.switch_times.has_value()          ? "given"
+                           : r.request.parameters.is_paper_model() ? "poisson"
+                                                                   : "markov");
   emit_statistics(j, r);
   emit_episodes(j, r);
   if (with_events) emit_events(j, r);
