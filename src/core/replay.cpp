@@ -56,15 +56,6 @@ void replay_family(const replay_request& r, const model_parameters& p, realizati
   out.record.events = counts;
 }
 
-void check_belt_start(int belt_start, std::size_t levels) {
-  const bool ok = levels == 2 ? (belt_start == 1 || belt_start == -1)
-                              : (belt_start >= 1 && belt_start <= static_cast<int>(levels));
-  if (!ok)
-    throw invalid_parameter("belt-start", belt_start,
-                            levels == 2 ? std::string("+1 (first level) or -1 (second level)")
-                                        : "a level number 1.." + std::to_string(levels));
-}
-
 }  // namespace
 
 realization_trace replay(const replay_request& r) {
@@ -78,7 +69,7 @@ realization_trace replay(const replay_request& r) {
   spec.max_events = r.max_events;
   validate(spec);
   const std::size_t levels = spec.base.levels().size();
-  if (r.belt_start) check_belt_start(*r.belt_start, levels);
+  if (r.belt_start) validate_belt_start(*r.belt_start, levels, false);
   if (r.switch_levels && (!r.switch_times || r.switch_levels->size() != r.switch_times->size()))
     throw invalid_value("switch levels", std::to_string(r.switch_levels->size()) + " levels",
                         "one level per switch time");

@@ -38,18 +38,6 @@ void check_distinct(const axis& ax) {
                   *dup, at[0], at[1]));
 }
 
-// initial_condition_law::belt_start against the belt: 0 (stationary),
-// +1 / -1 on two levels, 1..n on n levels.
-void check_belt_start(int start, std::size_t levels) {
-  const bool ok = levels == 2 ? (start >= -1 && start <= 1)
-                              : (start >= 0 && start <= static_cast<int>(levels));
-  if (!ok)
-    throw invalid_parameter(
-        "belt-start", start,
-        levels == 2 ? std::string("+1 (first level), -1 (second level) or stationary")
-                    : fmt::format("a level number 1..{}, or stationary", levels));
-}
-
 // An axis over a parameter that the base overrides would change nothing:
 // refuse it rather than compute identical points.
 void check_has_effect(const model_parameters& base, const std::string& sym) {
@@ -100,7 +88,7 @@ void validate(const sweep_spec& s) {
   validate(first);
   validate(s.initial);
   const std::size_t levels = s.base.levels().size();
-  check_belt_start(s.initial.belt_start, levels);
+  validate_belt_start(s.initial.belt_start, levels, true);
   std::set<std::string> seen;
   for (const auto& ax : s.axes) {
     const std::string sym = canonical_symbol(ax.name);  // throws on unknown names

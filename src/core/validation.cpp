@@ -31,6 +31,17 @@ void validate(const initial_condition_law& law) {
                             "+1 (first level), -1 (second level), a level number, or stationary");
 }
 
+void validate_belt_start(int start, std::size_t levels, bool stationary_allowed) {
+  const int lowest = levels == 2 ? -1 : 1;
+  const bool ok = (start == 0 && stationary_allowed) ||
+                  (start != 0 && start >= lowest && start <= (levels == 2 ? 1 : static_cast<int>(levels)));
+  if (ok) return;
+  const std::string stationary = stationary_allowed ? ", or stationary" : "";
+  throw invalid_parameter("belt-start", start,
+                          levels == 2 ? "+1 (first level), -1 (second level)" + stationary
+                                      : fmt::format("a level number 1..{}{}", levels, stationary));
+}
+
 void validate(const initial_conditions& ic) {
   if (!std::isfinite(ic.position) || std::abs(ic.position) > max_magnitude)
     throw invalid_parameter("x0 (initial position)", ic.position,
