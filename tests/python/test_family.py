@@ -276,3 +276,21 @@ def test_docstrings_name_the_family_with_units():
                 line = next(ln for ln in doc.splitlines() if ln.strip().startswith(kw + ":"))
                 assert f"[{unit}]" in line, (fn.__name__, kw, line)
     assert "switch_levels:" in stickslip.simulate.__doc__
+
+
+def test_family_output_dir_writes_the_cli_files(cli_family_sweeps, tmp_path):
+    import subprocess
+    from test_sweep import COMPARE
+    out = tmp_path / "py"
+    stickslip.sweep(**FAMILY_GRID, realizations=200, seed=11, records=True, output=str(out))
+    p = subprocess.run(["/usr/bin/python3", COMPARE, str(cli_family_sweeps / "a"), str(out)],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+
+
+def test_the_family_example_of_docs_python_md():
+    r = stickslip.simulate(mu_s=6, mu_k=4, c=0.5, belt_levels=[1, 0], belt_rates=[2, 3], seed=2, ta=10)
+    assert repr(r) == "<stickslip.Realization seed=2 realization=0: 25 sticks, R = 0.926262, 50 episodes>"
+    ds = stickslip.sweep(c=[0.5, 2, 6], k=[4, 40], mu_s=6, mu_k=4, belt_levels=[1, 0], belt_rates=[2, 3])
+    table = ds.stick_fraction_mean.round(4).values.tolist()
+    assert table == [[0.5104, 0.3508], [0.526, 0.3704], [0.5415, 0.3927]]
