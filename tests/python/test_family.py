@@ -245,8 +245,24 @@ def test_family_statistics_equal_summary_json(cli_family_sweeps):
     assert checked == 6 * len(summary["points"]) == 36
 
 
-def test_belt_level_and_rate_axes():
+LEVEL_AXES_TOML = """
+[model]
+belt_levels = [1.0, -1.0]
+ta = 10.0
+[grid]
+v2 = [0.0, -0.5]
+r1 = [1.0, 4.0]
+order = ["v2", "r1"]
+[sweep]
+realizations = 100
+"""
+
+
+def test_belt_level_and_rate_axes_equal_the_cli_toml_sweep(cli, tmp_path):
     ds = stickslip.sweep(v2=[0.0, -0.5], r1=[1.0, 4.0], belt_levels=[1, -1], realizations=100, ta=10)
+    (tmp_path / "axes.toml").write_text(LEVEL_AXES_TOML)
+    cli("sweep", "--config", tmp_path / "axes.toml", "-o", tmp_path / "out")
+    assert_same_dataset(ds, stickslip.open(tmp_path / "out"))
     assert list(ds.dims)[:2] == ["v2", "r1"]
     assert ds.attrs["swept_parameters"] == "v2 r1"
     assert np.isfinite(ds.stick_fraction_mean.values).all()
