@@ -84,7 +84,7 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
       if (in_file != spec.axes.end()) spec.axes.erase(in_file);
       continue;
     }
-    auto values = io::parse_grid(flag_name(sym), flag->text);
+    auto values = io::parse_grid(flag_name(sym), flag->text, io::grid_domain_of(sym));
     if (in_file != spec.axes.end())
       in_file->values = std::move(values);
     else

@@ -269,7 +269,7 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
                                 sym) != std::end(recorded_parameter_names);
     std::string key = "--" + sym;
     std::replace(key.begin(), key.end(), '_', '-');
-    s.axes.push_back(axis{sym, flag ? io::parse_grid(key, list_text(values)) : values});
+    s.axes.push_back(axis{sym, flag ? io::parse_grid(key, list_text(values), io::grid_domain_of(sym)) : values});
   }
   s.realizations = realizations;
   s.seed = seed;

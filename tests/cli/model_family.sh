@@ -87,6 +87,9 @@ keep_records = true
 TOML
 run_ok sweep --config fam.toml -o famtoml
 cmp -s fam1/summary.csv famtoml/summary.csv || fail "TOML and flags give different family sweeps"
+# c may be swept from 0; a negative c in a grid is refused
+run_ok sweep --c 0,0.5 --mu-s 6 --realizations 20 -o czero
+expect_fail "--c|'-1,0.5'|values >= 0" sweep --c -1,0.5
 # lambda has no effect when belt rates are given: refused as an axis
 expect_fail "grid axis|lambda|belt rates are given" sweep --lambda 0.5,2 --belt-rates 2,1
 

@@ -25,9 +25,14 @@ namespace stickslip::io {
 //   "0.1,0.5,3.8"  a list, in the order given
 //   "lin:a:b:n"    n values evenly spaced from a to b, both included (n = 1 gives a)
 //   "log:a:b:n"    n values geometrically spaced from a to b (a, b > 0)
-// Every value must be finite and > 0 (all model parameters are positive).
+// Every value must be finite and lie in the domain: > 0 for most model
+// parameters, >= 0 for the damping c, any number for a belt level vI
+// (grid_domain_of); a log range needs a, b > 0 in any domain.
 // `key` names the parameter in error messages (e.g. "--lambda", "grid.mu").
-[[nodiscard]] std::vector<double> parse_grid(std::string_view key, std::string_view text);
+enum class grid_domain : unsigned char { positive, non_negative, any };
+[[nodiscard]] grid_domain grid_domain_of(std::string_view symbol);
+[[nodiscard]] std::vector<double> parse_grid(std::string_view key, std::string_view text,
+                                             grid_domain d = grid_domain::positive);
 
 // True when `text` is a single plain number (not a list, not lin:/log:), i.e.
 // a fixed value rather than a grid axis.

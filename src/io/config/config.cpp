@@ -70,30 +70,41 @@ bool to_double(std::string_view t, double& out, std::string& why) {
 }
 
 // "invalid --lambda: 'log:0.1:30:0' (allowed: n >= 1, got n = 0; a grid is ...)"
+const char* domain_text(grid_domain d) {
+  return d == grid_domain::positive ? "> 0" : d == grid_domain::non_negative ? ">= 0" : "";
+}
+
 [[noreturn]] void grid_error(std::string_view key, std::string_view text, const std::string& rule,
-                             const std::string& got) {
+                             const std::string& got, grid_domain d = grid_domain::positive) {
   throw invalid_value(std::string(key), std::string(text),
-                      fmt::format("{}, got {}; a grid is {} of finite values > 0", rule, got,
-                                  grid_forms));
+                      fmt::format("{}, got {}; a grid is {} of finite values{}{}", rule, got,
+                                  grid_forms, d == grid_domain::any ? "" : " ",
+                                  domain_text(d)));
 }
 
 double grid_number(std::string_view key, std::string_view text, std::string_view item,
-                   const std::string& what) {
+                   const std::string& what, grid_domain d = grid_domain::positive) {
   double v = 0;
   std::string why;
-  if (!to_double(item, v, why)) grid_error(key, text, "finite numbers", what + ": " + why);
-  if (!(v > 0.0)) grid_error(key, text, "values > 0", fmt::format("{} = {}", what, v));
+  if (!to_double(item, v, why)) grid_error(key, text, "finite numbers", what + ": " + why, d);
+  const bool ok = d == grid_domain::any || (d == grid_domain::positive ? v > 0.0 : v >= 0.0);
+  if (!ok)
+    grid_error(key, text, fmt::format("values {}", domain_text(d)), fmt::format("{} = {}", what, v),
+               d);
   return v;
 }
 
-std::vector<double> parse_range(std::string_view key, std::string_view text, std::string_view t) {
+std::vector<double> parse_range(std::string_view key, std::string_view text, std::string_view t,
+                                grid_domain d) {
   const auto parts = split(t, ':');
   const bool log = parts[0] == "log";
   if (parts.size() != 4)
     grid_error(key, text, fmt::format("{}:a:b:n with 4 fields", parts[0]),
-               fmt::format("{} fields", parts.size()));
-  const double a = grid_number(key, text, parts[1], "a");
-  const double b = grid_number(key, text, parts[2], "b");
+               fmt::format("{} fields", parts.size()), d);
+  // a log range needs a, b > 0 whatever the parameter allows.
+  const grid_domain ends = log ? grid_domain::positive : d;
+  const double a = grid_number(key, text, parts[1], "a", ends);
+  const double b = grid_number(key, text, parts[2], "b", ends);
   const auto n_text = trim(parts[3]);
   long long n = 0;
   const auto [ptr, ec] = std::from_chars(n_text.data(), n_text.data() + n_text.size(), n);
@@ -191,10 +202,17 @@ bool is_single_value(std::string_view text) noexcept {
   return !text.empty() && text.find(',') == std::string_view::npos && text.find(':') == std::string_view::npos;
 }
 
-std::vector<double> parse_grid(std::string_view key, std::string_view text) {
+grid_domain grid_domain_of(std::string_view symbol) {
+  if (symbol == "c") return grid_domain::non_negative;
+  if (symbol.size() > 1 && symbol[0] == 'v' && symbol[1] >= '1' && symbol[1] <= '9')
+    return grid_domain::any;
+  return grid_domain::positive;
+}
+
+std::vector<double> parse_grid(std::string_view key, std::string_view text, grid_domain d) {
   const auto t = trim(text);
-  if (t.empty()) grid_error(key, text, "at least one value", "an empty list");
-  if (t.starts_with("lin:") || t.starts_with("log:")) return parse_range(key, text, t);
+  if (t.empty()) grid_error(key, text, "at least one value", "an empty list", d);
+  if (t.starts_with("lin:") || t.starts_with("log:")) return parse_range(key, text, t, d);
   if (t.find(':') != std::string_view::npos)
     grid_error(key, text, "a range 'lin:a:b:n' or 'log:a:b:n'", "another prefix");
   std::vector<double> values;
@@ -203,7 +221,7 @@ std::vector<double> parse_grid(std::string_view key, std::string_view text) {
     grid_error(key, text, fmt::format("at most {} values", max_grid_values),
                fmt::format("{}", items.size()));
   for (std::size_t i = 0; i < items.size(); ++i)
-    values.push_back(grid_number(key, text, items[i], fmt::format("entry #{}", i + 1)));
+    values.push_back(grid_number(key, text, items[i], fmt::format("entry #{}", i + 1), d));
   return values;
 }
 

@@ -207,9 +207,9 @@ void read_initial(const context& cx, const toml::table& t, initial_condition_law
 }
 
 std::vector<double> read_axis_values(const context& cx, const std::string& dotted,
-                                     const toml::node& n, bool positive) {
+                                     const toml::node& n, grid_domain domain) {
   if (n.is_string()) return parse_grid(fmt::format("{} at {}", dotted, cx.at(n.source())),
-                                       n.as_string()->get());
+                                       n.as_string()->get(), domain);
   const auto* a = n.as_array();
   if (!a) cx.wrong(dotted, n, "a grid spec string (\"lin:a:b:n\", ...) or an array of numbers");
   if (a->empty()) cx.wrong(dotted, n, "a non-empty array of numbers (the list is empty)");
@@ -217,7 +217,10 @@ std::vector<double> read_axis_values(const context& cx, const std::string& dotte
   for (std::size_t i = 0; i < a->size(); ++i) {
     const auto& item = *a->get(i);
     const double v = read_number(cx, fmt::format("{}[{}]", dotted, i), item);
-    if (positive && !(v > 0.0)) cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number > 0");
+    if (domain == grid_domain::positive && !(v > 0.0))
+      cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number > 0");
+    if (domain == grid_domain::non_negative && !(v >= 0.0))
+      cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number >= 0");
     values.push_back(v);
   }
   return values;
@@ -249,9 +252,7 @@ void read_grid(const context& cx, const toml::table& t, std::vector<axis>& axes)
       cx.unknown_key(dotted, k,
                      "[grid] takes order and m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt "
                      "levels v1..vN, two-level belt rates r1, r2");
-    // c may be 0 and belt levels any number; the rest must be > 0.
-    const bool positive = key != "c" && key[0] != 'v';
-    found.push_back({key, read_axis_values(cx, dotted, n, positive)});
+    found.push_back({key, read_axis_values(cx, dotted, n, grid_domain_of(key))});
   }
   std::vector<std::string> order;
   if (order_node) {
