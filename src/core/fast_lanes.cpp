@@ -223,8 +223,9 @@ class trace_collector {
 };
 
 // Family = false: the paper's model (poisson_switches, levels +-V, mu_s =
-// mu_k). Family = true: an undamped two-level belt with nonzero levels v1, v2
-// and mu_s >= mu_k (simulate_model's physics, model/model_engine.hpp, with
+// mu_k). Family = true: an undamped two-level belt, levels v1, v2 (either may
+// be 0: a stick there lasts until the next switch, and its band has no
+// outward edge), mu_s >= mu_k (simulate_model's physics, model/model_engine.hpp, with
 // c = 0): the stick band |x| <= a_s, the slip centre sigma a_k, the switch
 // times of two_level_switch_times, and after a stick break (or a touch of the
 // outward edge) with mu_s > mu_k a slip that starts at x' = v and returns by
@@ -310,7 +311,8 @@ class lane_engine {
     const double x = ic.position, z = ic.velocity;
     t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
     tsw_[l] = next_switch(l);
-    const auto m = physics::mode_at_start(x, z, v, a);
+    auto m = physics::mode_at_start(x, z, v, a);
+    if (Family && v == 0.0 && m.grazing) m = {mode::stick, 1.0, false, false};  // no outward edge at 0
     const bool stick = m.kind == mode::stick;
     sig_[l] = m.sigma;
     stk_[l] = stick ? 1.0 : 0.0;
@@ -470,7 +472,11 @@ class lane_engine {
     mir_[l] = 0.0;
     const auto c = physics::resolve_contact(x_[l], from_sigma, v_[l], a_);
     x_[l] = c.x;
-    switch (c.outcome) {
+    auto outcome = c.outcome;
+    // a level 0 has no outward edge (simulate_model): its band edge sticks
+    if (Family && outcome == physics::contact_outcome::grazing && v_[l] == 0.0)
+      outcome = physics::contact_outcome::stick;
+    switch (outcome) {
       case physics::contact_outcome::reversal:
         sig_[l] = c.sigma;
         arv_[l] = 1.0;
@@ -537,6 +543,8 @@ class lane_engine {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
       // stick
       t_edge[k] = vphysics::stick_edge_time(t[k], A, s[k], x[k], Family ? hn::Abs(v[k]) : VV);
+      if constexpr (Family)  // a stick at a level 0 lasts until the next switch
+        t_edge[k] = IfThenElse(hn::Eq(v[k], zero), Set(d, inf), t_edge[k]);
       st_ta[k] = hn::Ge(Min(t_edge[k], tsw[k]), TA);
       st_sw[k] = hn::AndNot(st_ta[k], hn::Le(tsw[k], t_edge[k]));
       // slip
@@ -616,7 +624,8 @@ class lane_engine {
                                                    hn::VecFromMask(d, hn::Ge(x_root, mA)),
                                                    hn::VecFromMask(d, hn::Le(x_root, A))));
       const vec x_cl = Min(Max(x_root, mA), A);
-      const mask on_edge = hn::Le(Sub(A, Mul(s[k], x_cl)), zero);
+      mask on_edge = hn::Le(Sub(A, Mul(s[k], x_cl)), zero);
+      if constexpr (Family) on_edge = hn::AndNot(hn::Eq(v[k], zero), on_edge);  // none at 0
       const mask onset = hn::AndNot(on_edge, in_m);
       const mask edge = hn::And(on_edge, in_m);
       const mask ssw = sl_sw[k], sroot = sl_root[k];
@@ -840,8 +849,8 @@ HWY_EXPORT(TraceRealizationsLanes);
 bool runs_in_lanes(const model_parameters& p) {
   if (p.is_paper_model()) return true;
   const oscillator_model m = model_of(p);
-  return m.damping == 0.0 && m.belt.level_count() == 2 && m.belt.levels[0] != 0.0 &&
-         m.belt.levels[1] != 0.0 && m.static_friction >= m.kinetic_friction;
+  return m.damping == 0.0 && m.belt.level_count() == 2 &&
+         m.static_friction >= m.kinetic_friction;
 }
 
 std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
@@ -864,7 +873,7 @@ std::vector<realization_trace> trace_realizations_lanes(const sweep_spec& s, std
                                                        std::uint64_t first, std::uint64_t last) {
   if (!runs_in_lanes(point_parameters(s, point)))
     throw invalid_value("trace_realizations_lanes", "a point the lane engine does not run",
-                        "the paper's model or an undamped two-level belt with nonzero levels");
+                        "the paper's model or an undamped two-level belt");
   return HWY_DYNAMIC_DISPATCH(TraceRealizationsLanes)(s, point, first, last);
 }
 

@@ -204,7 +204,7 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
 
 // The paper's model: the lane engine or simulate() (the reference). The
 // family: the lane engine for the models it runs (detail::runs_in_lanes:
-// undamped two-level belts with nonzero levels), simulate_model otherwise
+// undamped two-level belts), simulate_model otherwise
 // and for sweep_engine::reference.
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);

@@ -98,12 +98,13 @@ sweep_spec random_family_point(std::mt19937_64& rng) {
   b.stiffness = pick(3) == 0 ? 4.0 : pick(2) == 0 ? 40.0 : log_uniform(1.0, 100.0);
   b.kinetic_friction = log_uniform(0.3, 7.0);
   b.static_friction = pick(4) == 0 ? b.kinetic_friction : b.kinetic_friction * log_uniform(1.0, 4.0);
-  const double v1 = (pick(2) ? 1.0 : -1.0) * log_uniform(0.1, 3.0);
+  double v1 = (pick(2) ? 1.0 : -1.0) * log_uniform(0.1, 3.0);
   double v2 = -v1;
   if (pick(3) != 0) {
     v2 = (pick(2) ? 1.0 : -1.0) * log_uniform(0.1, 3.0);
     if (v2 == v1) v2 = -v1;
   }
+  if (pick(5) == 0) (pick(2) ? v1 : v2) = 0.0;  // a resting level
   b.belt_levels = {v1, v2};
   const double r1 = log_uniform(0.1, 30.0);
   b.belt_rates = {r1, pick(3) == 0 ? r1 : log_uniform(0.1, 30.0)};
@@ -179,7 +180,8 @@ TEST(FastPathFamily, EveryFieldEqualsSimulateModelOnGrids) {
 TEST(FastPathFamily, StartsOnTheBeltVelocity) {
   for (const double mu_s : {2.0, 5.0})
     for (const auto& levels : {std::vector<double>{1.0, -0.5}, std::vector<double>{0.7, 2.0},
-                               std::vector<double>{-1.2, 1.2}})
+                               std::vector<double>{-1.2, 1.2}, std::vector<double>{0.0, 1.3},
+                               std::vector<double>{-0.8, 0.0}})
       for (const int start : {1, -1})
         for (const double where : {0.3, 1.0, -1.0, 1.7, -2.5}) {
           sweep_spec s;
@@ -224,7 +226,7 @@ TEST(FastPathFamily, EveryFieldEqualsSimulateModelOnEveryTarget) {
 // Whole sweeps: every statistic, histogram and record of the fast engine
 // (lanes) equals the reference's (simulate_model), for any threads and block
 // sizes; a grid that mixes points the lanes run with points they do not
-// (damped, three levels, a level 0) and the paper's model.
+// (damped, three levels) and the paper's model, levels 0 included.
 void expect_engines_agree(sweep_spec s, unsigned threads) {
   s.engine = sweep_engine::reference;
   const auto ref = run_sweep(s, 1);
@@ -270,7 +272,7 @@ TEST(FastPathFamily, OtherModelsStayOnSimulateModel) {
   EXPECT_FALSE(detail::runs_in_lanes(damped));
   auto resting = p;
   resting.belt_levels = {1.0, 0.0};
-  EXPECT_FALSE(detail::runs_in_lanes(resting));
+  EXPECT_TRUE(detail::runs_in_lanes(resting));
   auto three = p;
   three.belt_levels = {1.0, -1.0, 2.0};
   three.belt_generator = {-2, 1, 1, 1, -2, 1, 1, 1, -2};
@@ -284,9 +286,32 @@ TEST(FastPathFamily, OtherModelsStayOnSimulateModel) {
   s.base.static_friction = 6.0;
   s.base.kinetic_friction = 4.0;
   s.base.belt_levels = {1.0, 0.0};
-  s.axes = {{"c", {0.0, 0.4}}, {"v2", {0.0, -1.0}}};
+  s.axes = {{"c", {0.4, 0.0}}, {"v2", {0.0, -1.0}}};
   expect_engines_agree(s, 2);
-  EXPECT_THROW((void)detail::trace_realizations_lanes(s, 0, 0, 3), error);
+  EXPECT_THROW((void)detail::trace_realizations_lanes(s, 0, 0, 3), error);  // damped
+}
+
+// Levels at rest: a stick at 0 lasts until the switch, the band edge at 0
+// is no outward edge; mu_s > mu_k and mu_s = mu_k.
+TEST(FastPathFamily, EveryFieldEqualsSimulateModelWithARestingLevel) {
+  for (const double mu_s : {3.0, 6.0})
+    for (const double k : {4.0, 40.0})
+      for (const auto& levels : {std::vector<double>{0.0, 1.0}, std::vector<double>{-2.0, 0.0}}) {
+        sweep_spec s;
+        s.base.stiffness = k;
+        s.base.window = 20.0;
+        s.base.static_friction = mu_s;
+        s.base.kinetic_friction = 3.0;
+        s.base.belt_levels = levels;
+        s.base.belt_rates = {2.0, 0.5};
+        s.seed = 8;
+        s.initial.position_min = -4.0, s.initial.position_max = 4.0;
+        SCOPED_TRACE("mu_s " + std::to_string(mu_s) + " k " + std::to_string(k) + " levels " +
+                     std::to_string(levels[0]) + "," + std::to_string(levels[1]));
+        event_counts kinds;
+        EXPECT_GT(expect_traces_agree(s, 0, 60, kinds), 100u);
+        if (HasFailure()) return;
+      }
 }
 
 // Over max_events the lanes report the family engine's error.

@@ -26,7 +26,7 @@ struct block_result;
 namespace stickslip::detail {
 
 // Whether the lane engine runs a point: the paper's model, or a family model
-// with c = 0 on a two-level belt with nonzero levels (any rates, mu_s >=
+// with c = 0 on a two-level belt (any levels, 0 included, any rates, mu_s >=
 // mu_k): the same episodes, events and statistics as simulate_model
 // (tests/unit/test_fast_path_family.cpp). Other points: simulate_block_family.
 [[nodiscard]] bool runs_in_lanes(const model_parameters& p);
