@@ -39,6 +39,19 @@
 // A realization that exceeds max_events makes the whole block rerun on the
 // reference engine, which throws the same error the reference would.
 //
+// The same engine runs the undamped two-level models of the family
+// (detail::runs_in_lanes; lane_engine<..., Family = true>) with
+// simulate_model's physics (model/model_engine.hpp with c = 0) and
+// markov_level_switches' draws (two_level_switch_times): the point's
+// constants (band a_s, slip centre a_k, the two levels, what a departure
+// from the outward edge leaves, whether a switch out of a stick mirrors)
+// are broadcast once per step; per lane, |v| times the stick and the other
+// level is a blend on v == v1. After a stick break with mu_s > mu_k the slip
+// starts at x' = v and runs the reversal arc, in the vector step (its atan2
+// shares the step's Atan). The paper's instance (Family = false) compiles
+// exactly the code it had before. tests/unit/test_fast_path_family.cpp holds
+// the family instance to simulate_model, every episode and event field.
+//
 // The engine is a template over what it does with a finished realization
 // (a collector: statistics for the sweep, or a full trace for the tests) and
 // so over the observer type: it gives the observer every episode with every
