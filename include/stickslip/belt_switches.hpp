@@ -9,6 +9,8 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 
@@ -65,6 +67,58 @@ class poisson_switches {
   }
 
   double mean_wait_;
+  double time_ = 0.0;
+  random_stream rs_;
+  int i_ = chunk;
+  alignas(64) std::array<double, chunk> times_{};
+};
+
+// The switch times of a two-level Markov belt, the same bits as
+// markov_level_switches (model/belt_chain.hpp) with two levels: W_j =
+// -log(U_j) * m_j, m_j the mean wait (1 / q_i) of the level switch j
+// (counted from 0) leaves: the start level's for even j, the other level's
+// for odd j, the same words of the same substream in the same order, the
+// running sum in the same order. Drawn `chunk` at a time like
+// poisson_switches (chunk is even, so every refill starts on the start
+// level). The lane engine's source for such belts.
+class two_level_switch_times {
+ public:
+  static constexpr int blocks_per_chunk = poisson_switches::blocks_per_chunk;
+  static constexpr int chunk = poisson_switches::chunk;
+  static_assert(chunk % 2 == 0);
+
+  two_level_switch_times(double mean_wait_start, double mean_wait_other, std::uint64_t seed,
+                         std::uint64_t point, std::uint64_t realization) noexcept
+      : mean_wait_{mean_wait_start, mean_wait_other},
+        rs_(seed, point, realization, substream::belt_switches) {}
+  two_level_switch_times() noexcept : two_level_switch_times(1.0, 1.0, 0, 0, 0) {}
+
+  template <class LogInplace>
+  [[nodiscard, gnu::always_inline]] double next(LogInplace&& log_inplace) noexcept {
+    if (i_ == chunk) [[unlikely]] refill(log_inplace);
+    return times_[i_++];
+  }
+
+ private:
+  template <class LogInplace>
+  [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
+    alignas(64) double w[chunk];
+    for (int b = 0; b < blocks_per_chunk; ++b) {
+      const auto blk = rs_.next_block();
+      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
+    }
+    log_inplace(w, std::size_t{chunk});
+    double y = time_;
+    const double m0 = mean_wait_[0], m1 = mean_wait_[1];
+    for (int j = 0; j < chunk; j += 2) {
+      times_[j] = y += -w[j] * m0;
+      times_[j + 1] = y += -w[j + 1] * m1;
+    }
+    time_ = y;
+    i_ = 0;
+  }
+
+  double mean_wait_[2];
   double time_ = 0.0;
   random_stream rs_;
   int i_ = chunk;

@@ -92,8 +92,10 @@ struct block_result {
 // the paper's model.
 [[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
 // The model family's engine (simulate_model, model/model_engine.hpp), one
-// realization at a time; simulate_block uses it for every point that is not
-// the paper's model, whatever s.engine says.
+// realization at a time; simulate_block uses it for the points that are not
+// the paper's model with sweep_engine::reference, and with fast for those
+// the lane engine does not run (detail::runs_in_lanes: damped, or more than
+// two levels). Both give the same bits where both run.
 [[nodiscard]] block_result simulate_block_family(const sweep_spec& s, const work_unit& u);
 // simulate_block of each unit, in order. Runs of consecutive blocks of one
 // point go to the lane engine together, so its lanes move on to the next

@@ -39,6 +39,19 @@
 // A realization that exceeds max_events makes the whole block rerun on the
 // reference engine, which throws the same error the reference would.
 //
+// The same engine runs the undamped two-level models of the family
+// (detail::runs_in_lanes; lane_engine<..., Family = true>) with
+// simulate_model's physics (model/model_engine.hpp with c = 0) and
+// markov_level_switches' draws (two_level_switch_times): the point's
+// constants (band a_s, slip centre a_k, the two levels, what a departure
+// from the outward edge leaves, whether a switch out of a stick mirrors)
+// are broadcast once per step; per lane, |v| times the stick and the other
+// level is a blend on v == v1. After a stick break with mu_s > mu_k the slip
+// starts at x' = v and runs the reversal arc, in the vector step (its atan2
+// shares the step's Atan). The paper's instance (Family = false) compiles
+// exactly the code it had before. tests/unit/test_fast_path_family.cpp holds
+// the family instance to simulate_model, every episode and event field.
+//
 // The engine is a template over what it does with a finished realization
 // (a collector: statistics for the sweep, or a full trace for the tests) and
 // so over the observer type: it gives the observer every episode with every
@@ -58,6 +71,8 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "stickslip/belt_switches.hpp"
@@ -68,6 +83,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
+#include "stickslip/model/model_realization.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/random_stream.hpp"
 #include "stickslip/statistics.hpp"
@@ -143,8 +159,8 @@ class statistics_collector {
   using observer = realization_observer;
   statistics_collector(const sweep_spec& s, const model_parameters& p,
                        std::vector<block_result>& outs, std::size_t point,
-                       std::uint64_t first_block)
-      : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
+                       std::uint64_t first_block, bool family)
+      : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block), family_(family) {}
   [[nodiscard]] observer make() const { return observer(p_.window); }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);
@@ -161,8 +177,10 @@ class statistics_collector {
   void fallback() {
     // Rerun on the reference engine, which throws what the reference throws.
     count_lane_reference_rerun();
-    for (std::uint64_t b = 0; b < outs_.size(); ++b)
-      outs_[b] = simulate_block_reference(s_, work_unit{point_, first_block_ + b});
+    for (std::uint64_t b = 0; b < outs_.size(); ++b) {
+      const work_unit u{point_, first_block_ + b};
+      outs_[b] = family_ ? simulate_block_family(s_, u) : simulate_block_reference(s_, u);
+    }
   }
 
  private:
@@ -171,6 +189,7 @@ class statistics_collector {
   std::vector<block_result>& outs_;
   std::size_t point_;
   std::uint64_t first_block_;
+  bool family_;
 };
 
 // Every episode and event of every realization (the tests' view).
@@ -187,8 +206,8 @@ class trace_collector {
  public:
   using observer = trace_observer;
   trace_collector(const sweep_spec& s, const model_parameters& p, std::uint64_t first,
-                  std::vector<realization_trace>& out)
-      : s_(s), p_(p), first_(first), out_(out) {}
+                  std::vector<realization_trace>& out, const family_point* family)
+      : s_(s), p_(p), first_(first), out_(out), family_(family) {}
   [[nodiscard]] observer make() const { return {}; }
   void begin(observer& o, std::uint64_t, const initial_conditions&) const { o.trace = {}; }
   void end(observer& o, const event_counts& counts) const { o.trace.counts = counts; }
@@ -197,7 +216,13 @@ class trace_collector {
     count_lane_reference_rerun();
     for (std::size_t i = 0; i < out_.size(); ++i) {
       trace_observer o;
-      o.trace.counts = simulate_realization(s_, p_, first_ + i, o);
+      const std::uint64_t r = first_ + i;
+      if (family_) {
+        const auto start = draw_model_initial_state(*family_, s_.initial, s_.seed, r);
+        o.trace.counts = simulate_family_realization(*family_, start, s_.seed, r, s_.max_events, o);
+      } else {
+        o.trace.counts = simulate_realization(s_, p_, r, o);
+      }
       out_[i] = std::move(o.trace);
     }
   }
@@ -207,23 +232,49 @@ class trace_collector {
   const model_parameters& p_;
   std::uint64_t first_;
   std::vector<realization_trace>& out_;
+  const family_point* family_;
 };
 
-template <class Collector>
+// Family = false: the paper's model (poisson_switches, levels +-V, mu_s =
+// mu_k). Family = true: an undamped two-level belt, levels v1, v2 (either may
+// be 0: a stick there lasts until the next switch, and its band has no
+// outward edge), mu_s >= mu_k (simulate_model's physics, model/model_engine.hpp, with
+// c = 0): the stick band |x| <= a_s, the slip centre sigma a_k, the switch
+// times of two_level_switch_times, and after a stick break (or a touch of the
+// outward edge) with mu_s > mu_k a slip that starts at x' = v and returns by
+// the reversal arc (after_reversal, in the vector step), with mu_s = mu_k the
+// paper's grazing orbit. A belt switch goes to the other level; a stick
+// ended by one leaves a mirror slip only when v2 = -v1.
+template <class Collector, bool Family>
 class lane_engine {
   using observer = typename Collector::observer;
+  using switch_source = std::conditional_t<Family, two_level_switch_times, poisson_switches>;
   static_assert(!observes_segments<observer>,
                 "the lane engine reports no segments: observe them with simulate()");
   static constexpr bool with_events = observes_events<observer>;
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
-  lane_engine(const sweep_spec& s, const model_parameters& p, Collector& collect,
-              std::uint64_t first, std::uint64_t last)
-      : s_(s), p_(p), collect_(collect), first_(first), last_(last),
+  // family: the point's family_point (Family), else nullptr.
+  lane_engine(const sweep_spec& s, const model_parameters& p, const family_point* family,
+              Collector& collect, std::uint64_t first, std::uint64_t last)
+      : s_(s), p_(p), fp_(family), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
-        a_(p.band_half_width()), w_(p.natural_frequency()), V_(p.belt_speed), ta_(p.window),
-        key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
+        a_(p.band_half_width()), ak_(a_), w_(p.natural_frequency()), V_(p.belt_speed),
+        ta_(p.window), key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
+    if constexpr (Family) {
+      const oscillator_model& m = fp_->model;
+      a_ = m.static_band_half_width();
+      ak_ = m.kinetic_offset();
+      w_ = m.natural_frequency();
+      ta_ = m.window;
+      v1_ = m.belt.levels[0];
+      v2_ = m.belt.levels[1];
+      V_ = 0.0;  // unused: |v| per lane
+      equal_friction_ = m.static_friction == m.kinetic_friction;
+      mirror_belt_ = v2_ == -v1_;
+      key_ = fp_->key;
+    }
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
     for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());
@@ -247,8 +298,20 @@ class lane_engine {
  private:
   // ---- realization start and end ----
   void start(int l, std::uint64_t r) {
-    const auto ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
-    sw_[l] = poisson_switches(p_.switch_rate, s_.seed, key_, r);
+    initial_conditions ic;
+    double v;
+    if constexpr (Family) {
+      // draw_model_initial_state and markov_level_switches, as simulate_block_family
+      const model_initial_state st = draw_model_initial_state(*fp_, s_.initial, s_.seed, r);
+      ic = initial_conditions{st.position, st.velocity, recorded_belt_start(st.level, 2)};
+      sw_[l] = two_level_switch_times(fp_->chain.mean_wait(st.level),
+                                      fp_->chain.mean_wait(1 - st.level), s_.seed, key_, r);
+      v = st.level == 0 ? v1_ : v2_;
+    } else {
+      ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
+      sw_[l] = poisson_switches(p_.switch_rate, s_.seed, key_, r);
+      v = ic.belt_direction >= 0 ? V_ : -V_;
+    }
     r_[l] = r;
     obs_[l] = &pool_[(r - first_) % pool_.size()];
     collect_.begin(*obs_[l], r, ic);
@@ -257,16 +320,20 @@ class lane_engine {
     n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
     steps_[l] = 0.0;
     // simulate(): initial state and mode.
-    const double a = a_, V = V_;
-    const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
+    const double a = a_;
+    const double x = ic.position, z = ic.velocity;
     t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
     tsw_[l] = next_switch(l);
-    const auto m = physics::mode_at_start(x, z, v, a);
+    auto m = physics::mode_at_start(x, z, v, a);
+    if (Family && v == 0.0 && m.grazing) m = {mode::stick, 1.0, false, false};  // no outward edge at 0
     const bool stick = m.kind == mode::stick;
     sig_[l] = m.sigma;
     stk_[l] = stick ? 1.0 : 0.0;
-    grz_[l] = m.grazing ? 1.0 : 0.0;
-    arv_[l] = m.after_reversal ? 1.0 : 0.0;
+    // simulate_model's leave_edge: with mu_s > mu_k a start on the outward
+    // edge slips away at once (after_reversal), with mu_s = mu_k it grazes.
+    const bool edge_leaves = Family && !equal_friction_ && m.grazing;
+    grz_[l] = m.grazing && !edge_leaves ? 1.0 : 0.0;
+    arv_[l] = m.after_reversal || edge_leaves ? 1.0 : 0.0;
     mir_[l] = 0.0;
     ep_kind_[l] = stick ? mode::stick : mode::slip;
     ep_start_[l] = 0.0;
@@ -332,13 +399,16 @@ class lane_engine {
       hn::Store(st, d, steps_ + j);
       hn::Store(hn::IfThenElse(act, one, zero), d, run_ + j);
       over = hn::Or(over, hn::And(act, hn::Gt(st, hn::Set(d, max_steps_))));
-      special |= lane_bits(d, hn::Or(hn::Not(act), hn::Gt(hn::Load(d, arv_ + j), half)))
-                 << static_cast<unsigned>(j);
+      // Family: the vector step runs the slips after a reversal as well
+      const auto sp = Family ? hn::Not(act)
+                             : hn::Or(hn::Not(act), hn::Gt(hn::Load(d, arv_ + j), half));
+      special |= lane_bits(d, sp) << static_cast<unsigned>(j);
     }
     if (!hn::AllFalse(d, over)) throw bound_exceeded{};
     for (unsigned m = special; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      if (active_[l]) scalar_reversal_slip(l);  // its event was counted above
+      if constexpr (!Family)
+        if (active_[l]) scalar_reversal_slip(l);  // its event was counted above
       prepare(l);
     }
     auto any = hn::FirstN(d, 0);
@@ -358,8 +428,8 @@ class lane_engine {
         start(l, next_++);
       }
       count_step(l);
-      if (arv_[l] == 0.0) break;
-      scalar_reversal_slip(l);
+      if (Family || arv_[l] == 0.0) break;
+      if constexpr (!Family) scalar_reversal_slip(l);
     }
     run_[l] = 1.0;
     return true;
@@ -415,7 +485,11 @@ class lane_engine {
     mir_[l] = 0.0;
     const auto c = physics::resolve_contact(x_[l], from_sigma, v_[l], a_);
     x_[l] = c.x;
-    switch (c.outcome) {
+    auto outcome = c.outcome;
+    // a level 0 has no outward edge (simulate_model): its band edge sticks
+    if (Family && outcome == physics::contact_outcome::grazing && v_[l] == 0.0)
+      outcome = physics::contact_outcome::stick;
+    switch (outcome) {
       case physics::contact_outcome::reversal:
         sig_[l] = c.sigma;
         arv_[l] = 1.0;
@@ -424,9 +498,12 @@ class lane_engine {
           emit(l, event_kind::slip_reversal);
         }
         return;
-      case physics::contact_outcome::grazing:  // zero-length stick
+      case physics::contact_outcome::grazing:  // zero-length stick: leave_edge
         sig_[l] = c.sigma;
-        grz_[l] = 1.0;
+        if (Family && !equal_friction_)
+          arv_[l] = 1.0;
+        else
+          grz_[l] = 1.0;
         return;
       case physics::contact_outcome::stick:
         stk_[l] = 1.0;
@@ -453,9 +530,18 @@ class lane_engine {
     const vec A = Set(d, a_), W = Set(d, w_), VV = Set(d, V_), TA = Set(d, ta_);
     const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
     const vec mA = hn::Neg(A);
+    // Family: the slip centre sigma a_k (the paper: sigma a, the band's edge),
+    // the two levels, and what an outward-edge departure leaves (grazing with
+    // mu_s = mu_k, a slip after a reversal otherwise), whether a switch out
+    // of a stick leaves a mirror slip (v2 = -v1).
+    const vec AK = Family ? Set(d, ak_) : A;
+    const vec V1 = Set(d, v1_), V2 = Set(d, v2_);
+    const vec GRZ = Family && !equal_friction_ ? zero : one;
+    const vec ARV = Family && !equal_friction_ ? one : zero;
+    const vec MIR = Family && !mirror_belt_ ? zero : one;
     vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], sq[K];
     vphysics::slip_orbit<vec> o[K];
-    mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K];
+    mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K], arv[K];
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
       t[k] = hn::Load(d, t_ + j), x[k] = hn::Load(d, x_ + j), z[k] = hn::Load(d, z_ + j);
@@ -464,15 +550,18 @@ class lane_engine {
       graz[k] = hn::Gt(hn::Load(d, grz_ + j), half);
       mirr[k] = hn::Gt(hn::Load(d, mir_ + j), half);
       run[k] = hn::Gt(hn::Load(d, run_ + j), half);
+      if constexpr (Family) arv[k] = hn::Gt(hn::Load(d, arv_ + j), half);
     }
     K_LOOP {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
       // stick
-      t_edge[k] = vphysics::stick_edge_time(t[k], A, s[k], x[k], VV);
+      t_edge[k] = vphysics::stick_edge_time(t[k], A, s[k], x[k], Family ? hn::Abs(v[k]) : VV);
+      if constexpr (Family)  // a stick at a level 0 lasts until the next switch
+        t_edge[k] = IfThenElse(hn::Eq(v[k], zero), Set(d, inf), t_edge[k]);
       st_ta[k] = hn::Ge(Min(t_edge[k], tsw[k]), TA);
       st_sw[k] = hn::AndNot(st_ta[k], hn::Le(tsw[k], t_edge[k]));
       // slip
-      o[k] = vphysics::orbit_of(x[k], z[k], v[k], sig[k], A, W);
+      o[k] = vphysics::orbit_of(x[k], z[k], v[k], sig[k], AK, W);
       has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(o[k].disc, zero));
       sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], o[k].disc));
     }
@@ -482,6 +571,10 @@ class lane_engine {
       const auto q = vphysics::root_angle_arguments(o[k].wy, z[k], v[k], r[k]);
       ay[k] = q.y;
       ax[k] = q.x;
+      if constexpr (Family) {  // reversal_arc_angle: alpha = atan2(|w y|, v)
+        ay[k] = IfThenElse(arv[k], hn::Abs(o[k].wy), ay[k]);
+        ax[k] = IfThenElse(arv[k], v[k], ax[k]);
+      }
       // one division for both kinds of root: |wy| / |z| (mirror return) or
       // atan2_ratio's min(|ay|, |ax|) / max(|ay|, |ax|)
       vec num, den;
@@ -502,7 +595,12 @@ class lane_engine {
       const vec dt_gen = IfThenElse(hn::Ge(raw, zero), raw,
                                     IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
       const vec dt_mir = vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
-      const vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
+      vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
+      if constexpr (Family) {  // reversal_arc_from_alpha
+        const vec two_raw = Mul(Set(d, 2.0), raw);
+        const vec dt_rev = IfThenElse(hn::Gt(sig[k], zero), Sub(Set(d, two_pi), two_raw), two_raw);
+        dtheta = IfThenElse(arv[k], dt_rev, dtheta);
+      }
       t_root[k] = IfThenElse(has_root[k], vphysics::time_after_phase(t[k], dtheta, W), Set(d, inf));
       sl_ta[k] = hn::Ge(Min(t_root[k], tsw[k]), TA);
       sl_sw[k] = hn::AndNot(sl_ta[k], hn::Le(tsw[k], t_root[k]));
@@ -539,13 +637,14 @@ class lane_engine {
                                                    hn::VecFromMask(d, hn::Ge(x_root, mA)),
                                                    hn::VecFromMask(d, hn::Le(x_root, A))));
       const vec x_cl = Min(Max(x_root, mA), A);
-      const mask on_edge = hn::Le(Sub(A, Mul(s[k], x_cl)), zero);
+      mask on_edge = hn::Le(Sub(A, Mul(s[k], x_cl)), zero);
+      if constexpr (Family) on_edge = hn::AndNot(hn::Eq(v[k], zero), on_edge);  // none at 0
       const mask onset = hn::AndNot(on_edge, in_m);
       const mask edge = hn::And(on_edge, in_m);
       const mask ssw = sl_sw[k], sroot = sl_root[k];
 
       // new state, slip lanes
-      const vec vn = hn::Neg(v[k]);
+      const vec vn = Family ? IfThenElse(hn::Eq(v[k], V1), V2, V1) : hn::Neg(v[k]);
       vec nx = IfThenElse(sroot, IfThenElse(in_m, x_cl, x_root), xr[k]);
       vec nz = IfThenElse(sroot, v[k], zr[k]);
       vec nt = IfThenElse(sroot, t_root[k], IfThenElse(ssw, tsw[k], TA));
@@ -556,9 +655,10 @@ class lane_engine {
                      sig[k]));
       vec nstk = IfThenElse(hn::And(sroot, onset), one, zero);
       vec ngrz = IfThenElse(ssw, zero,
-                            IfThenElse(hn::And(sroot, edge), one, IfThenElse(graz[k], one, zero)));
+                            IfThenElse(hn::And(sroot, edge), GRZ, IfThenElse(graz[k], one, zero)));
       vec nmir = IfThenElse(hn::Or(ssw, sroot), zero, IfThenElse(mirr[k], one, zero));
       vec narv = IfThenElse(hn::AndNot(in_m, sroot), one, zero);
+      if constexpr (Family) narv = IfThenElse(hn::And(sroot, edge), ARV, narv);
       vec code = IfThenElse(sl_ta[k], Set(d, ev_slip_ta),
                  IfThenElse(ssw, Set(d, ev_slip_sw),
                  IfThenElse(onset, Set(d, ev_slip_onset),
@@ -572,11 +672,13 @@ class lane_engine {
       nz = IfThenElse(stk, IfThenElse(sta, z[k], v[k]), nz);
       nt = IfThenElse(stk, IfThenElse(ssw2, tsw[k], IfThenElse(st_brk, t_edge[k], TA)), nt);
       nv = IfThenElse(stk, IfThenElse(ssw2, vn, v[k]), nv);
-      nsig = IfThenElse(stk, IfThenElse(ssw2, hn::Neg(s[k]), IfThenElse(st_brk, s[k], sig[k])), nsig);
+      // after a switch: sigma = sgn(v_new - old v) (the paper: -s)
+      const vec sig_sw = Family ? IfThenElse(hn::Gt(vn, v[k]), one, m_one) : hn::Neg(s[k]);
+      nsig = IfThenElse(stk, IfThenElse(ssw2, sig_sw, IfThenElse(st_brk, s[k], sig[k])), nsig);
       nstk = IfThenElse(stk, IfThenElse(sta, one, zero), nstk);
-      ngrz = IfThenElse(stk, IfThenElse(st_brk, one, zero), ngrz);
-      nmir = IfThenElse(stk, IfThenElse(ssw2, one, zero), nmir);
-      narv = IfThenElse(stk, zero, narv);
+      ngrz = IfThenElse(stk, IfThenElse(st_brk, GRZ, zero), ngrz);
+      nmir = IfThenElse(stk, IfThenElse(ssw2, MIR, zero), nmir);
+      narv = IfThenElse(stk, Family ? IfThenElse(st_brk, ARV, zero) : zero, narv);
       code = IfThenElse(stk, IfThenElse(sta, Set(d, ev_stick_ta),
                                         IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),
                         code);
@@ -663,9 +765,12 @@ class lane_engine {
 
   const sweep_spec& s_;
   const model_parameters& p_;
+  const family_point* fp_;
   Collector& collect_;
   std::uint64_t first_, last_, next_, flush_;
-  double a_, w_, V_, ta_;
+  double a_, ak_, w_, V_, ta_;  // a_: the stick band (a_s); ak_: the slip centre (a_k)
+  double v1_ = 1.0, v2_ = -1.0;  // Family: the two levels
+  bool equal_friction_ = true, mirror_belt_ = true;
   std::uint64_t key_;
   std::vector<observer> pool_;
   std::vector<unsigned char> done_;
@@ -686,16 +791,19 @@ class lane_engine {
   double ep_start_[lanes] = {}, ep_x_[lanes] = {}, ep_v_[lanes] = {};
   mode ep_kind_[lanes] = {};
   observer* obs_[lanes] = {};
-  poisson_switches sw_[lanes] = {};
+  switch_source sw_[lanes] = {};
 };
 
 // Runs the engine over [first, last); on max_events, the collector's fallback.
 template <class Collector>
-void run_lanes(const sweep_spec& s, const model_parameters& p, Collector& collect,
-               std::uint64_t first, std::uint64_t last) {
+void run_lanes(const sweep_spec& s, const model_parameters& p, const family_point* family,
+               Collector& collect, std::uint64_t first, std::uint64_t last) {
   if (first >= last) return;
   try {
-    lane_engine<Collector>(s, p, collect, first, last).run();
+    if (family)
+      lane_engine<Collector, true>(s, p, family, collect, first, last).run();
+    else
+      lane_engine<Collector, false>(s, p, nullptr, collect, first, last).run();
   } catch (const bound_exceeded&) {
     collect.fallback();
   }
@@ -713,8 +821,10 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
     outs[b].stats = point_statistics(p, s.histograms);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
-  statistics_collector collect(s, p, outs, point, first_block);
-  run_lanes(s, p, collect, first, last);
+  std::optional<family_point> fp;
+  if (!p.is_paper_model()) fp.emplace(p);
+  statistics_collector collect(s, p, outs, point, first_block, fp.has_value());
+  run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   return outs;
 }
 
@@ -722,8 +832,10 @@ std::vector<realization_trace> TraceRealizationsLanes(const sweep_spec& s, std::
                                                       std::uint64_t first, std::uint64_t last) {
   const auto p = point_parameters(s, point);
   std::vector<realization_trace> out(last > first ? last - first : 0);
-  trace_collector collect(s, p, first, out);
-  run_lanes(s, p, collect, first, last);
+  std::optional<family_point> fp;
+  if (!p.is_paper_model()) fp.emplace(p);
+  trace_collector collect(s, p, first, out, fp ? &*fp : nullptr);
+  run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   return out;
 }
 
@@ -747,8 +859,22 @@ std::uint64_t lane_reference_reruns() noexcept {
 HWY_EXPORT(SimulateBlocksLanes);
 HWY_EXPORT(TraceRealizationsLanes);
 
+bool runs_in_lanes(const model_parameters& p) {
+  if (p.is_paper_model()) return true;
+  const oscillator_model m = model_of(p);
+  return m.damping == 0.0 && m.belt.level_count() == 2 &&
+         m.static_friction >= m.kinetic_friction;
+}
+
 std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
                                                std::uint64_t first_block, std::uint64_t count) {
+  if (!runs_in_lanes(point_parameters(s, point))) {  // the scalar engine of the family
+    std::vector<block_result> outs;
+    outs.reserve(count);
+    for (std::uint64_t b = 0; b < count; ++b)
+      outs.push_back(simulate_block_family(s, work_unit{point, first_block + b}));
+    return outs;
+  }
   return HWY_DYNAMIC_DISPATCH(SimulateBlocksLanes)(s, point, first_block, count);
 }
 
@@ -758,6 +884,9 @@ block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u) {
 
 std::vector<realization_trace> trace_realizations_lanes(const sweep_spec& s, std::size_t point,
                                                        std::uint64_t first, std::uint64_t last) {
+  if (!runs_in_lanes(point_parameters(s, point)))
+    throw invalid_value("trace_realizations_lanes", "a point the lane engine does not run",
+                        "the paper's model or an undamped two-level belt");
   return HWY_DYNAMIC_DISPATCH(TraceRealizationsLanes)(s, point, first, last);
 }
 

@@ -202,8 +202,17 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
   return {static_cast<std::size_t>(i / b), i % b};
 }
 
+// The paper's model: the lane engine or simulate() (the reference). The
+// family: the lane engine for the models it runs (detail::runs_in_lanes:
+// undamped two-level belts), simulate_model otherwise
+// and for sweep_engine::reference.
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
-  if (!point_parameters(s, u.point).is_paper_model()) return simulate_block_family(s, u);
+  const auto p = point_parameters(s, u.point);
+  if (!p.is_paper_model()) {
+    if (s.engine == sweep_engine::fast && detail::runs_in_lanes(p))
+      return detail::simulate_block_lanes(s, u);
+    return simulate_block_family(s, u);
+  }
   if (s.engine == sweep_engine::reference) return simulate_block_reference(s, u);
   return detail::simulate_block_lanes(s, u);
 }
@@ -221,7 +230,7 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
     while (b < units.size() && units[b].point == units[a].point &&
            units[b].block == units[b - 1].block + 1)
       ++b;
-    if (lanes && point_parameters(s, units[a].point).is_paper_model()) {
+    if (lanes && detail::runs_in_lanes(point_parameters(s, units[a].point))) {
       auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
       for (auto& x : r) results.push_back(std::move(x));
     } else {

@@ -17,12 +17,19 @@
 #include "stickslip/integrator.hpp"
 
 namespace stickslip {
+struct model_parameters;
 struct sweep_spec;
 struct work_unit;
 struct block_result;
 }  // namespace stickslip
 
 namespace stickslip::detail {
+
+// Whether the lane engine runs a point: the paper's model, or a family model
+// with c = 0 on a two-level belt (any levels, 0 included, any rates, mu_s >=
+// mu_k): the same episodes, events and statistics as simulate_model
+// (tests/unit/test_fast_path_family.cpp). Other points: simulate_block_family.
+[[nodiscard]] bool runs_in_lanes(const model_parameters& p);
 
 // simulate_block with the lane engine. Pure: depends only on (spec, unit).
 [[nodiscard]] block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u);

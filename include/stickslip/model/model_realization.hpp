@@ -1,7 +1,8 @@
 // One realization of a grid point of the model family, drawn exactly as a
 // sweep draws it: what the sweep, `simulate --seed --realization` and the
-// Python package share (the paper's model keeps its own lane engine and
-// simulate(); sweep.cpp dispatches on model_parameters::is_paper_model).
+// Python package share (the paper's model keeps simulate(); sweep.cpp sends
+// the paper's model and the undamped two-level models, detail::runs_in_lanes,
+// to the lane engine, which draws these same values for the latter).
 //
 // Random inputs, each a pure function of (seed, point_key, realization,
 // substream, index):
