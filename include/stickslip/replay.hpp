@@ -27,6 +27,9 @@ struct replay_request {
   std::optional<int> belt_start;                  // +1 or -1
   std::optional<std::vector<double>> switch_times;  // replace the Poisson switches
   bool keep_events = true, keep_segments = true;
+  // Replay realization r of a sweep run with common random numbers: the
+  // streams of common_stream_key instead of point_key(parameters).
+  bool common_random_numbers = false;
 };
 
 struct realization_trace {

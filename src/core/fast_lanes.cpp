@@ -223,7 +223,7 @@ class lane_engine {
       : s_(s), p_(p), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), w_(p.natural_frequency()), V_(p.belt_speed), ta_(p.window),
-        key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
+        key_(stream_key(s, p)), max_steps_(static_cast<double>(s.max_events)) {
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
     for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());

@@ -30,11 +30,12 @@ realization_trace replay(const replay_request& r) {
   spec.seed = r.seed;
   spec.initial = r.initial;
   spec.max_events = r.max_events;
+  spec.common_random_numbers = r.common_random_numbers;
   validate(spec);
   if (r.switch_times) validate_switch_times(*r.switch_times);
 
   realization_trace out;
-  const auto key = point_key(r.parameters);
+  const auto key = stream_key(spec, r.parameters);
   auto& ic = out.initial;
   ic = draw_initial_conditions(r.initial, r.seed, key, r.realization);
   if (r.x0) ic.position = *r.x0;
