@@ -37,8 +37,9 @@ model_parameters parameters_from(const py::dict& values) {
 py::dict replay_py(const py::dict& params, std::uint64_t seed, std::uint64_t realization,
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<int> belt_start, std::optional<std::vector<double>> switch_times,
-                   std::int64_t max_events) {
+                   std::int64_t max_events, bool common_random_numbers) {
   replay_request r;
+  r.common_random_numbers = common_random_numbers;
   r.parameters = parameters_from(params);
   r.seed = seed;
   r.realization = realization;
@@ -194,9 +195,17 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
                   std::size_t bins, bool records, const std::string& engine, std::int64_t max_events,
                   unsigned threads, const std::string& output, bool resume, bool keep_journal,
                   double checkpoint_interval, const std::string& netcdf_path, const std::string& command_line,
-                  const py::object& progress) {
-  const sweep_spec spec =
+                  const py::object& progress, bool common_random_numbers,
+                  const std::string& target_ci, std::uint64_t min_realizations) {
+  sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events);
+  // Issue 13: common random numbers, adaptive sampling (realizations is then the cap).
+  spec.common_random_numbers = common_random_numbers;
+  if (!target_ci.empty()) {
+    io::parse_target_ci("target_ci", target_ci, spec);
+    spec.min_realizations = min_realizations;
+  }
+  validate(spec);
   if (!(checkpoint_interval >= 0) || checkpoint_interval > 86400)
     throw invalid_parameter("checkpoint_interval", checkpoint_interval, "0 .. 86400 seconds");
   io::run_metadata meta = io::make_metadata(0, nullptr, io::to_toml(spec));
@@ -271,13 +280,14 @@ PYBIND11_MODULE(_stickslip, m) {
   });
   m.def("replay", &replay_py, py::arg("parameters"), py::arg("seed"), py::arg("realization"),
         py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"), py::arg("switch_times"),
-        py::arg("max_events"));
+        py::arg("max_events"), py::arg("common_random_numbers") = false);
   m.def("run_sweep", &run_sweep_py, py::arg("base"), py::arg("axes"), py::arg("realizations"),
         py::arg("seed"), py::arg("block_size"), py::arg("bins"), py::arg("records"),
         py::arg("engine"), py::arg("max_events"), py::arg("threads"), py::arg("output"),
         py::arg("resume"), py::arg("keep_journal"), py::arg("checkpoint_interval"),
         py::arg("netcdf_path"),
-        py::arg("command_line"), py::arg("progress"));
+        py::arg("command_line"), py::arg("progress"), py::arg("common_random_numbers") = false,
+        py::arg("target_ci") = "", py::arg("min_realizations") = 1000);
   m.def("sample_trajectory", &sample_trajectory_py, py::arg("segments"), py::arg("dt"));
   m.attr("default_max_events") = stickslip::default_max_events;
 }
