@@ -22,9 +22,9 @@ using namespace stickslip;
 
 constexpr std::uint64_t seed = 1, point = 5, pool = 256;
 
-struct null_model_observer : model_observer_base {
+struct null_model_observer : observer_base {
   void on_segment(const segment&) noexcept {}
-  using model_observer_base::on_segment;
+  using observer_base::on_segment;
 };
 
 model_parameters paper_point(benchmark::State& state) {
@@ -55,7 +55,7 @@ void BM_paper(benchmark::State& state) {
 
 void BM_family(benchmark::State& state) {
   const model_parameters p = paper_point(state);
-  oscillator_model m = paper_model(p);
+  oscillator_model m = model_of(p);
   const auto variant = state.range(1);
   if (variant == 1 || variant == 3) m.static_friction = 6.0;
   const double zeta = variant == 2 || variant == 3 ? 0.1 : variant == 4 ? 2.0 : 0.0;

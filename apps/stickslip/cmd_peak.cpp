@@ -98,7 +98,7 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   // Both ends of the range must be valid models (and within the work bound).
   for (double x : {lo, hi}) {
     auto check = spec;
-    parameter_by_name(check.base, over) = x;
+    set_parameter(check.base, over, x);
     validate(check);
   }
 

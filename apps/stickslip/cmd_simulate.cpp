@@ -45,20 +45,17 @@ struct simulate_options {
   CLI::Option *times_opt = nullptr, *times_file_opt = nullptr, *trajectory_opt = nullptr;
 };
 
-std::optional<std::vector<double>> given_switch_times(const simulate_options& o) {
+// The given belt switches: times, and with `t level` lines the levels.
+void set_given_switches(const simulate_options& o, replay_request& req) {
   if (o.times_opt->count() > 0 && o.times_file_opt->count() > 0)
     throw invalid_value("--switch-times-file", o.switch_times_file,
                         "either --switch-times or --switch-times-file, not both");
-  if (o.times_opt->count() > 0) return io::parse_switch_time_list("--switch-times", o.switch_times);
-  if (o.times_file_opt->count() > 0) return io::read_switch_times_file(o.switch_times_file);
-  return std::nullopt;
-}
-
-int parse_belt_start(const std::string& text) {
-  if (text == "+1" || text == "1") return 1;
-  if (text == "-1") return -1;
-  if (text == "random") return 0;
-  throw invalid_value("--belt-start", text, "+1, -1 or random");
+  const std::size_t levels = req.parameters.levels().size();
+  if (o.times_opt->count() > 0) req.switch_times = io::parse_switch_time_list("--switch-times", o.switch_times);
+  if (o.times_file_opt->count() == 0) return;
+  auto schedule = io::read_switch_schedule_file(o.switch_times_file, levels);
+  req.switch_times = std::move(schedule.times);
+  if (!schedule.levels.empty()) req.switch_levels = std::move(schedule.levels);
 }
 
 // One realization through the core's replay (the same as Python's
@@ -66,8 +63,8 @@ int parse_belt_start(const std::string& text) {
 // of x0, x'0, the belt start and the switch times fixed by flags.
 io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   replay_request req;
-  req.switch_times = given_switch_times(o);
   req.parameters = apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
+  set_given_switches(o, req);
   req.seed = resolve_seed(o.model, req.seed);
   req.max_events = resolve_max_events(o.model, req.max_events);
   req.realization = io::parse_unsigned("--realization", o.realization);
@@ -76,7 +73,10 @@ io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   if (o.xdot0_opt->count() > 0)
     req.xdot0 = io::parse_number("--xdot0 (initial velocity)", o.xdot0);
   if (o.belt_opt->count() > 0)
-    if (const int b = parse_belt_start(o.belt_start); b != 0) req.belt_start = b;
+    if (const int b = io::parse_belt_start("--belt-start", o.belt_start,
+                                           req.parameters.levels().size());
+        b != 0)
+      req.belt_start = b;
   req.keep_events = o.events;
   req.keep_segments = o.trajectory_opt->count() > 0;
   auto trace = replay(req);
@@ -165,8 +165,9 @@ void add_simulate_command(CLI::App& app, const invocation&) {
                     ->type_name("U")
                     ->group(replay);
   o.belt_opt = cmd->add_option("--belt-start", o.belt_start,
-                               "initial belt direction: +1, -1 or random (default: drawn)")
-                   ->type_name("+1|-1|random")
+                               "initial belt level: +1 / -1 (first / second of two levels), "
+                               "a level number 1..n, or stationary (default: drawn)")
+                   ->type_name("LEVEL")
                    ->group(replay);
   o.times_opt = cmd->add_option("--switch-times", o.switch_times,
                                 "belt switch times t1,t2,... (sorted, >= 0) instead of Poisson")
@@ -174,8 +175,9 @@ void add_simulate_command(CLI::App& app, const invocation&) {
                     ->group(replay);
   o.times_file_opt =
       cmd->add_option("--switch-times-file", o.switch_times_file,
-                      "file with one switch time per line ('#' comments allowed); not "
-                      "together with --switch-times")
+                      "file with one switch per line: 't' (two levels: go to the other one) "
+                      "or 't level' (level number 1..n); '#' comments allowed; not together "
+                      "with --switch-times")
           ->type_name("FILE")
           ->group(replay);
   const char* output = "Output";

@@ -54,6 +54,8 @@ struct sweep_options {
   std::string engine;
   std::string out_dir;
   bool resume = false, keep_journal = false, overwrite = false;
+  std::string belt_start;
+  CLI::Option* belt_start_opt = nullptr;
   std::string shard;                       // "i/n"
   std::string checkpoint_interval = "2";   // seconds between journal segments
   bool common_random_numbers = false;
@@ -75,17 +77,18 @@ int axis_rank(const std::string& symbol) {
 // lin:/log: range makes an axis, replacing the file's values in place or
 // appending a new axis after the file's axes.
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec) {
+  spec.base = apply_belt_flags(f, std::move(spec.base));
   std::vector<axis> added;
   for (const auto* flag : given_model_flags(cmd, f)) {
     const auto& sym = flag->symbol;
     auto in_file = std::find_if(spec.axes.begin(), spec.axes.end(),
                                 [&](const axis& a) { return a.name == sym; });
     if (io::is_single_value(flag->text)) {
-      parameter_by_name(spec.base, sym) = io::parse_number(flag_label(sym), flag->text);
+      set_parameter(spec.base, sym, io::parse_number(flag_label(sym), flag->text));
       if (in_file != spec.axes.end()) spec.axes.erase(in_file);
       continue;
     }
-    auto values = io::parse_grid("--" + sym, flag->text);
+    auto values = io::parse_grid(flag_name(sym), flag->text, io::grid_domain_of(sym));
     if (in_file != spec.axes.end())
       in_file->values = std::move(values);
     else
@@ -137,6 +140,9 @@ sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   if (o.bins_opt->count() > 0)
     spec.histograms.bins = static_cast<std::size_t>(io::parse_unsigned("--bins", o.bins, 1, max_histogram_bins));
   if (o.records_opt->count() > 0) spec.keep_records = o.records;
+  if (o.belt_start_opt->count() > 0)
+    spec.initial.belt_start =
+        io::parse_belt_start("--belt-start", o.belt_start, spec.base.levels().size());
   if (o.engine_opt->count() > 0) spec.engine = io::parse_engine("--engine", o.engine);
   apply_precision_flags(o, spec);
   validate(spec);
@@ -265,6 +271,13 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
       "(and records.csv with --records) to DIR.");
   auto& o = *opts;
   add_model_flags(*cmd, o.model, flag_values::grid, model_parameters{});
+  o.belt_start_opt =
+      cmd->add_option("--belt-start", o.belt_start,
+                      "starting belt level of every realization: stationary (the stationary law "
+                      "of the belt, 50/50 for the paper), +1 / -1 (first / second of two "
+                      "levels), or a level number 1..n (default stationary)")
+          ->type_name("LEVEL")
+          ->group("Model family (docs/models.md)");
   o.config_opt = cmd->add_option("--config", o.config,
                                  "TOML file with the same settings (docs/config.md); flags "
                                  "override it")

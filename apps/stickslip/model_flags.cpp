@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "stickslip/error.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/presets.hpp"
 #include "stickslip/io/config.hpp"
@@ -22,7 +23,7 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
           ->type_name("NAME")
           ->group("Model parameters (the paper's symbols)");
   for (std::size_t i = 0; i < f.params.size(); ++i) {
-    const std::string symbol = parameter_names[i];
+    const std::string symbol = recorded_parameter_names[i];
     const auto& info = info_for(symbol);
     auto& flag = f.params[i];
     flag.symbol = symbol;
@@ -30,13 +31,34 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
         kind == flag_values::grid
             ? fmt::format("{} [{}]: a value, a list 'a,b,c', 'lin:a:b:n' or 'log:a:b:n' "
                           "(default {})",
-                          info.description, info.units, parameter_by_name(defaults, symbol))
+                          info.description, info.units, parameter_value(defaults, symbol))
             : fmt::format("{} [{}] (default {})", info.description, info.units,
-                          parameter_by_name(defaults, symbol));
-    flag.option = cmd.add_option(fmt::format("--{},--{}", symbol, info.long_name), flag.text, what)
+                          parameter_value(defaults, symbol));
+    const bool family = i >= std::size(parameter_names);
+    flag.option = cmd.add_option(fmt::format("{},--{}", flag_name(symbol), info.long_name), flag.text, what)
                       ->type_name(kind == flag_values::grid ? "GRID" : "X")
-                      ->group("Model parameters (the paper's symbols)");
+                      ->group(family ? "Model family (docs/models.md)"
+                                     : "Model parameters (the paper's symbols)");
   }
+  f.belt_levels_option =
+      cmd.add_option("--belt-levels", f.belt_levels,
+                     "belt velocity levels v1,v2,... [m/s]: n >= 2 distinct values, any sign, 0 "
+                     "allowed (default +V,-V); more than two need a generator in TOML")
+          ->type_name("LIST")
+          ->group("Model family (docs/models.md)");
+  f.belt_rates_option =
+      cmd.add_option("--belt-rates", f.belt_rates,
+                     "two-level belt: the rates r1,r2 [1/s] of leaving the first and the second "
+                     "level (default lambda,lambda)")
+          ->type_name("R1,R2")
+          ->group("Model family (docs/models.md)");
+  f.belt_generator_option =
+      cmd.add_option("--belt-generator", f.belt_generator,
+                     "the belt's generator Q [1/s] for any number of levels: rows separated by "
+                     "';', rates by ',' (q_ij >= 0 off the diagonal, each row summing to 0), "
+                     "e.g. '-2,1,1;1,-1,0;0.5,0.5,-1'")
+          ->type_name("Q")
+          ->group("Model family (docs/models.md)");
   f.seed_option = cmd.add_option("--seed", f.seed_text,
                                  "seed of the random streams, 0 .. 2^64-1 (default 1)")
                       ->type_name("S");
@@ -56,11 +78,47 @@ std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
       if (flag.option == opt &&
           std::find(given.begin(), given.end(), &flag) == given.end())
         given.push_back(&flag);
+  std::stable_partition(given.begin(), given.end(),
+                        [](const model_flags::flag* g) { return g->symbol == "mu"; });
   return given;
 }
 
+std::string flag_name(const std::string& symbol) {
+  std::string name = "--" + symbol;
+  std::replace(name.begin(), name.end(), '_', '-');
+  return name;
+}
+
 std::string flag_label(const std::string& symbol) {
-  return fmt::format("--{} ({})", symbol, info_for(symbol).description);
+  return fmt::format("{} ({})", flag_name(symbol), info_for(symbol).description);
+}
+
+model_parameters apply_belt_flags(const model_flags& f, model_parameters base) {
+  if (f.belt_levels_option && f.belt_levels_option->count() > 0) {
+    base.belt_levels = io::parse_value_list("--belt-levels", f.belt_levels);
+    if (base.belt_levels.size() < 2)
+      throw invalid_parameter("--belt-levels (count)", static_cast<double>(base.belt_levels.size()),
+                              "at least 2 levels");
+  }
+  if (f.belt_rates_option && f.belt_rates_option->count() > 0)
+    base.belt_rates = io::parse_value_list("--belt-rates", f.belt_rates);
+  if (f.belt_generator_option && f.belt_generator_option->count() > 0) {
+    base.belt_generator.clear();
+    std::size_t rows = 0, start = 0;
+    const std::string& text = f.belt_generator;
+    while (start <= text.size()) {
+      const std::size_t end = std::min(text.find(';', start), text.size());
+      const auto row = io::parse_value_list(fmt::format("--belt-generator row {}", rows + 1),
+                                            text.substr(start, end - start));
+      base.belt_generator.insert(base.belt_generator.end(), row.begin(), row.end());
+      ++rows;
+      start = end + 1;
+    }
+    if (base.belt_generator.size() != rows * rows)
+      throw invalid_value("--belt-generator", text,
+                          fmt::format("a square matrix: {} rows need {} rates each", rows, rows));
+  }
+  return base;
 }
 
 model_parameters apply_preset(const model_flags& f, model_parameters base) {
@@ -76,8 +134,9 @@ model_parameters apply_preset(const model_flags& f, model_parameters base) {
 
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
+  base = apply_belt_flags(f, std::move(base));
   for (const auto* flag : given_model_flags(cmd, f))
-    parameter_by_name(base, flag->symbol) = io::parse_number(flag_label(flag->symbol), flag->text);
+    set_parameter(base, flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text));
   return base;
 }
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <exception>
@@ -303,7 +304,17 @@ bool serve(const session&, unsigned threads) {
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned t = 0; t < n_threads; ++t) pool.emplace_back(compute);
+  try {
+    for (unsigned t = 0; t < n_threads; ++t) pool.emplace_back(compute);
+  } catch (...) {  // threads could not be created: join those that were
+    {
+      std::lock_guard guard(mu);
+      shutdown = true;
+    }
+    work_cv.notify_all();
+    for (auto& th : pool) th.join();
+    throw;
+  }
 
   // The main thread does all MPI calls (MPI_THREAD_FUNNELED).
   bool stopped = false;    // rank 0 said stop, or we failed
@@ -357,7 +368,20 @@ bool serve(const session&, unsigned threads) {
 }
 
 void serve_all(const session& ses, unsigned threads) {
-  while (serve(ses, threads)) {
+  // A failure outside the compute threads (an MPI call, thread creation, a
+  // spec that does not deserialize) cannot be reported to rank 0 through the
+  // protocol, and rank 0 would wait for this rank forever: say why and abort
+  // the whole job instead of leaving it hanging.
+  try {
+    while (serve(ses, threads)) {
+    }
+  } catch (const std::exception& x) {
+    int rank = -1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    const auto* e = dynamic_cast<const error*>(&x);
+    std::fprintf(stderr, "stickslip: error: MPI rank %d: %s; aborting the job\n", rank, x.what());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, e ? static_cast<int>(e->code()) : 1);
   }
 }
 

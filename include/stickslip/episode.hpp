@@ -51,13 +51,16 @@ struct episode {
 // Stick:  x(t) = x0 + v (t - t0),                 x'(t) = v.
 // Slip:   x(t) = c + (x0 - c) cos w(t-t0) + (x0'/w) sin w(t-t0),
 //         x'(t) = x0' cos w(t-t0) - w (x0 - c) sin w(t-t0),   c = sigma a.
+// With damping (the model family, model/model_engine.hpp), y = x - c obeys
+// y'' + 2 gamma y' + w^2 y = 0 from (x0 - c, x0'): model/damped_slip.hpp.
 struct segment {
   mode kind;
   double start, end;
   double position, velocity;  // x, x' at start
   double belt_velocity;       // v during the segment
   double center;              // c = sigma a while slipping (0 while sticking)
-  double omega;
+  double omega;               // omega_0 = sqrt(k/m)
+  double decay_rate = 0.0;    // gamma = c / 2m: 0 in the paper's model
 };
 
 struct phase_point {

@@ -2,6 +2,7 @@
 // Paper defaults: x0, x'0 independent uniform on [-1, 1]; belt direction +V or
 // -V with equal odds.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "stickslip/random_stream.hpp"
@@ -24,6 +25,10 @@ struct initial_condition_law {
 // Throws stickslip::error on non-finite bounds (or |bound| > 1e60), min > max,
 // or belt_start not in {-1,0,1}.
 void validate(const initial_condition_law& law);
+// initial_condition_law::belt_start (or a replay's fixed start) against a
+// belt of `level_count` levels: +1 / -1 on two levels, a level number 1..n
+// on more, and 0 (the stationary law) when `stationary_allowed`.
+void validate_belt_start(int belt_start, std::size_t level_count, bool stationary_allowed);
 // Throws on non-finite or |value| > 1e60 position/velocity, or belt not +-1.
 void validate(const initial_conditions& ic);
 

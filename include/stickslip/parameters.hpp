@@ -1,10 +1,25 @@
-// Model parameters of the stick-slip oscillator  m x'' + k x = f  on a belt
-// whose velocity is a telegraph process (+V / -V, sign flips at Poisson times
-// of rate lambda). Friction is Coulomb: |f| <= mu m g while sticking,
-// f = mu m g sgn(v - x') while slipping. See docs/model.md.
+// The model description: the one value that says which oscillator is
+// simulated (docs/model.md, docs/models.md).
+//
+// The paper's model:  m x'' + k x = f  on a belt whose velocity is a telegraph
+// process (+V / -V, sign flips at Poisson times of rate lambda). Friction is
+// Coulomb: |f| <= mu m g while sticking, f = mu m g sgn(v - x') while slipping.
+//
+// The model family (issue 11) adds, with defaults that give the paper's model:
+//   viscous damping c:       m x'' + c x' + k x = f;
+//   static and kinetic friction mu_s >= mu_k (a stick holds while
+//     |k x + c v| <= mu_s m g, a slip feels mu_k m g);
+//   a Markov belt: levels v_1..v_n (n >= 2, distinct, any sign, zero allowed)
+//     with a generator Q; for two levels, the rates of leaving each level.
+// The engines consume this through model_of() (model/oscillator_model.hpp);
+// when the resolved model is the paper's (is_paper_model), the lane engine
+// runs it with the bits of 0.1.0.
 #pragma once
 #include <cmath>
+#include <span>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace stickslip {
 
@@ -17,34 +32,84 @@ struct model_parameters {
   double switch_rate = 1.0;           // lambda [1/s]
   double window = 50.0;               // t_a [s]
 
-  // a = mu m g / k: the stick band is |x| <= a (spring force within max friction).
-  [[nodiscard]] double band_half_width() const noexcept {
-    return friction_coefficient * mass * gravity / stiffness;
+  // The model family. Each default keeps the paper's model.
+  double damping = 0.0;               // c     [N s/m], >= 0
+  double static_friction = 0.0;       // mu_s  [-]; 0 = mu
+  double kinetic_friction = 0.0;      // mu_k  [-]; 0 = mu
+  std::vector<double> belt_levels{};  // v_1..v_n [m/s]; empty = (+V, -V)
+  std::vector<double> belt_rates{};   // two levels: rate of leaving each [1/s]; empty = lambda
+  std::vector<double> belt_generator{};// Q, n x n row-major [1/s]; empty = from belt_rates
+
+  // Resolved values: mu_s and mu_k default to mu.
+  [[nodiscard]] double mu_s() const noexcept {
+    return static_friction > 0.0 ? static_friction : friction_coefficient;
   }
+  [[nodiscard]] double mu_k() const noexcept {
+    return kinetic_friction > 0.0 ? kinetic_friction : friction_coefficient;
+  }
+  // The belt levels: belt_levels, or (+V, -V).
+  [[nodiscard]] std::vector<double> levels() const {
+    return belt_levels.empty() ? std::vector<double>{belt_speed, -belt_speed} : belt_levels;
+  }
+  // The generator Q (n x n, row-major): belt_generator, or for two levels
+  // [[-r1, r1], [r2, -r2]] with r = belt_rates, or (lambda, lambda).
+  [[nodiscard]] std::vector<double> generator() const;
+  // Whether the resolved model is the paper's: c = 0, mu_s = mu_k, levels
+  // (+V, -V) for some V > 0 and both rates equal.
+  [[nodiscard]] bool is_paper_model() const;
+
+  // a = mu_s m g / k: the stick band is |x| <= a (spring force within max
+  // friction); with damping it is |x + c v / k| <= a at belt level v.
+  [[nodiscard]] double band_half_width() const noexcept { return mu_s() * mass * gravity / stiffness; }
   // omega = sqrt(k/m).
   [[nodiscard]] double natural_frequency() const noexcept { return std::sqrt(stiffness / mass); }
   // d_max = 2a/V: a stick that starts at one band edge and runs to the other.
-  [[nodiscard]] double max_stick_duration() const noexcept {
-    return 2.0 * band_half_width() / belt_speed;
-  }
+  // On a Markov belt, 2a / (smallest nonzero |v_i|); a stick at a level
+  // v = 0 lasts until the belt leaves it, so with such a level the scale is
+  // at least 5 / (its rate of leaving), the 99.3 % quantile of that wait.
+  [[nodiscard]] double max_stick_duration() const;
   friend bool operator==(const model_parameters&, const model_parameters&) = default;
 };
+
+// The paper's model with the same resolved values, written with the seven
+// paper parameters only (mu, V, lambda). Precondition: p.is_paper_model().
+// Two descriptions of one model (--mu 5 and --mu-s 5 --mu-k 5; levels 2,-2
+// and V = 2) thereby get the same point_key and the same bits.
+[[nodiscard]] model_parameters paper_form(const model_parameters& p);
 
 // Magnitudes the closed form handles without overflow in its squares.
 inline constexpr double min_magnitude = 1e-60, max_magnitude = 1e60;
 
-// Throws stickslip::error naming the first invalid parameter: every value must
-// be finite and > 0, and it and the derived scales (a, omega, d_max, omega a,
-// V/omega) must lie in [min_magnitude, max_magnitude].
+// Throws stickslip::error naming the first invalid parameter, its value and
+// the allowed range. The paper's parameters must be finite and > 0, and they
+// and the derived scales (a, omega, d_max, omega a, V/omega) must lie in
+// [min_magnitude, max_magnitude]; c finite and >= 0; mu_s, mu_k finite and
+// > 0 when given, mu_k <= mu_s; belt levels: none or n >= 2 distinct finite
+// values; belt rates: none or one per level of a two-level belt, finite and
+// > 0; a generator: n x n with rows summing to 0; not both rates and a
+// generator; then validate(model_of(p)) (model/oscillator_model.hpp).
 void validate(const model_parameters& p);
 
-// Names of the parameters as they appear on the command line, in config files
-// and as NetCDF coordinates (the paper's symbols).
+// The scalar parameters as they appear on the command line, in config files,
+// as NetCDF coordinates and attributes, and as output columns.
 inline constexpr const char* parameter_names[] = {"m", "k", "g", "mu", "V", "lambda", "ta"};
+inline constexpr const char* family_parameter_names[] = {"c", "mu_s", "mu_k"};
+// Every recorded scalar: parameter_names then family_parameter_names.
+inline constexpr const char* recorded_parameter_names[] = {"m", "k", "g", "mu", "V", "lambda",
+                                                           "ta", "c", "mu_s", "mu_k"};
 
-// Access by symbol ("m", "k", "g", "mu", "V", "lambda", "ta"); throws on an unknown name.
-double& parameter_by_name(model_parameters& p, const std::string& name);
-double parameter_by_name(const model_parameters& p, const std::string& name);
+// Access by symbol. Besides the names above (and their long aliases), a
+// belt level is "v1".."vN" and the rate of leaving a level of a two-level
+// belt is "r1", "r2". Reading gives the resolved value (mu_s of a model
+// without one is mu); writing "mu" sets mu_s and mu_k both (clears the
+// separate values), writing "vI" or "rI" first spells out the default levels
+// (+V, -V) or rates (lambda, lambda). Throws on an unknown name or index.
+[[nodiscard]] double parameter_value(const model_parameters& p, std::string_view symbol);
+void set_parameter(model_parameters& p, std::string_view symbol, double value);
+// Whether `symbol` names a parameter (a fixed one, or vI / rI with I >= 1).
+[[nodiscard]] bool is_parameter_symbol(std::string_view symbol);
+// The canonical symbol of a name or long alias ("friction-coefficient" -> "mu").
+[[nodiscard]] std::string canonical_symbol(std::string_view name);
 
 // Long, descriptive aliases and units of each symbol.
 struct parameter_info {
@@ -53,6 +118,8 @@ struct parameter_info {
   const char* description;
   const char* units;
 };
+// Throws on a name that is not a fixed symbol or long alias; the info of
+// "vI" and "rI" is that of "belt-level" and "belt-rate".
 const parameter_info& info_for(const std::string& symbol);
 
 }  // namespace stickslip

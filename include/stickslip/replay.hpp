@@ -7,6 +7,7 @@
 // times replace the Poisson switches.
 #pragma once
 #include <cstdint>
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -24,8 +25,12 @@ struct replay_request {
   initial_condition_law initial;                  // the sweep's law (paper default)
   std::int64_t max_events = default_max_events;
   std::optional<double> x0, xdot0;                // fix the initial state
-  std::optional<int> belt_start;                  // +1 or -1
-  std::optional<std::vector<double>> switch_times;  // replace the Poisson switches
+  // +1 / -1 (first / second level of two), or a level number 1..n.
+  std::optional<int> belt_start;
+  std::optional<std::vector<double>> switch_times;  // replace the random switches
+  // With switch_times: the level index (0-based) each switch goes to; without
+  // it the belt alternates between two levels (more levels need it).
+  std::optional<std::vector<std::size_t>> switch_levels;
   bool keep_events = true, keep_segments = true;
   // Replay realization r of a sweep run with common random numbers: the
   // streams of common_stream_key instead of point_key(parameters).
@@ -33,6 +38,8 @@ struct replay_request {
 };
 
 struct realization_trace {
+  // x0, x'0, and the belt start as recorded (recorded_belt_start: +1 / -1 on
+  // two levels, the level number on more).
   initial_conditions initial;
   std::vector<episode> episodes;  // tile [0, t_a]
   std::vector<event> events;      // when kept
@@ -43,7 +50,8 @@ struct realization_trace {
 // Throws stickslip::error for invalid parameters, initial state or switch
 // times (naming the parameter, the value and the allowed range), and when the
 // realization exceeds max_events. With given switch times the switch rate is
-// not used and may also be 0.
+// not used and may also be 0. The paper's model runs simulate() (the bits of
+// 0.1.0); any other model, or given switch levels, simulate_model.
 [[nodiscard]] realization_trace replay(const replay_request& r);
 
 }  // namespace stickslip

@@ -53,6 +53,15 @@ struct convergence_point {
   double stick_duration_mean, stick_duration_ci95_half_width;
 };
 
+// Whether the belt switches at the Poisson rate lambda (two levels left at
+// the same rate lambda: no belt_rates, no belt_generator), so that the
+// score N/lambda - t_a, hence the likelihood-ratio derivative over lambda and
+// the control variate N of score_moments.hpp, apply. Writers report NaN for
+// these estimates at other points.
+[[nodiscard]] inline bool has_poisson_switching(const model_parameters& p) noexcept {
+  return p.belt_rates.empty() && p.belt_generator.empty();
+}
+
 class point_statistics {
  public:
   point_statistics() = default;

@@ -20,7 +20,8 @@
 namespace stickslip {
 
 struct axis {
-  std::string name;            // a parameter symbol: m k g mu V lambda ta
+  std::string name;            // a parameter symbol (parameters.hpp): m k g mu V lambda ta
+                               // c mu_s mu_k, belt levels v1..vN, two-level rates r1 r2
   std::vector<double> values;  // in the order given
   friend bool operator==(const axis&, const axis&) = default;
 };
@@ -113,8 +114,13 @@ struct block_result {
 // Simulate the realizations of one unit with s.engine. Pure: depends only on
 // (spec, unit), and the two engines give bit-identical results.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
-// The reference engine, whatever s.engine says.
+// The reference engine, whatever s.engine says. Precondition: the point is
+// the paper's model.
 [[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
+// The model family's engine (simulate_model, model/model_engine.hpp), one
+// realization at a time; simulate_block uses it for every point that is not
+// the paper's model, whatever s.engine says.
+[[nodiscard]] block_result simulate_block_family(const sweep_spec& s, const work_unit& u);
 // simulate_block of each unit, in order. Runs of consecutive blocks of one
 // point go to the lane engine together, so its lanes move on to the next
 // block instead of idling at a block's tail (~20 % with blocks of 50); the
@@ -125,7 +131,9 @@ struct block_result {
 // simulate_units to gain from: 20 with the lane engine (fast), else 1.
 [[nodiscard]] std::uint64_t units_per_batch(const sweep_spec& s) noexcept;
 
-// Simulate one realization of one grid point (what `simulate` replays).
+
+// Simulate one realization of one grid point of the paper's model with
+// simulate() (the family: model/model_realization.hpp).
 template <class Observer>
 event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
                                   std::uint64_t realization, Observer& obs);
@@ -197,10 +205,9 @@ struct result_set {
 
 [[nodiscard]] result_set make_result_set(const sweep_spec& s, ordered_merger&& m);
 
-// Points in order of decreasing expected work (stable for ties). The cost of
-// a realization is about linear in its events, ~ lambda t_a belt switches plus
-// the sticks and reversals between them (~ omega t_a / pi at most), so at
-// fixed t_a it varies ~300x across the paper's lambda range. Schedulers (the
+// Points in order of decreasing expected work (stable for ties): the cost of
+// a realization is about linear in its events (expected_events), which at
+// fixed t_a vary ~300x across the paper's lambda range. Schedulers (the
 // thread pool, the MPI master) start the costliest points first; the ordered
 // merge keeps results independent of this order.
 [[nodiscard]] std::vector<std::size_t> points_by_cost(const sweep_spec& s);
@@ -218,7 +225,7 @@ struct result_set {
 // and ~2 events to start a realization. Fitted against the event counts of
 // a 12 lambda x 4 mu x 2 k sweep, it is within about 25 % at every point
 // (test_eta_cost_model.cpp), where lambda t_a alone is off by up to 3x.
-[[nodiscard]] double expected_events(const model_parameters& p) noexcept;
+[[nodiscard]] double expected_events(const model_parameters& p);
 
 // Expected work of a unit: its realizations times expected_events.
 [[nodiscard]] double expected_unit_cost(const sweep_spec& s, const work_unit& u);

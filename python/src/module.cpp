@@ -7,6 +7,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -28,27 +32,110 @@ using namespace stickslip;
 
 namespace {
 
-model_parameters parameters_from(const py::dict& values) {
-  model_parameters p;
-  for (const auto& [k, v] : values) parameter_by_name(p, py::cast<std::string>(k)) = py::cast<double>(v);
+// Numbers as the CLI reads them: fmt "{}" is the shortest text that reads
+// back to the same double, so the CLI's parsers (and their messages) apply.
+std::string list_text(const std::vector<double>& values) {
+  return fmt::format("{}", fmt::join(values, ","));
+}
+
+// The model from stickslip's keyword arguments, applied as the CLI applies
+// its flags (apps/stickslip/model_flags.cpp): the belt (levels, rates,
+// generator) first, then the scalars in the order given with mu first, so
+// that mu sets mu_s and mu_k both and a later mu_s / mu_k / vI / rI refines.
+//   model: {symbol: value} in the order given, plus "belt_levels",
+//   "belt_rates": [values] and "belt_generator": [[row]].
+model_parameters parameters_from(const py::dict& model, model_parameters p = {}) {
+  if (model.contains("belt_levels") && !model["belt_levels"].is_none()) {
+    p.belt_levels = io::parse_value_list(
+        "--belt-levels", list_text(py::cast<std::vector<double>>(model["belt_levels"])));
+    if (p.belt_levels.size() < 2)
+      throw invalid_parameter("--belt-levels (count)", static_cast<double>(p.belt_levels.size()),
+                              "at least 2 levels");
+  }
+  if (model.contains("belt_rates") && !model["belt_rates"].is_none())
+    p.belt_rates = io::parse_value_list("--belt-rates",
+                                        list_text(py::cast<std::vector<double>>(model["belt_rates"])));
+  if (model.contains("belt_generator") && !model["belt_generator"].is_none()) {
+    const auto rows = py::cast<std::vector<std::vector<double>>>(model["belt_generator"]);
+    std::string text;
+    for (std::size_t i = 0; i < rows.size(); ++i) text += (i ? ";" : "") + list_text(rows[i]);
+    p.belt_generator.clear();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto row = io::parse_value_list(fmt::format("--belt-generator row {}", i + 1),
+                                            list_text(rows[i]));
+      p.belt_generator.insert(p.belt_generator.end(), row.begin(), row.end());
+    }
+    if (rows.empty() || p.belt_generator.size() != rows.size() * rows.size())
+      throw invalid_value("--belt-generator", text,
+                          fmt::format("a square matrix: {} rows need {} rates each", rows.size(),
+                                      rows.size()));
+  }
+  std::vector<std::pair<std::string, double>> scalars;
+  for (const auto& [key, value] : model) {
+    auto sym = py::cast<std::string>(key);
+    if (sym != "belt_levels" && sym != "belt_rates" && sym != "belt_generator")
+      scalars.emplace_back(std::move(sym), py::cast<double>(value));
+  }
+  std::stable_partition(scalars.begin(), scalars.end(), [](const auto& s) { return s.first == "mu"; });
+  for (const auto& [sym, value] : scalars) set_parameter(p, sym, value);
   return p;
 }
 
-py::dict replay_py(const py::dict& params, std::uint64_t seed, std::uint64_t realization,
+// The model as the CLI records it (simulate --format json "parameters",
+// io/output/json_emitter.cpp): every recorded scalar resolved, the belt
+// levels, the generator (rows), and for two levels the rates r1, r2.
+py::dict model_dict(const model_parameters& p) {
+  py::dict d;
+  for (const char* sym : recorded_parameter_names) d[sym] = parameter_value(p, sym);
+  const auto levels = p.levels();
+  const auto q = p.generator();
+  const std::size_t n = levels.size();
+  d["belt_levels"] = levels;
+  py::list rows;
+  for (std::size_t i = 0; i < n; ++i)
+    rows.append(std::vector<double>(q.begin() + static_cast<std::ptrdiff_t>(i * n),
+                                    q.begin() + static_cast<std::ptrdiff_t>((i + 1) * n)));
+  d["belt_generator"] = rows;
+  if (n == 2) d["belt_rates"] = std::vector<double>{q[1], q[2]};
+  return d;
+}
+
+// "+1", "-1", "stationary" or a level number, read as --belt-start is.
+int belt_start_from(const std::string& text, const model_parameters& p) {
+  return io::parse_belt_start("--belt-start", text, p.levels().size());
+}
+
+py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
                    std::optional<double> x0, std::optional<double> xdot0,
-                   std::optional<int> belt_start, std::optional<std::vector<double>> switch_times,
-                   std::int64_t max_events, bool common_random_numbers) {
+                   std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
+                   std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
+                   bool common_random_numbers) {
   replay_request r;
   r.common_random_numbers = common_random_numbers;
-  r.parameters = parameters_from(params);
+  r.parameters = parameters_from(model);
   r.seed = seed;
   r.realization = realization;
   r.x0 = x0;
   r.xdot0 = xdot0;
-  if (belt_start && *belt_start != 1 && *belt_start != -1)
-    throw invalid_value("belt_start", std::to_string(*belt_start), "+1, -1 or None (random)");
-  r.belt_start = belt_start;
-  r.switch_times = std::move(switch_times);
+  if (belt_start)
+    if (const int b = belt_start_from(*belt_start, r.parameters); b != 0) r.belt_start = b;
+  if (switch_levels && !switch_times)
+    throw invalid_value("switch_levels", fmt::format("{} levels", switch_levels->size()),
+                        "only together with switch_times");
+  if (switch_times && !switch_levels) {
+    r.switch_times = io::parse_switch_time_list("--switch-times", list_text(*switch_times));
+  } else if (switch_times) {
+    // One `t level` line per switch, read as --switch-times-file reads them.
+    if (switch_levels->size() != switch_times->size())
+      throw invalid_value("switch_levels", fmt::format("{} levels", switch_levels->size()),
+                          fmt::format("one level (1..n) per switch time: {}", switch_times->size()));
+    std::string text;
+    for (std::size_t i = 0; i < switch_times->size(); ++i)
+      text += fmt::format("{} {}\n", (*switch_times)[i], (*switch_levels)[i]);
+    auto schedule = io::parse_switch_schedule(text, "switch_times", r.parameters.levels().size());
+    r.switch_times = std::move(schedule.times);
+    if (!schedule.levels.empty()) r.switch_levels = std::move(schedule.levels);
+  }
   r.max_events = max_events;
   realization_trace t;
   {
@@ -71,6 +158,7 @@ py::dict replay_py(const py::dict& params, std::uint64_t seed, std::uint64_t rea
   out["x0"] = t.initial.position;
   out["xdot0"] = t.initial.velocity;
   out["belt_start"] = t.initial.belt_direction;
+  out["parameters"] = model_dict(r.parameters);
   const auto& rec = t.record;
   py::dict record;
   record["S_T"] = rec.sticks;
@@ -171,10 +259,20 @@ bool run_interruptibly(Work&& work, run::stop_token& stop, const py::object& pro
 sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::string, std::vector<double>>>& axes,
                      std::uint64_t realizations, std::uint64_t seed, std::uint64_t block_size,
                      std::size_t bins, bool records, const std::string& engine,
-                     std::int64_t max_events) {
+                     std::int64_t max_events, const std::optional<std::string>& belt_start) {
   sweep_spec s;
   s.base = parameters_from(base);
-  for (const auto& [name, values] : axes) s.axes.push_back(axis{name, values});
+  // An axis of a scalar that has a CLI flag is read as that flag's grid
+  // ("--c 0.5,2"), with its checks and messages; a belt level vI or rate rI
+  // (a TOML [grid] key only) is checked by validate().
+  for (const auto& [name, values] : axes) {
+    const std::string sym = canonical_symbol(name);
+    const bool flag = std::find(std::begin(recorded_parameter_names), std::end(recorded_parameter_names),
+                                sym) != std::end(recorded_parameter_names);
+    std::string key = "--" + sym;
+    std::replace(key.begin(), key.end(), '_', '-');
+    s.axes.push_back(axis{sym, flag ? io::parse_grid(key, list_text(values), io::grid_domain_of(sym)) : values});
+  }
   s.realizations = realizations;
   s.seed = seed;
   s.block_size = block_size;
@@ -182,6 +280,7 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
   s.keep_records = records;
   s.engine = io::parse_engine("engine", engine);
   s.max_events = max_events;
+  if (belt_start) s.initial.belt_start = belt_start_from(*belt_start, s.base);
   validate(s);
   return s;
 }
@@ -195,10 +294,12 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
                   std::size_t bins, bool records, const std::string& engine, std::int64_t max_events,
                   unsigned threads, const std::string& output, bool resume, bool keep_journal,
                   double checkpoint_interval, const std::string& netcdf_path, const std::string& command_line,
-                  const py::object& progress, bool common_random_numbers,
-                  const std::string& target_ci, std::uint64_t min_realizations) {
+                  const py::object& progress, const std::optional<std::string>& belt_start,
+                  bool common_random_numbers, const std::string& target_ci,
+                  std::uint64_t min_realizations) {
   sweep_spec spec =
-      spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events);
+      spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
+                belt_start);
   // Issue 13: common random numbers, adaptive sampling (realizations is then the cap).
   spec.common_random_numbers = common_random_numbers;
   if (!target_ci.empty()) {
@@ -280,14 +381,17 @@ PYBIND11_MODULE(_stickslip, m) {
   });
   m.def("replay", &replay_py, py::arg("parameters"), py::arg("seed"), py::arg("realization"),
         py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"), py::arg("switch_times"),
-        py::arg("max_events"), py::arg("common_random_numbers") = false);
+        py::arg("switch_levels"), py::arg("max_events"), py::arg("common_random_numbers") = false);
   m.def("run_sweep", &run_sweep_py, py::arg("base"), py::arg("axes"), py::arg("realizations"),
         py::arg("seed"), py::arg("block_size"), py::arg("bins"), py::arg("records"),
         py::arg("engine"), py::arg("max_events"), py::arg("threads"), py::arg("output"),
         py::arg("resume"), py::arg("keep_journal"), py::arg("checkpoint_interval"),
         py::arg("netcdf_path"),
-        py::arg("command_line"), py::arg("progress"), py::arg("common_random_numbers") = false,
-        py::arg("target_ci") = "", py::arg("min_realizations") = 1000);
+        py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
+        py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
+        py::arg("min_realizations") = 1000);
   m.def("sample_trajectory", &sample_trajectory_py, py::arg("segments"), py::arg("dt"));
+  m.def("resolve_parameters", [](const py::dict& model) { return model_dict(parameters_from(model)); },
+        py::arg("model"));
   m.attr("default_max_events") = stickslip::default_max_events;
 }

@@ -6,6 +6,8 @@ dry-friction (stick-slip) oscillator on a randomly switching belt.
     r.episodes                                          # pandas.DataFrame
     ds = stickslip.sweep(lam=[0.5, 1, 2], mu=[0.5, 5])  # xarray.Dataset
     ds = stickslip.open("results/results.nc")
+    # the model family: damping, static/kinetic friction, a Markov belt
+    r = stickslip.simulate(c=0.5, mu_s=6, mu_k=4, belt_levels=[1, 0], belt_rates=[2, 3])
 
 The numbers are the command-line tool's, bit for bit: the same seed gives the
 same realization and the same statistics (docs/python.md).

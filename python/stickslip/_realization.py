@@ -3,7 +3,7 @@ import numpy as np
 import pandas as pd
 
 from . import _stickslip
-from ._parameters import describe, model_arguments
+from ._parameters import belt_arguments, belt_start_text, describe, model_arguments
 
 
 class Realization:
@@ -17,12 +17,16 @@ class Realization:
                   stick_break, slip_reversal), time [s], x [m], xdot [m/s],
                   belt_velocity [m/s] just after the event.
       record      dict: S_T, S_L, R, first stick, event counts.
-      x0, xdot0, belt_start: the initial state used.
-      parameters  dict of the model parameters (paper symbols).
+      x0, xdot0, belt_start: the initial state used (belt_start: +1 / -1 on
+                  two levels, the level number 1..n on more), as the CLI's
+                  JSON "initial_conditions".
+      parameters  dict of the resolved model, as the CLI's JSON "parameters":
+                  m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt_levels,
+                  belt_generator (rows) and, for two levels, belt_rates.
     """
 
-    def __init__(self, parameters, seed, realization, raw):
-        self.parameters = parameters
+    def __init__(self, seed, realization, raw):
+        self.parameters = dict(raw["parameters"])
         self.seed = seed
         self.realization = realization
         self.x0, self.xdot0, self.belt_start = raw["x0"], raw["xdot0"], raw["belt_start"]
@@ -66,6 +70,7 @@ class Realization:
 
 
 def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, switch_times=None,
+             switch_levels=None, belt_levels=None, belt_rates=None, belt_generator=None,
              max_events=None, common_random_numbers=False, **model):
     """One realization of the stick-slip oscillator, exactly as
     `stickslip simulate` computes it: realization `realization` of the sweep
@@ -77,9 +82,14 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
     seed: master seed (default 1); realization: index of the realization (default 0).
     x0: initial position [m]; xdot0: initial velocity [m/s]; default: drawn
         from U[-1, 1] as in the sweep.
-    belt_start: +1 or -1 (v(0) = +V or -V); default: drawn with equal odds.
-    switch_times: belt switch times [s], strictly increasing, replacing the
-        Poisson switches (then lam plays no role).
+    belt_start: the level at t = 0: +1 or -1 (first / second of two levels,
+        v(0) = +V or -V), a level number 1..n, or "stationary" (default:
+        drawn from the belt's stationary law, equal odds for the paper's belt).
+    switch_times: belt switch times [s], sorted, >= 0, replacing the random
+        switches (then lam, belt_rates and the generator play no role).
+    switch_levels: with switch_times, the level number (1..n) each switch
+        goes to, as the lines 't level' of --switch-times-file; needed for
+        more than two levels (default: two levels alternate).
     max_events: bound on the events of the realization (default 1e8).
     common_random_numbers: replay realization `realization` of a sweep run
         with common_random_numbers=True (the streams every point shares).
@@ -90,18 +100,16 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
     if model:
         raise TypeError(f"simulate() got unexpected keyword arguments: {', '.join(model)}")
     params = {k: float(v) for k, v in params.items()}
-    if belt_start is not None:
-        belt_start = {"+1": 1, "1": 1, "-1": -1}.get(str(belt_start).strip(), belt_start)
-        if belt_start in ("random", "stationary"):
-            belt_start = None
+    params.update(belt_arguments(belt_levels, belt_rates, belt_generator))
     times = None if switch_times is None else [float(t) for t in switch_times]
+    levels = None if switch_levels is None else [int(v) for v in switch_levels]
     raw = _stickslip.replay(params, int(seed), int(realization),
                             None if x0 is None else float(x0),
                             None if xdot0 is None else float(xdot0),
-                            belt_start, times,
+                            belt_start_text(belt_start), times, levels,
                             _stickslip.default_max_events if max_events is None else int(max_events),
                             common_random_numbers=bool(common_random_numbers))
-    return Realization(params, seed, realization, raw)
+    return Realization(seed, realization, raw)
 
 
 simulate.__doc__ = simulate.__doc__.format(params=describe())

@@ -7,7 +7,7 @@ import numpy as np
 import xarray as xr
 
 from . import _stickslip
-from ._parameters import describe, model_arguments
+from ._parameters import belt_arguments, belt_start_text, describe, model_arguments
 
 
 def _axes_and_base(params):
@@ -48,15 +48,21 @@ def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
 
 def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50, bins=50,
           records=False, engine="fast", max_events=None, output=None, resume=False,
-          keep_journal=False, checkpoint_interval=2.0, common_random_numbers=False,
-          target_ci=None, min_realizations=1000, **model):
+          keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
+          belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
+          min_realizations=1000, **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
 
-    Model parameters: a number fixes the parameter; a list or array makes it a
-    dimension of the grid, in the order the keywords are given
-    (e.g. lam=np.logspace(-1, np.log10(30), 40), mu=[0.5, 5]).
+    Model parameters: a number fixes the parameter; a list or array of a
+    scalar parameter (m, k, g, mu, V, lam, ta, c, mu_s, mu_k, v1..vN, r1, r2)
+    makes it a dimension of the grid, in the order the keywords are given
+    (e.g. lam=np.logspace(-1, np.log10(30), 40), mu=[0.5, 5]); belt_levels,
+    belt_rates and belt_generator describe the belt of every point.
 {params}
+    belt_start: the initial level of every realization: "stationary"
+        (default: drawn from the belt's stationary law), +1 / -1 (first /
+        second of two levels) or a level number 1..n.
     realizations: realizations per grid point (default 2000).
     seed: master seed (default 1). threads: worker threads, 0 = all cores.
     progress: show a tqdm progress bar.
@@ -87,7 +93,9 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     if model:
         raise TypeError(f"sweep() got unexpected keyword arguments: {', '.join(model)}")
     base, axes = _axes_and_base(params)
-    given = ", ".join(f"{k}={v!r}" for k, v in params.items())
+    belt = belt_arguments(belt_levels, belt_rates, belt_generator)
+    given = ", ".join(f"{k}={v!r}" for k, v in {**params, **belt}.items())
+    base.update(belt)
     command = f"python: stickslip.sweep({given}, realizations={realizations}, seed={seed})"
     update, bar = _progress_bar(progress)
     max_events = _stickslip.default_max_events if max_events is None else int(max_events)
@@ -98,6 +106,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
                                  bool(records), str(engine), max_events, int(threads),
                                  "" if output is None else builtins.str(output), bool(resume),
                                  bool(keep_journal), float(checkpoint_interval), nc, command, update,
+                                 belt_start_text(belt_start),
                                  common_random_numbers=bool(common_random_numbers),
                                  target_ci="" if target_ci is None else builtins.str(target_ci),
                                  min_realizations=int(min_realizations))

@@ -1,21 +1,46 @@
 #include "stickslip/parameters.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
+#include <charconv>
 
 #include "stickslip/error.hpp"
+#include "stickslip/model/oscillator_model.hpp"
 
 namespace stickslip {
 namespace {
 
-constexpr std::array<parameter_info, 7> infos{{
+constexpr std::array<parameter_info, 12> infos{{
     {"m", "mass", "mass of the oscillator", "kg"},
     {"k", "stiffness", "spring stiffness", "N/m"},
     {"g", "gravity", "acceleration of gravity", "m/s^2"},
-    {"mu", "friction-coefficient", "Coulomb friction coefficient", "1"},
-    {"V", "belt-speed", "belt speed magnitude", "m/s"},
-    {"lambda", "switch-rate", "Poisson rate of belt direction switches", "1/s"},
+    {"mu", "friction-coefficient", "Coulomb friction coefficient (sets mu_s and mu_k)", "1"},
+    {"V", "belt-speed", "belt speed magnitude (levels +V, -V)", "m/s"},
+    {"lambda", "switch-rate", "Poisson rate of belt direction switches (both levels)", "1/s"},
     {"ta", "window", "analysis window t_a", "s"},
+    {"c", "damping", "viscous damping coefficient", "N s/m"},
+    {"mu_s", "static-friction", "static friction coefficient (default mu)", "1"},
+    {"mu_k", "kinetic-friction", "kinetic friction coefficient (default mu)", "1"},
+    {"v", "belt-level", "belt velocity level v_I", "m/s"},
+    {"r", "belt-rate", "rate of leaving belt level I (two-level belt)", "1/s"},
 }};
+
+// The named parameters; the last two rows describe the indexed vI and rI.
+constexpr std::size_t fixed_count = 10;
+
+// "v3" -> 3 (prefix 'v'); 0 when `symbol` is not prefix + a positive integer.
+std::size_t indexed(std::string_view symbol, char prefix) {
+  if (symbol.size() < 2 || symbol[0] != prefix) return 0;
+  std::size_t i = 0;
+  const auto* end = symbol.data() + symbol.size();
+  const auto [ptr, ec] = std::from_chars(symbol.data() + 1, end, i);
+  if (ec != std::errc{} || ptr != end || symbol[1] == '0') return 0;
+  return i;
+}
+
+const char* const allowed_names =
+    "m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, v1..vN (belt levels), r1, r2 (belt rates)";
 
 void require_positive_finite(const char* name, double value) {
   if (!std::isfinite(value) || value <= 0.0)
@@ -31,7 +56,102 @@ void require_representable(const char* name, double value) {
     throw invalid_parameter(name, value, "between 1e-60 and 1e60");
 }
 
+void validate_family(const model_parameters& p) {
+  if (!std::isfinite(p.damping) || p.damping < 0.0)
+    throw invalid_parameter("c (damping)", p.damping, "a finite number >= 0");
+  if (!std::isfinite(p.static_friction) || p.static_friction < 0.0)
+    throw invalid_parameter("mu_s (static friction)", p.static_friction,
+                            "a finite number > 0 (or unset: mu)");
+  if (!std::isfinite(p.kinetic_friction) || p.kinetic_friction < 0.0)
+    throw invalid_parameter("mu_k (kinetic friction)", p.kinetic_friction,
+                            "a finite number > 0 (or unset: mu)");
+  if (p.mu_k() > p.mu_s())
+    throw invalid_parameter("mu_k (kinetic friction)", p.mu_k(),
+                            fmt::format("<= mu_s = {} (kinetic friction cannot exceed static)",
+                                        p.mu_s()));
+  if (!p.belt_levels.empty() && p.belt_levels.size() < 2)
+    throw invalid_parameter("belt-levels (count)", static_cast<double>(p.belt_levels.size()),
+                            "at least 2 levels");
+  for (std::size_t i = 0; i < p.belt_levels.size(); ++i) {
+    const double v = p.belt_levels[i];
+    if (!std::isfinite(v) || std::abs(v) > max_magnitude)
+      throw invalid_parameter(fmt::format("belt level v{}", i + 1), v,
+                              "a finite number with |value| <= 1e60");
+    for (std::size_t j = 0; j < i; ++j)
+      if (p.belt_levels[j] == v)
+        throw invalid_parameter(fmt::format("belt level v{}", i + 1), v,
+                                fmt::format("distinct from every other level (equals v{})", j + 1));
+  }
+  const std::size_t n = p.levels().size();
+  if (!p.belt_rates.empty() && !p.belt_generator.empty())
+    throw invalid_value("belt-rates", "given with a belt generator",
+                        "one of them: rates for two levels, a generator for any number");
+  if (!p.belt_rates.empty() && n != 2)
+    throw invalid_parameter("belt-rates (count)", static_cast<double>(p.belt_rates.size()),
+                            fmt::format("rates only for a two-level belt; this belt has {} levels: "
+                                        "give a generator matrix in TOML",
+                                        n));
+  if (!p.belt_rates.empty() && p.belt_rates.size() != 2)
+    throw invalid_parameter("belt-rates (count)", static_cast<double>(p.belt_rates.size()),
+                            "exactly 2: the rate of leaving each level");
+  for (std::size_t i = 0; i < p.belt_rates.size(); ++i)
+    if (!std::isfinite(p.belt_rates[i]) || !(p.belt_rates[i] > 0.0))
+      throw invalid_parameter(fmt::format("belt-rates r{}", i + 1), p.belt_rates[i],
+                              "a finite rate > 0");
+  if (n > 2 && p.belt_generator.empty())
+    throw invalid_value("belt generator", "(missing)",
+                        fmt::format("a {} x {} rate matrix for {} belt levels (--belt-generator, "
+                                    "or belt_generator in TOML [model])",
+                                    n, n, n));
+  if (!p.belt_generator.empty() && p.belt_generator.size() != n * n)
+    throw invalid_parameter("belt generator (entries)",
+                            static_cast<double>(p.belt_generator.size()),
+                            fmt::format("exactly n x n = {} rates for {} levels", n * n, n));
+  validate(model_of(p));
+}
+
 }  // namespace
+
+std::vector<double> model_parameters::generator() const {
+  if (!belt_generator.empty()) return belt_generator;
+  const double r1 = belt_rates.empty() ? switch_rate : belt_rates[0];
+  const double r2 = belt_rates.empty() ? switch_rate : belt_rates[1];
+  return {-r1, r1, r2, -r2};
+}
+
+double model_parameters::max_stick_duration() const {
+  if (belt_levels.empty()) return 2.0 * band_half_width() / belt_speed;
+  const std::vector<double> q = generator();
+  const std::size_t n = belt_levels.size();
+  double slowest = 0.0, zero_level = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = std::abs(belt_levels[i]);
+    if (v > 0.0 && (slowest == 0.0 || v < slowest)) slowest = v;
+    if (v == 0.0 && q.size() == n * n) zero_level = std::max(zero_level, 5.0 / -q[i * n + i]);
+  }
+  const double moving = slowest > 0.0 ? 2.0 * band_half_width() / slowest : 0.0;
+  return std::max(moving, zero_level);
+}
+
+bool model_parameters::is_paper_model() const {
+  if (damping != 0.0 || mu_s() != mu_k()) return false;
+  const std::vector<double> v = levels();
+  if (v.size() != 2 || !(v[0] > 0.0) || v[1] != -v[0]) return false;
+  const std::vector<double> q = generator();
+  return q[1] == q[2] && q[0] == -q[1] && q[3] == -q[2];
+}
+
+model_parameters paper_form(const model_parameters& p) {
+  model_parameters out;
+  out.mass = p.mass;
+  out.stiffness = p.stiffness;
+  out.gravity = p.gravity;
+  out.friction_coefficient = p.mu_k();
+  out.belt_speed = p.levels()[0];
+  out.switch_rate = p.generator()[1];
+  out.window = p.window;
+  return out;
+}
 
 void validate(const model_parameters& p) {
   require_positive_finite("m (mass)", p.mass);
@@ -55,27 +175,86 @@ void validate(const model_parameters& p) {
   require_representable("d_max = 2a/V (max stick duration)", p.max_stick_duration());
   require_representable("omega a (speed scale of the band)", w * a);
   require_representable("V / omega (slip amplitude scale)", p.belt_speed / w);
+  validate_family(p);
 }
 
 const parameter_info& info_for(const std::string& symbol) {
-  for (const auto& i : infos)
-    if (symbol == i.symbol || symbol == i.long_name) return i;
-  throw invalid_value("parameter name", symbol, "m, k, g, mu, V, lambda, ta");
+  for (std::size_t k = 0; k < fixed_count; ++k)
+    if (symbol == infos[k].symbol || symbol == infos[k].long_name) return infos[k];
+  if (indexed(symbol, 'v') > 0) return infos[10];
+  if (indexed(symbol, 'r') > 0) return infos[11];
+  throw invalid_value("parameter name", symbol, allowed_names);
 }
 
-double& parameter_by_name(model_parameters& p, const std::string& name) {
-  const std::string s = info_for(name).symbol;
+bool is_parameter_symbol(std::string_view symbol) {
+  for (std::size_t k = 0; k < fixed_count; ++k)
+    if (symbol == infos[k].symbol || symbol == infos[k].long_name) return true;
+  return indexed(symbol, 'v') > 0 || indexed(symbol, 'r') > 0;
+}
+
+std::string canonical_symbol(std::string_view name) {
+  if (indexed(name, 'v') > 0 || indexed(name, 'r') > 0) return std::string(name);
+  return info_for(std::string(name)).symbol;
+}
+
+double parameter_value(const model_parameters& p, std::string_view name) {
+  const std::string s = canonical_symbol(name);
   if (s == "m") return p.mass;
   if (s == "k") return p.stiffness;
   if (s == "g") return p.gravity;
   if (s == "mu") return p.friction_coefficient;
   if (s == "V") return p.belt_speed;
   if (s == "lambda") return p.switch_rate;
-  return p.window;
+  if (s == "ta") return p.window;
+  if (s == "c") return p.damping;
+  if (s == "mu_s") return p.mu_s();
+  if (s == "mu_k") return p.mu_k();
+  if (const std::size_t i = indexed(s, 'v'); i > 0) {
+    const auto v = p.levels();
+    if (i > v.size())
+      throw invalid_value("parameter name", s, fmt::format("v1..v{} (the belt has {} levels)", v.size(), v.size()));
+    return v[i - 1];
+  }
+  const std::size_t i = indexed(s, 'r');
+  const auto q = p.generator();
+  const std::size_t n = p.levels().size();
+  if (i > n || (n > 2 && p.belt_rates.empty()))
+    throw invalid_value("parameter name", s,
+                        n == 2 ? "r1, r2 (rates of leaving the two levels)"
+                               : "no rI: a belt of more than two levels has a generator matrix");
+  return -q[(i - 1) * n + (i - 1)];
 }
 
-double parameter_by_name(const model_parameters& p, const std::string& name) {
-  return parameter_by_name(const_cast<model_parameters&>(p), name);
+void set_parameter(model_parameters& p, std::string_view name, double value) {
+  const std::string s = canonical_symbol(name);
+  if (s == "m") p.mass = value;
+  else if (s == "k") p.stiffness = value;
+  else if (s == "g") p.gravity = value;
+  else if (s == "mu") {
+    p.friction_coefficient = value;
+    p.static_friction = p.kinetic_friction = 0.0;
+  } else if (s == "V") p.belt_speed = value;
+  else if (s == "lambda") p.switch_rate = value;
+  else if (s == "ta") p.window = value;
+  else if (s == "c") p.damping = value;
+  else if (s == "mu_s") p.static_friction = value;
+  else if (s == "mu_k") p.kinetic_friction = value;
+  else if (const std::size_t i = indexed(s, 'v'); i > 0) {
+    if (p.belt_levels.empty()) p.belt_levels = p.levels();
+    if (i > p.belt_levels.size())
+      throw invalid_value("parameter name", s,
+                          fmt::format("v1..v{} (the belt has {} levels)", p.belt_levels.size(),
+                                      p.belt_levels.size()));
+    p.belt_levels[i - 1] = value;
+  } else {
+    const std::size_t j = indexed(s, 'r');
+    if (p.levels().size() != 2 || !p.belt_generator.empty())
+      throw invalid_value("parameter name", s,
+                          "r1, r2 only for a two-level belt without a generator matrix");
+    if (j > 2) throw invalid_value("parameter name", s, "r1 or r2");
+    if (p.belt_rates.empty()) p.belt_rates = {p.switch_rate, p.switch_rate};
+    p.belt_rates[j - 1] = value;
+  }
 }
 
 }  // namespace stickslip

@@ -1,6 +1,7 @@
 #include "stickslip/replay.hpp"
 
 #include "stickslip/belt_switches.hpp"
+#include "stickslip/model/model_realization.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip {
@@ -19,6 +20,43 @@ struct trace_observer : observer_base {
   void on_episode(const episode& e) { out.episodes.push_back(e); }
 };
 
+// The model family (or given switch levels): simulate_model with the start
+// drawn as the sweep draws it (model_realization.hpp), then the fixed inputs.
+void replay_family(const replay_request& r, const model_parameters& p, realization_trace& out) {
+  family_point fp(p);
+  if (r.common_random_numbers) fp.key = common_stream_key;  // as the sweep draws it
+  const std::size_t levels = fp.model.belt.level_count();
+  model_initial_state start = draw_model_initial_state(fp, r.initial, r.seed, r.realization);
+  if (r.x0) start.position = *r.x0;
+  if (r.xdot0) start.velocity = *r.xdot0;
+  if (r.belt_start) start.level = level_of_belt_start(*r.belt_start);
+  validate(start, fp.model.belt);
+  out.initial = {start.position, start.velocity, recorded_belt_start(start.level, levels)};
+
+  trace_observer trace{{}, out, r.keep_events, r.keep_segments};
+  realization_observer stats(p.window);
+  stats.reset(r.realization, start.position, start.velocity, out.initial.belt_direction);
+  observer_pair<trace_observer, realization_observer> both{trace, stats};
+  event_counts counts;
+  if (r.switch_times) {
+    std::vector<level_switch> switches;
+    if (r.switch_levels) {
+      for (std::size_t i = 0; i < r.switch_times->size(); ++i)
+        switches.push_back({(*r.switch_times)[i], (*r.switch_levels)[i]});
+    } else {
+      switches = alternating_switches(*r.switch_times, start.level);
+    }
+    validate_level_switches(switches, levels, start.level);
+    given_level_switches sw(switches);
+    counts = simulate_model(fp.model, start, sw, both, r.max_events);
+  } else {
+    counts = simulate_family_realization(fp, start, r.seed, r.realization, r.max_events, both);
+  }
+  stats.finish();
+  out.record = stats.record();
+  out.record.events = counts;
+}
+
 }  // namespace
 
 realization_trace replay(const replay_request& r) {
@@ -32,10 +70,26 @@ realization_trace replay(const replay_request& r) {
   spec.max_events = r.max_events;
   spec.common_random_numbers = r.common_random_numbers;
   validate(spec);
+  const std::size_t levels = spec.base.levels().size();
+  if (r.belt_start) validate_belt_start(*r.belt_start, levels, false);
+  if (r.switch_levels && (!r.switch_times || r.switch_levels->size() != r.switch_times->size()))
+    throw invalid_value("switch levels", std::to_string(r.switch_levels->size()) + " levels",
+                        "one level per switch time");
+  if (r.switch_times && !r.switch_levels && levels != 2)
+    throw invalid_value("switch times", "without levels",
+                        "a level for every switch: the belt has " + std::to_string(levels) +
+                            " levels, so 'go to the other one' is not defined");
   if (r.switch_times) validate_switch_times(*r.switch_times);
 
   realization_trace out;
-  const auto key = stream_key(spec, r.parameters);
+  if (!spec.base.is_paper_model() || r.switch_levels) {
+    replay_family(r, spec.base, out);
+    return out;
+  }
+  // The parameters as asked (lambda may be 0 with given switch times): the
+  // same key, hence the same x0 and x'0, as before this replay had a family.
+  const model_parameters p = paper_form(r.parameters);
+  const auto key = stream_key(spec, p);  // point_key(p), or the common key
   auto& ic = out.initial;
   ic = draw_initial_conditions(r.initial, r.seed, key, r.realization);
   if (r.x0) ic.position = *r.x0;
@@ -44,16 +98,16 @@ realization_trace replay(const replay_request& r) {
   validate(ic);
 
   trace_observer trace{{}, out, r.keep_events, r.keep_segments};
-  realization_observer stats(r.parameters.window);
+  realization_observer stats(p.window);
   stats.reset(r.realization, ic.position, ic.velocity, ic.belt_direction);
   observer_pair<trace_observer, realization_observer> both{trace, stats};
   event_counts counts;
   if (r.switch_times) {
     given_switches sw(*r.switch_times);
-    counts = simulate(r.parameters, ic, sw, both, r.max_events);
+    counts = simulate(p, ic, sw, both, r.max_events);
   } else {
-    poisson_switches sw(r.parameters.switch_rate, r.seed, key, r.realization);
-    counts = simulate(r.parameters, ic, sw, both, r.max_events);
+    poisson_switches sw(p.switch_rate, r.seed, key, r.realization);
+    counts = simulate(p, ic, sw, both, r.max_events);
   }
   stats.finish();
   out.record = stats.record();

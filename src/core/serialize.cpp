@@ -26,13 +26,36 @@ using writer = detail::byte_writer;
 using reader = detail::byte_reader;
 
 // ---- pieces ----
-// In the order of parameter_names (the layout id covers that list).
+// The fields as given (not resolved): the paper's seven in the order of
+// parameter_names, then the family's c, mu_s, mu_k (0 = mu) and the belt's
+// levels, rates and generator, each with its length (the layout id covers
+// both name lists).
+void put_values(writer& w, const std::vector<double>& v) {
+  w.u64(v.size());
+  for (double x : v) w.f64(x);
+}
+std::vector<double> get_values(reader& r, std::string_view what) {
+  std::vector<double> v(r.count(what, 8));
+  for (double& x : v) x = r.f64(what);
+  return v;
+}
 void put(writer& w, const model_parameters& p) {
-  for (const char* name : parameter_names) w.f64(parameter_by_name(p, name));
+  for (double v : {p.mass, p.stiffness, p.gravity, p.friction_coefficient, p.belt_speed,
+                   p.switch_rate, p.window, p.damping, p.static_friction, p.kinetic_friction})
+    w.f64(v);
+  put_values(w, p.belt_levels);
+  put_values(w, p.belt_rates);
+  put_values(w, p.belt_generator);
 }
 model_parameters get_parameters(reader& r) {
   model_parameters p;
-  for (const char* name : parameter_names) parameter_by_name(p, name) = r.f64("model parameter");
+  for (double* v : {&p.mass, &p.stiffness, &p.gravity, &p.friction_coefficient, &p.belt_speed,
+                    &p.switch_rate, &p.window, &p.damping, &p.static_friction,
+                    &p.kinetic_friction})
+    *v = r.f64("model parameter");
+  p.belt_levels = get_values(r, "belt levels");
+  p.belt_rates = get_values(r, "belt rates");
+  p.belt_generator = get_values(r, "belt generator");
   return p;
 }
 
@@ -193,10 +216,12 @@ std::uint64_t layout_id() noexcept {
     };
     const auto schema = statistics_schema_id();
     for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(schema >> (8 * i)));
-    for (const char* name : parameter_names) {
+    for (const char* name : recorded_parameter_names) {
       for (const char* c = name; *c; ++c) byte(static_cast<unsigned char>(*c));
       byte(0);
     }
+    for (const char* c = "belt_levels|belt_rates|belt_generator"; *c; ++c)
+      byte(static_cast<unsigned char>(*c));
     return h;
   }();
   return id;
@@ -378,11 +403,13 @@ std::uint64_t fingerprint(const sweep_spec& s) {
 
 std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
   auto num = [](double x) { return fmt::format("{}", x); };
-  for (const char* name : parameter_names) {
-    const double x = parameter_by_name(a.base, name), y = parameter_by_name(b.base, name);
+  for (const char* name : recorded_parameter_names) {
+    const double x = parameter_value(a.base, name), y = parameter_value(b.base, name);
     if (std::bit_cast<std::uint64_t>(x) != std::bit_cast<std::uint64_t>(y))
       return fmt::format("parameter {}: {} vs {}", name, num(x), num(y));
   }
+  if (a.base.levels() != b.base.levels()) return "belt levels";
+  if (a.base.generator() != b.base.generator()) return "belt rates or generator";
   if (!(a.initial == b.initial)) return "initial-condition law (x0, xdot0 ranges or belt start)";
   if (a.axes.size() != b.axes.size())
     return fmt::format("number of grid axes: {} vs {}", a.axes.size(), b.axes.size());

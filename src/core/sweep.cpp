@@ -15,6 +15,7 @@
 
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/model/model_realization.hpp"
 
 namespace stickslip {
 namespace {
@@ -37,26 +38,81 @@ void check_distinct(const axis& ax) {
                   *dup, at[0], at[1]));
 }
 
+// An axis over a parameter that the base overrides would change nothing:
+// refuse it rather than compute identical points.
+void check_has_effect(const model_parameters& base, const std::string& sym) {
+  const char* why = nullptr;
+  if (sym == "V" && !base.belt_levels.empty()) why = "the belt levels are given";
+  if (sym == "lambda" && (!base.belt_rates.empty() || !base.belt_generator.empty()))
+    why = "the belt rates are given";
+  if (sym == "mu" && (base.static_friction > 0.0 || base.kinetic_friction > 0.0))
+    why = "mu sets mu_s and mu_k both, and one of them is given";
+  if (why) throw invalid_value("grid axis", sym, fmt::format("an axis that has an effect: {}", why));
+}
+
+// Friction coefficients and belt levels and rates constrain each other
+// (mu_k <= mu_s, distinct levels): every combination of their axes is
+// checked, with the other axes at their first value.
+void check_coupled_axes(const sweep_spec& s, const model_parameters& first) {
+  std::vector<const axis*> coupled;
+  double combinations = 1.0;
+  for (const auto& ax : s.axes) {
+    const std::string sym = canonical_symbol(ax.name);
+    if (sym == "mu_s" || sym == "mu_k" || sym[0] == 'v' || sym[0] == 'r') {
+      coupled.push_back(&ax);
+      combinations *= static_cast<double>(ax.values.size());
+    }
+  }
+  if (coupled.size() < 2 || combinations > 1e6) return;
+  std::vector<std::size_t> at(coupled.size(), 0);
+  while (true) {
+    model_parameters p = first;
+    for (std::size_t i = 0; i < coupled.size(); ++i)
+      set_parameter(p, coupled[i]->name, coupled[i]->values[at[i]]);
+    validate(p);
+    std::size_t i = 0;
+    while (i < coupled.size() && ++at[i] == coupled[i]->values.size()) at[i++] = 0;
+    if (i == coupled.size()) return;
+  }
+}
+
 }  // namespace
 
 void validate(const sweep_spec& s) {
-  validate(s.base);
+  // The first grid point stands for the base: a base value that every axis
+  // replaces (mu_k = mu = 5 above a swept mu_s) must not make the grid fail.
+  model_parameters first = s.base;
+  for (const auto& ax : s.axes)
+    if (!ax.values.empty() && is_parameter_symbol(ax.name))
+      set_parameter(first, canonical_symbol(ax.name), ax.values.front());
+  validate(first);
   validate(s.initial);
+  const std::size_t levels = s.base.levels().size();
+  validate_belt_start(s.initial.belt_start, levels, true);
   std::set<std::string> seen;
   for (const auto& ax : s.axes) {
-    const std::string sym = info_for(ax.name).symbol;  // throws on unknown names
+    const std::string sym = canonical_symbol(ax.name);  // throws on unknown names
     if (!seen.insert(sym).second)
       throw invalid_value("grid axis", ax.name, "each parameter swept at most once");
     if (ax.values.empty())
       throw invalid_value("grid axis " + ax.name, "(empty list)", "at least one value");
+    check_has_effect(s.base, sym);
     check_distinct(ax);
     for (double v : ax.values) {
-      model_parameters p = s.base;
-      parameter_by_name(p, sym) = v;
-      if (!std::isfinite(v) || v <= 0.0) throw invalid_parameter(sym, v, "finite and > 0");
+      model_parameters p = first;
+      set_parameter(p, sym, v);
+      if (!std::isfinite(v)) throw invalid_parameter(sym, v, "finite");
       validate(p);
     }
   }
+  check_coupled_axes(s, first);
+  for (const auto& ax : s.axes)
+    for (const auto& other : s.axes)
+      if (canonical_symbol(ax.name) == "mu" &&
+          (canonical_symbol(other.name) == "mu_s" || canonical_symbol(other.name) == "mu_k"))
+        throw invalid_value("grid axis", ax.name,
+                            "not together with a " + other.name +
+                                " axis: mu sets mu_s and mu_k both");
   if (s.realizations < 1)
     throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
   if (target_quantity(s)) {
@@ -95,17 +151,29 @@ void validate(const sweep_spec& s) {
                             "<= 5e7 (records are held in memory)");
   // Expected belt switches per realization must fit the event bound, at the
   // worst point: the largest lambda times the largest t_a over the grid.
+  // Expected belt switches per realization must fit the event bound, at the
+  // worst point: the largest rate of leaving a level times the largest t_a.
   auto largest = [&](const char* symbol) {
-    double v = parameter_by_name(s.base, symbol);
+    double v = parameter_value(s.base, symbol);
     for (const auto& ax : s.axes)
-      if (info_for(ax.name).symbol == std::string(symbol))
+      if (canonical_symbol(ax.name) == symbol)
         v = *std::max_element(ax.values.begin(), ax.values.end());
     return v;
   };
-  const double expected = largest("lambda") * largest("ta");
+  double fastest = 0.0;
+  if (!s.base.belt_generator.empty()) {
+    const std::vector<double> q = s.base.generator();
+    for (std::size_t i = 0; i < levels; ++i) fastest = std::max(fastest, -q[i * levels + i]);
+  } else if (!s.base.belt_rates.empty() || seen.contains("r1") || seen.contains("r2")) {
+    fastest = std::max(largest("r1"), largest("r2"));
+  } else {
+    fastest = largest("lambda");
+  }
+  const double expected = fastest * largest("ta");
   if (expected > 0.5 * static_cast<double>(s.max_events))
-    throw invalid_parameter("lambda * ta (expected belt switches per realization)", expected,
-                            "<= max_events / 2 = " + std::to_string(s.max_events / 2));
+    throw invalid_parameter("lambda * ta (the largest belt rate times t_a: expected belt "
+                            "switches per realization)",
+                            expected, "<= max_events / 2 = " + std::to_string(s.max_events / 2));
 }
 
 std::size_t point_count(const sweep_spec& s) noexcept {
@@ -127,8 +195,8 @@ model_parameters point_parameters(const sweep_spec& s, std::size_t point) {
   model_parameters p = s.base;
   const auto idx = point_index(s, point);
   for (std::size_t k = 0; k < s.axes.size(); ++k)
-    parameter_by_name(p, s.axes[k].name) = s.axes[k].values[idx[k]];
-  return p;
+    set_parameter(p, s.axes[k].name, s.axes[k].values[idx[k]]);
+  return p.is_paper_model() ? paper_form(p) : p;
 }
 
 std::uint64_t blocks_per_point(const sweep_spec& s) noexcept {
@@ -143,6 +211,7 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
 }
 
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
+  if (!point_parameters(s, u.point).is_paper_model()) return simulate_block_family(s, u);
   if (s.engine == sweep_engine::reference) return simulate_block_reference(s, u);
   return detail::simulate_block_lanes(s, u);
 }
@@ -160,7 +229,7 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
     while (b < units.size() && units[b].point == units[a].point &&
            units[b].block == units[b - 1].block + 1)
       ++b;
-    if (lanes) {
+    if (lanes && point_parameters(s, units[a].point).is_paper_model()) {
       auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
       for (auto& x : r) results.push_back(std::move(x));
     } else {
@@ -187,6 +256,31 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
     poisson_switches sw(p.switch_rate, s.seed, key, r);
     obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
     const auto counts = simulate(p, ic, sw, obs, s.max_events);
+    obs.finish();
+    obs.record().events = counts;
+    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    if (s.keep_records) out.records.push_back(obs.record());
+  }
+  return out;
+}
+
+// The model family: simulate_model one realization at a time with the Markov
+// belt (model/model_realization.hpp), into the same observer and statistics.
+block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
+  const auto p = point_parameters(s, u.point);
+  family_point fp(p);
+  fp.key = stream_key(s, p);  // common random numbers: one key for every point
+  block_result out;
+  out.stats = point_statistics(p, s.histograms);
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  if (s.keep_records) out.records.reserve(last - first);
+  const std::size_t levels = fp.model.belt.level_count();
+  realization_observer obs(p.window);
+  for (std::uint64_t r = first; r < last; ++r) {
+    const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
+    obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));
+    const auto counts = simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
     obs.finish();
     obs.record().events = counts;
     out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
@@ -275,11 +369,23 @@ result_set make_result_set(const sweep_spec& s, ordered_merger&& m) {
   return rs;
 }
 
-double expected_events(const model_parameters& p) noexcept {
-  const double switches = p.switch_rate * p.window;
-  const double tau = 2.0 * p.belt_speed / (p.friction_coefficient * p.gravity);
-  const double p_onset = 1.0 / (1.0 + p.switch_rate * tau);
-  const double p_break = p_onset * std::exp(-p.switch_rate * p.max_stick_duration());
+double expected_events(const model_parameters& p) {
+  // The family: the mean rate of leaving a level and the largest level stand
+  // in for lambda and V (a cost model, not physics).
+  double rate = p.switch_rate, speed = p.belt_speed;
+  if (!p.belt_levels.empty() || !p.belt_rates.empty() || !p.belt_generator.empty()) {
+    const auto v = p.levels();
+    const auto q = p.generator();
+    rate = speed = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      rate += -q[i * v.size() + i] / static_cast<double>(v.size());
+      speed = std::max(speed, std::abs(v[i]));
+    }
+  }
+  const double switches = rate * p.window;
+  const double tau = 2.0 * speed / (p.mu_k() * p.gravity);
+  const double p_onset = 1.0 / (1.0 + rate * tau);
+  const double p_break = p_onset * std::exp(-rate * p.max_stick_duration());
   return 2.0 + switches * (1.0 + p_onset + 1.5 * p_break);
 }
 
@@ -293,8 +399,7 @@ std::vector<std::size_t> points_by_cost(const sweep_spec& s) {
   const std::size_t n = point_count(s);
   std::vector<double> cost(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto p = point_parameters(s, i);
-    cost[i] = p.window * (p.switch_rate + p.natural_frequency() / std::numbers::pi + 1.0);
+    cost[i] = expected_events(point_parameters(s, i));
   }
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;

@@ -24,8 +24,22 @@ void validate(const initial_condition_law& law) {
   if (law.velocity_min > law.velocity_max)
     throw invalid_parameter("xdot0 range minimum", law.velocity_min,
                             fmt::format("<= maximum {}", law.velocity_max));
-  if (law.belt_start < -1 || law.belt_start > 1)
-    throw invalid_parameter("belt-start", law.belt_start, "+1, -1 or random");
+  // The level count is checked with the model (sweep.cpp): +1 / -1 on two
+  // levels, 1..n on n levels.
+  if (law.belt_start < -1)
+    throw invalid_parameter("belt-start", law.belt_start,
+                            "+1 (first level), -1 (second level), a level number, or stationary");
+}
+
+void validate_belt_start(int start, std::size_t levels, bool stationary_allowed) {
+  const int lowest = levels == 2 ? -1 : 1;
+  const bool ok = (start == 0 && stationary_allowed) ||
+                  (start != 0 && start >= lowest && start <= (levels == 2 ? 1 : static_cast<int>(levels)));
+  if (ok) return;
+  const std::string stationary = stationary_allowed ? ", or stationary" : "";
+  throw invalid_parameter("belt-start", start,
+                          levels == 2 ? "+1 (first level), -1 (second level)" + stationary
+                                      : fmt::format("a level number 1..{}{}", levels, stationary));
 }
 
 void validate(const initial_conditions& ic) {

@@ -45,7 +45,7 @@ expect_fail "--switch-times" simulate --switch-times 1 --switch-times-file unsor
 # replay inputs
 expect_fail "--x0|'nan'|finite" simulate --x0 nan
 expect_fail "--xdot0|'1..2'" simulate --xdot0 1..2
-expect_fail "--belt-start|'2'|+1, -1" simulate --belt-start 2
+expect_fail "--belt-start|'2'|+1 (first level), -1 (second level)" simulate --belt-start 2
 # counters
 expect_fail "--seed|'-1'" simulate --seed -1
 expect_fail "--seed|'1.5'" simulate --seed 1.5

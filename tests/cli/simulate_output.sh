@@ -48,7 +48,9 @@ for key in ("parameters", "seed", "realization", "initial_conditions", "episodes
     assert key in doc, key
 assert "events" not in doc
 assert doc["seed"] == 7 and doc["realization"] == 3
-assert doc["parameters"] == {"m": 1, "k": 4, "g": 9.81, "mu": 5, "V": 1, "lambda": 1, "ta": 20}
+assert doc["parameters"] == {"m": 1, "k": 4, "g": 9.81, "mu": 5, "V": 1, "lambda": 1, "ta": 20,
+                             "c": 0, "mu_s": 5, "mu_k": 5, "belt_levels": [1, -1],
+                             "belt_generator": [[-1, 1], [1, -1]], "belt_rates": [1, 1]}
 ic = doc["initial_conditions"]
 assert -1 <= ic["x0"] <= 1 and -1 <= ic["xdot0"] <= 1 and ic["belt_start"] in (1, -1)
 rows = list(csv.DictReader(open(sys.argv[3])))

@@ -5,7 +5,7 @@
 #  - every integer variable of the file stays an integer in xarray;
 #  - every long_name fits one line of xarray's plot label (its own
 #    label_from_attrs wraps at 30 characters);
-#  - metadata: ranks and threads; the belt start law by name ("random", "-1");
+#  - metadata: ranks and threads; the belt start law by name ("stationary", "-1");
 #    swept parameters are null in parameters.base and listed in "swept".
 source "$(dirname "$0")/lib.sh"
 
@@ -63,12 +63,12 @@ for name, var in raw.variables.items():
     label = label_from_attrs(ds[name])
     check("\n" not in label, f"{name}: plot label wraps: {label!r}")
 check(int(getattr(raw, "ranks", -1)) == 1 and int(raw.threads) == 2, "nc ranks/threads")
-check(raw.initial_belt_start == "random", f"initial_belt_start {raw.initial_belt_start!r}")
+check(raw.initial_belt_start == "stationary", f"initial_belt_start {raw.initial_belt_start!r}")
 check(netCDF4.Dataset(f"{minus}/results.nc").initial_belt_start == "-1", "belt start -1 in nc")
 
 par = json.load(open(f"{main}/summary.json"))["parameters"]
 check(par.get("ranks") == 1 and par["threads"] == 2, "summary ranks/threads")
-check(par["initial_conditions"]["belt_start"] == "random", "summary belt_start")
+check(par["initial_conditions"]["belt_start"] == "stationary", "summary belt_start")
 check(par.get("swept") == ["lambda", "mu", "k"], "summary lists the swept parameters")
 check(all(par["base"][s] is None for s in ("lambda", "mu", "k")), f"base {par['base']}")
 check(par["base"]["m"] == 1 and par["base"]["V"] == 1 and par["base"]["ta"] == 50, f"base {par['base']}")

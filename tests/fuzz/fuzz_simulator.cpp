@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace stickslip;
   byte_source in{data, size};
   model_parameters p;
-  for (const char* name : parameter_names) parameter_by_name(p, name) = in.next();
+  for (const char* name : parameter_names) set_parameter(p, name, in.next());
   initial_conditions ic{in.next(), in.next(), in.n % 2 ? 1 : -1};
   std::vector<double> switches;
   while (in.n >= 8 && switches.size() < 64) switches.push_back(in.next());

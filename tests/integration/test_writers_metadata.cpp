@@ -43,7 +43,7 @@ TEST_F(writers_metadata, ARunWithoutMpiRecordsOneRank) {
 }
 
 TEST_F(writers_metadata, BeltStartLawIsWrittenByName) {
-  for (const auto& [law, name] : {std::pair{0, "random"}, {1, "+1"}, {-1, "-1"}}) {
+  for (const auto& [law, name] : {std::pair{0, "stationary"}, {1, "+1"}, {-1, "-1"}}) {
     auto r = rs();
     r.spec.initial.belt_start = law;
     const auto json = io::summary_json(r, small_metadata());

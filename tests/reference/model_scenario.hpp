@@ -116,14 +116,14 @@ inline model_scenario draw_model_scenario(std::mt19937_64& rng) {
 struct model_exact_run {
   std::vector<episode> episodes;
   std::vector<event> events;
-  std::vector<model_segment> segments;
+  std::vector<segment> segments;
   event_counts counts;
 };
 
 struct model_recording_observer {
   model_exact_run* out;
   void on_event(const event& e) { out->events.push_back(e); }
-  void on_segment(const model_segment& s) { out->segments.push_back(s); }
+  void on_segment(const segment& s) { out->segments.push_back(s); }
   void on_episode(const episode& e) { out->episodes.push_back(e); }
 };
 

@@ -53,7 +53,7 @@ double fastest_level(const oscillator_model& m) {
 
 tolerance tolerance_for(const model_scenario& s, const model_exact_run& r, double n) {
   double B = std::abs(s.ic.velocity);
-  for (const model_segment& g : r.segments)
+  for (const segment& g : r.segments)
     if (g.kind == mode::slip) B = std::max(B, std::hypot(g.omega * (g.position - g.center), g.velocity));
   const double kappa = 1.0 + B / slowest_moving_level(s.model);
   const double e = s.model.window * std::pow(2.0 * std::numbers::pi / n, 4) / 120.0;

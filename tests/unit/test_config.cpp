@@ -306,7 +306,7 @@ INSTANTIATE_TEST_SUITE_P(
         bad_toml{"[sweep]\nkeep_records = 1\n", {"sweep.keep_records", "a boolean"}},
         bad_toml{"[initial]\nx0 = [1]\n", {"initial.x0", "two numbers"}},
         bad_toml{"[initial]\nx0 = 1.0\n", {"initial.x0", "two numbers"}},
-        bad_toml{"[initial]\nbelt_start = 2\n", {"initial.belt_start", "\"random\""}},
+        bad_toml{"[initial]\nbelt_start = \"sideways\"\n", {"initial.belt_start", "\"stationary\""}},
         bad_toml{"[grid]\nlambda = 0.5\n", {"grid.lambda", "grid spec string", "a float"}},
         bad_toml{"[grid]\nmu = [1, \"x\"]\n", {"grid.mu[1]", "a number"}},
         bad_toml{"[model]\nm = nan\n", {"model.m", "finite"}},
@@ -336,6 +336,26 @@ TEST(ParseSwitchTimes, SkipsCommentsAndBlankLines) {
   EXPECT_THAT(parse_switch_times("0\n3", "zero.txt"), ElementsAre(0.0, 3.0));
 }
 
+// Replay files of a Markov belt: "t level" lines, level numbers 1..n.
+TEST(ParseSwitchSchedule, LinesWithLevelsGiveZeroBasedLevels) {
+  const auto s = parse_switch_schedule("0.5 3\n# comment\n1.25 1\n2 2\n", "m.txt", 3);
+  EXPECT_EQ(s.times, (std::vector<double>{0.5, 1.25, 2}));
+  EXPECT_EQ(s.levels, (std::vector<std::size_t>{2, 0, 1}));
+  const auto two = parse_switch_schedule("0.5\n1\n", "t.txt", 2);
+  EXPECT_TRUE(two.levels.empty());
+}
+
+TEST(ParseSwitchSchedule, RefusesMixedLinesMissingLevelsAndUnknownLevels) {
+  EXPECT_THAT(error_of([] { (void)parse_switch_schedule("0.5 2\n1\n", "m.txt", 3); }),
+              AllOf(HasSubstr("m.txt"), HasSubstr("1 of 2 lines with a level")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_schedule("0.5\n1\n", "m.txt", 3); }),
+              AllOf(HasSubstr("m.txt"), HasSubstr("3 levels")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_schedule("0.5 4\n", "m.txt", 3); }),
+              AllOf(HasSubstr("belt level at m.txt:1"), HasSubstr("'4'"), HasSubstr("1 to 3")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_schedule("0.5 0\n", "m.txt", 3); }),
+              HasSubstr("1 to 3"));
+}
+
 TEST(ParseSwitchTimes, ErrorsNameTheLine) {
   EXPECT_THAT(error_of([] { (void)parse_switch_times("1\n# c\n0.5\n", "b.txt"); }),
               AllOf(HasSubstr("b.txt:3"), HasSubstr("0.5"), HasSubstr("sorted")));
@@ -343,8 +363,11 @@ TEST(ParseSwitchTimes, ErrorsNameTheLine) {
               HasSubstr("b.txt:2"));
   EXPECT_THAT(error_of([] { (void)parse_switch_times("\n-1\n", "b.txt"); }),
               AllOf(HasSubstr("b.txt:2"), HasSubstr("-1"), HasSubstr(">= 0")));
+  // "t level" lines: a level the belt does not have (two levels here).
   EXPECT_THAT(error_of([] { (void)parse_switch_times("1\n2 3\n", "b.txt"); }),
-              AllOf(HasSubstr("b.txt:2"), HasSubstr("trailing")));
+              AllOf(HasSubstr("belt level at b.txt:2"), HasSubstr("'3'"), HasSubstr("1 to 2")));
+  EXPECT_THAT(error_of([] { (void)parse_switch_times("1\n2 2 x\n", "b.txt"); }),
+              HasSubstr("b.txt:2"));
   EXPECT_THAT(error_of([] { (void)parse_switch_times("nan\n", "b.txt"); }),
               AllOf(HasSubstr("b.txt:1"), HasSubstr("not finite")));
   EXPECT_THAT(error_of([] { (void)parse_switch_times("1,2\n", "b.txt"); }),

@@ -22,10 +22,10 @@ namespace {
 
 constexpr double z_bound = 4.0;  // |estimate - expectation| <= 4 standard errors
 
-struct occupancy_observer : model_observer_base {
+struct occupancy_observer : observer_base {
   const std::vector<double>* levels;
   std::vector<double> time;
-  void on_segment(const model_segment& s) {
+  void on_segment(const segment& s) {
     for (std::size_t i = 0; i < levels->size(); ++i)
       if ((*levels)[i] == s.belt_velocity) time[i] += s.end - s.start;
   }
@@ -121,7 +121,7 @@ TEST(ModelBeltStatistics, StickDurationGivenItsStartWithLevelDependentRates) {
     int full = 0;
     for (int r = 0; r < realizations; ++r) {
       markov_level_switches sw(chain, level, 99, level, static_cast<std::uint64_t>(r));
-      struct first_stick : model_observer_base {
+      struct first_stick : observer_base {
         double duration = -1;
         void on_episode(const episode& e) {
           if (duration < 0 && e.kind == mode::stick) duration = e.duration();

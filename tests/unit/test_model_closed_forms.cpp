@@ -22,12 +22,12 @@ namespace {
 struct recorded {
   std::vector<episode> episodes;
   std::vector<event> events;
-  std::vector<model_segment> segments;
+  std::vector<segment> segments;
 };
 struct recorder {
   recorded* out;
   void on_event(const event& e) { out->events.push_back(e); }
-  void on_segment(const model_segment& s) { out->segments.push_back(s); }
+  void on_segment(const segment& s) { out->segments.push_back(s); }
   void on_episode(const episode& e) { out->episodes.push_back(e); }
 };
 
@@ -77,7 +77,7 @@ TEST(ModelClosedForms, NoSwitchLimitCycleWithStaticAboveKineticFriction) {
     ASSERT_EQ(last_slip.kind, mode::slip);
     double lo = 1e300, hi = -1e300;
     const int samples = 20000;
-    for (const model_segment& g : r.segments) {
+    for (const segment& g : r.segments) {
       if (g.kind != mode::slip || g.start < last_slip.start || g.end > last_slip.end) continue;
       for (int j = 0; j <= samples; ++j) {
         const double x = evaluate(g, g.start + (g.end - g.start) * j / samples).position;
@@ -192,9 +192,9 @@ TEST(ModelClosedForms, LongOverDampedSlipStaysFinite) {
   m.window = 60.0;
   const double ak = m.kinetic_offset(), as = m.static_band_half_width();
   const double x0 = 4.0 * as, y0 = x0 - ak, gamma = m.decay_rate(), w0 = m.natural_frequency();
-  struct last_segment : model_observer_base {
-    model_segment last{};
-    void on_segment(const model_segment& s) { last = s; }
+  struct last_segment : observer_base {
+    segment last{};
+    void on_segment(const segment& s) { last = s; }
   } obs;
   given_level_switches none({});
   simulate_model(m, {x0, 0.0, 0}, none, obs);

@@ -1,6 +1,6 @@
 // Per-realization energy balance of the model family engine: over [0, t_a],
 //   E(t_a) - E(0) = W_friction + W_damping,   E = m x'^2 / 2 + k x^2 / 2,
-// where, piece by piece (model_segment),
+// where, piece by piece (segment),
 //   slip:  W_friction = sigma mu_k m g (x_end - x_start)   (f constant),
 //          W_damping  = -c int x'^2 dt                     (Gauss-Legendre),
 //   stick: W_friction = int (k x + c v) v dt = v (k (x0 d + v d^2 / 2) + c v d)
@@ -26,7 +26,7 @@ double energy(const oscillator_model& m, double x, double z) {
 }
 
 // int_{start}^{end} x'(t)^2 dt on the segment's closed form.
-double squared_velocity_integral(const model_segment& s, double period) {
+double squared_velocity_integral(const segment& s, double period) {
   constexpr double nodes[] = {0.0, 0.5384693101056831, -0.5384693101056831, 0.9061798459386640,
                               -0.9061798459386640};
   constexpr double weights[] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
@@ -59,7 +59,7 @@ TEST(ModelEnergy, BalanceClosesPerRealizationAcrossTheFamily) {
     const double fastest = std::max(w0, gamma + std::sqrt(std::abs(gamma * gamma - w0 * w0)));
     const double period = 2.0 * std::numbers::pi / fastest;
     double friction = 0, damping = 0, scale = 0;
-    for (const model_segment& g : r.segments) {
+    for (const segment& g : r.segments) {
       const double d = g.end - g.start;
       if (g.kind == mode::stick) {
         const double v = g.belt_velocity;

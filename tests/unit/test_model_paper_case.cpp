@@ -73,7 +73,7 @@ model_parameters random_paper_parameters(std::mt19937_64& rng) {
 TEST(ModelPaperCase, PoissonAndMarkovSourcesDrawTheSameTimes) {
   model_parameters p;
   p.switch_rate = 3.7;
-  const oscillator_model model = paper_model(p);
+  const oscillator_model model = model_of(p);
   const belt_chain chain(model.belt);
   for (std::uint64_t r = 0; r < 20; ++r) {
     poisson_switches poisson(p.switch_rate, 42, 7, r);
@@ -104,7 +104,7 @@ TEST(ModelPaperCase, SameBitsAsThePaperEngineOnGivenSwitches) {
     given_switches paper_switches(times);
     paper.counts = simulate(p, ic, paper_switches, paper_obs);
 
-    const oscillator_model model = paper_model(p);
+    const oscillator_model model = model_of(p);
     const std::vector<level_switch> levels =
         alternating_switches(times, ic.belt_direction > 0 ? 0 : 1);
     given_level_switches family_switches(levels);
@@ -123,7 +123,7 @@ TEST(ModelPaperCase, SameBitsAsThePaperEngineOnDrawnSwitches) {
   p.friction_coefficient = 0.5;  // a = 1 exactly
   for (double lambda : {0.05, 1.0, 10.0, 100.0}) {
     p.switch_rate = lambda;
-    const oscillator_model model = paper_model(p);
+    const oscillator_model model = model_of(p);
     const belt_chain chain(model.belt);
     for (std::uint64_t r = 0; r < 300; ++r) {
       initial_conditions ic = draw_initial_conditions({}, 5, point_key(p), r);

@@ -34,7 +34,7 @@ void expect_mentions(const std::string& message, std::initializer_list<const cha
 
 TEST(ModelValidation, DefaultsAndThePaperModelAreValid) {
   EXPECT_NO_THROW(validate(oscillator_model{}));
-  EXPECT_NO_THROW(validate(paper_model(model_parameters{})));
+  EXPECT_NO_THROW(validate(model_of(model_parameters{})));
   oscillator_model m;
   m.belt = markov_belt{{-1.0, 0.0, 2.5}, {-3, 1, 2, 0.5, -0.5, 0, 1, 1, -2}};
   m.damping = 0.7;
@@ -142,7 +142,7 @@ TEST(ModelValidation, PaperModelIsTheFamilysSpecialCase) {
   p.friction_coefficient = 0.3;
   p.belt_speed = 1.5;
   p.switch_rate = 2.0;
-  const oscillator_model m = paper_model(p);
+  const oscillator_model m = model_of(p);
   EXPECT_EQ(m.static_friction, 0.3);
   EXPECT_EQ(m.kinetic_friction, 0.3);
   EXPECT_EQ(m.damping, 0.0);

@@ -269,3 +269,30 @@ TEST(TargetCi, BadTargetsAreRefusedByName) {
 
 }  // namespace
 }  // namespace stickslip
+
+namespace stickslip {
+namespace {
+
+// The model family (Markov belts, damping) draws with the common key too;
+// the score estimators apply only where the belt switches at rate lambda.
+TEST(CommonRandomNumbers, FamilyPointsShareTheirRandomNumbersToo) {
+  sweep_spec s = figure_spec({1.0}, 40, true);
+  s.axes = {{"c", {0.1, 0.5}}, {"r1", {1.0, 2.0}}};
+  s.keep_records = true;
+  const auto rs = run_sweep(s, 2);
+  ASSERT_FALSE(point_parameters(s, 0).is_paper_model());
+  for (std::size_t p = 1; p < rs.points.size(); ++p)
+    for (std::size_t r = 0; r < 40; ++r) {
+      EXPECT_EQ(rs.records[p][r].x0, rs.records[0][r].x0);
+      EXPECT_EQ(rs.records[p][r].xdot0, rs.records[0][r].xdot0);
+    }
+  s.common_random_numbers = false;
+  EXPECT_NE(run_sweep(s, 2).records[1][0].x0, rs.records[1][0].x0);
+  model_parameters q;
+  EXPECT_TRUE(has_poisson_switching(q));
+  q.belt_rates = {1.0, 2.0};
+  EXPECT_FALSE(has_poisson_switching(q));
+}
+
+}  // namespace
+}  // namespace stickslip

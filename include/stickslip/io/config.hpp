@@ -25,9 +25,14 @@ namespace stickslip::io {
 //   "0.1,0.5,3.8"  a list, in the order given
 //   "lin:a:b:n"    n values evenly spaced from a to b, both included (n = 1 gives a)
 //   "log:a:b:n"    n values geometrically spaced from a to b (a, b > 0)
-// Every value must be finite and > 0 (all model parameters are positive).
+// Every value must be finite and lie in the domain: > 0 for most model
+// parameters, >= 0 for the damping c, any number for a belt level vI
+// (grid_domain_of); a log range needs a, b > 0 in any domain.
 // `key` names the parameter in error messages (e.g. "--lambda", "grid.mu").
-[[nodiscard]] std::vector<double> parse_grid(std::string_view key, std::string_view text);
+enum class grid_domain : unsigned char { positive, non_negative, any };
+[[nodiscard]] grid_domain grid_domain_of(std::string_view symbol);
+[[nodiscard]] std::vector<double> parse_grid(std::string_view key, std::string_view text,
+                                             grid_domain d = grid_domain::positive);
 
 // True when `text` is a single plain number (not a list, not lin:/log:), i.e.
 // a fixed value rather than a grid axis.
@@ -50,6 +55,29 @@ void parse_target_ci(std::string_view key, std::string_view text, sweep_spec& s)
 // The full resolved spec as TOML: what goes into every output's attributes.
 // Round trip: parse_sweep_toml(to_toml(s), ...) == s for any spec.
 [[nodiscard]] std::string to_toml(const sweep_spec& s);
+
+// A replayed belt: switch times, and the level each switch goes to.
+struct switch_schedule {
+  std::vector<double> times;
+  std::vector<std::size_t> levels;  // level index (0-based), or empty: alternate two levels
+};
+// One switch per line, "t" (two levels: go to the other one) or "t level"
+// (level number 1..level_count), not mixed; blank lines and '#' comments are
+// ignored. Times validated as below; a level outside 1..level_count is an
+// error naming origin:line, the value and the range.
+[[nodiscard]] switch_schedule parse_switch_schedule(std::string_view text, std::string_view origin,
+                                                    std::size_t level_count);
+[[nodiscard]] switch_schedule read_switch_schedule_file(const std::string& path,
+                                                        std::size_t level_count);
+
+// "+1", "-1", "stationary" (or the older "random") on two levels; a level
+// number 1..n or "stationary" on n levels: initial_condition_law::belt_start.
+[[nodiscard]] int parse_belt_start(std::string_view key, std::string_view text,
+                                   std::size_t level_count);
+// The inverse, for outputs: "stationary", "+1", "-1", "3".
+[[nodiscard]] std::string belt_start_text(int belt_start);
+// "1,-1,0": finite numbers (belt levels, rates); errors name the entry.
+[[nodiscard]] std::vector<double> parse_value_list(std::string_view key, std::string_view text);
 
 // One switch time per line; blank lines and '#' comments are ignored.
 // Validated: finite, >= 0, strictly increasing; errors name origin:line.

@@ -5,7 +5,7 @@
 //   stick: x' = v while |k x + c v| <= mu_s m g,  v(t) a Markov chain.
 //
 // The same events, episodes and observer calls as simulate() (integrator.hpp),
-// with model_segment for the pieces of motion. Write F = k x + c v (the force
+// with segment for the pieces of motion. Write F = k x + c v (the force
 // a stick needs) and b = -c v / k, so the stick band is |x - b| <= a_s.
 //
 // Stick at v != 0: x = x0 + v t until x - b = sgn(v) a_s (a break), or a belt
@@ -35,8 +35,8 @@
 #include "stickslip/integrator.hpp"
 #include "stickslip/model/belt_chain.hpp"
 #include "stickslip/model/damped_slip.hpp"
-#include "stickslip/model/model_segment.hpp"
 #include "stickslip/model/oscillator_model.hpp"
+#include "stickslip/observer.hpp"
 
 namespace stickslip {
 
@@ -138,7 +138,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       const double s = sign_of(v);
       const double t_edge = v != 0.0 ? t + (as - s * (x - b)) / std::abs(v) : inf;
       const double t_next = std::min(t_edge, t_switch);
-      obs.on_segment(model_segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w, gamma});
+      obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w, gamma});
       if (t_next >= ta) {
         x += v * (ta - t);
         t = ta;
@@ -198,7 +198,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       }
     }
     const double t_next = std::min(t_root, t_switch);
-    obs.on_segment(model_segment{mode::slip, t, std::min(t_next, ta), x, z, v, center, w, gamma});
+    obs.on_segment(segment{mode::slip, t, std::min(t_next, ta), x, z, v, center, w, gamma});
     auto advance_to = [&](double when) {
       const double dt = when - t;
       if (!damped) {

@@ -138,15 +138,15 @@ void validate(const model_initial_state& state, const markov_belt& belt) {
                             "an existing level index, 0.." + std::to_string(belt.level_count() - 1));
 }
 
-oscillator_model paper_model(const model_parameters& p) {
+oscillator_model model_of(const model_parameters& p) {
   oscillator_model m;
   m.mass = p.mass;
   m.stiffness = p.stiffness;
-  m.damping = 0.0;
+  m.damping = p.damping;
   m.gravity = p.gravity;
-  m.static_friction = p.friction_coefficient;
-  m.kinetic_friction = p.friction_coefficient;
-  m.belt = two_level_belt(p.belt_speed, -p.belt_speed, p.switch_rate, p.switch_rate);
+  m.static_friction = p.mu_s();
+  m.kinetic_friction = p.mu_k();
+  m.belt = markov_belt{p.levels(), p.generator()};
   m.window = p.window;
   return m;
 }

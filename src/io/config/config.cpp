@@ -70,30 +70,41 @@ bool to_double(std::string_view t, double& out, std::string& why) {
 }
 
 // "invalid --lambda: 'log:0.1:30:0' (allowed: n >= 1, got n = 0; a grid is ...)"
+const char* domain_text(grid_domain d) {
+  return d == grid_domain::positive ? "> 0" : d == grid_domain::non_negative ? ">= 0" : "";
+}
+
 [[noreturn]] void grid_error(std::string_view key, std::string_view text, const std::string& rule,
-                             const std::string& got) {
+                             const std::string& got, grid_domain d = grid_domain::positive) {
   throw invalid_value(std::string(key), std::string(text),
-                      fmt::format("{}, got {}; a grid is {} of finite values > 0", rule, got,
-                                  grid_forms));
+                      fmt::format("{}, got {}; a grid is {} of finite values{}{}", rule, got,
+                                  grid_forms, d == grid_domain::any ? "" : " ",
+                                  domain_text(d)));
 }
 
 double grid_number(std::string_view key, std::string_view text, std::string_view item,
-                   const std::string& what) {
+                   const std::string& what, grid_domain d = grid_domain::positive) {
   double v = 0;
   std::string why;
-  if (!to_double(item, v, why)) grid_error(key, text, "finite numbers", what + ": " + why);
-  if (!(v > 0.0)) grid_error(key, text, "values > 0", fmt::format("{} = {}", what, v));
+  if (!to_double(item, v, why)) grid_error(key, text, "finite numbers", what + ": " + why, d);
+  const bool ok = d == grid_domain::any || (d == grid_domain::positive ? v > 0.0 : v >= 0.0);
+  if (!ok)
+    grid_error(key, text, fmt::format("values {}", domain_text(d)), fmt::format("{} = {}", what, v),
+               d);
   return v;
 }
 
-std::vector<double> parse_range(std::string_view key, std::string_view text, std::string_view t) {
+std::vector<double> parse_range(std::string_view key, std::string_view text, std::string_view t,
+                                grid_domain d) {
   const auto parts = split(t, ':');
   const bool log = parts[0] == "log";
   if (parts.size() != 4)
     grid_error(key, text, fmt::format("{}:a:b:n with 4 fields", parts[0]),
-               fmt::format("{} fields", parts.size()));
-  const double a = grid_number(key, text, parts[1], "a");
-  const double b = grid_number(key, text, parts[2], "b");
+               fmt::format("{} fields", parts.size()), d);
+  // a log range needs a, b > 0 whatever the parameter allows.
+  const grid_domain ends = log ? grid_domain::positive : d;
+  const double a = grid_number(key, text, parts[1], "a", ends);
+  const double b = grid_number(key, text, parts[2], "b", ends);
   const auto n_text = trim(parts[3]);
   long long n = 0;
   const auto [ptr, ec] = std::from_chars(n_text.data(), n_text.data() + n_text.size(), n);
@@ -191,10 +202,17 @@ bool is_single_value(std::string_view text) noexcept {
   return !text.empty() && text.find(',') == std::string_view::npos && text.find(':') == std::string_view::npos;
 }
 
-std::vector<double> parse_grid(std::string_view key, std::string_view text) {
+grid_domain grid_domain_of(std::string_view symbol) {
+  if (symbol == "c") return grid_domain::non_negative;
+  if (symbol.size() > 1 && symbol[0] == 'v' && symbol[1] >= '1' && symbol[1] <= '9')
+    return grid_domain::any;
+  return grid_domain::positive;
+}
+
+std::vector<double> parse_grid(std::string_view key, std::string_view text, grid_domain d) {
   const auto t = trim(text);
-  if (t.empty()) grid_error(key, text, "at least one value", "an empty list");
-  if (t.starts_with("lin:") || t.starts_with("log:")) return parse_range(key, text, t);
+  if (t.empty()) grid_error(key, text, "at least one value", "an empty list", d);
+  if (t.starts_with("lin:") || t.starts_with("log:")) return parse_range(key, text, t, d);
   if (t.find(':') != std::string_view::npos)
     grid_error(key, text, "a range 'lin:a:b:n' or 'log:a:b:n'", "another prefix");
   std::vector<double> values;
@@ -203,26 +221,85 @@ std::vector<double> parse_grid(std::string_view key, std::string_view text) {
     grid_error(key, text, fmt::format("at most {} values", max_grid_values),
                fmt::format("{}", items.size()));
   for (std::size_t i = 0; i < items.size(); ++i)
-    values.push_back(grid_number(key, text, items[i], fmt::format("entry #{}", i + 1)));
+    values.push_back(grid_number(key, text, items[i], fmt::format("entry #{}", i + 1), d));
   return values;
 }
 
-std::vector<double> parse_switch_times(std::string_view text, std::string_view origin) {
-  std::vector<double> times;
+switch_schedule parse_switch_schedule(std::string_view text, std::string_view origin,
+                                      std::size_t level_count) {
+  switch_schedule out;
   std::vector<std::string> where;
-  std::size_t line_no = 0;
+  std::size_t line_no = 0, with_level = 0;
   for (auto line : split(text, '\n')) {
     ++line_no;
     if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    if (trim(line).empty()) continue;
+    line = trim(line);
+    if (line.empty()) continue;
+    const auto gap = line.find_first_of(" \t");
+    const auto time_text = line.substr(0, gap);
     where.push_back(fmt::format("switch time at {}:{}", origin, line_no));
-    times.push_back(switch_time(where.back(), line));
+    out.times.push_back(switch_time(where.back(), time_text));
+    if (gap == std::string_view::npos) continue;
+    const std::string level_where = fmt::format("belt level at {}:{}", origin, line_no);
+    const auto level_text = trim(line.substr(gap));
+    const std::uint64_t level =
+        parse_unsigned(level_where, level_text, 1, std::max<std::size_t>(level_count, 1));
+    out.levels.resize(out.times.size() - 1, 0);  // marks lines without a level (checked below)
+    out.levels.push_back(static_cast<std::size_t>(level - 1));
+    ++with_level;
   }
-  return validated_times(std::move(times), std::move(where));
+  if (with_level > 0 && with_level != out.times.size())
+    throw invalid_value(fmt::format("switch lines of {}", origin),
+                        fmt::format("{} of {} lines with a level", with_level, out.times.size()),
+                        "every line 't level', or every line 't' (two levels: go to the other one)");
+  if (with_level == 0 && level_count > 2 && !out.times.empty())
+    throw invalid_value(fmt::format("switch lines of {}", origin), "lines 't' without a level",
+                        fmt::format("lines 't level' (level 1..{}): the belt has {} levels",
+                                    level_count, level_count));
+  out.times = validated_times(std::move(out.times), std::move(where));
+  return out;
+}
+
+switch_schedule read_switch_schedule_file(const std::string& path, std::size_t level_count) {
+  return parse_switch_schedule(read_text_file(path), path, level_count);
+}
+
+std::vector<double> parse_switch_times(std::string_view text, std::string_view origin) {
+  return parse_switch_schedule(text, origin, 2).times;
 }
 
 std::vector<double> read_switch_times_file(const std::string& path) {
   return parse_switch_times(read_text_file(path), path);
+}
+
+int parse_belt_start(std::string_view key, std::string_view text, std::size_t level_count) {
+  const auto t = trim(text);
+  const std::string allowed =
+      level_count == 2 ? "+1 (first level), -1 (second level) or stationary"
+                       : fmt::format("a level number 1..{}, or stationary", level_count);
+  if (t == "stationary" || t == "random") return 0;
+  if (t == "-1" && level_count == 2) return -1;
+  if (t == "+1") return 1;
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (t.empty() || ec != std::errc{} || ptr != t.data() + t.size() || v < 1 ||
+      v > (level_count == 2 ? 1 : level_count))
+    throw invalid_value(std::string(key), std::string(text), allowed);
+  return static_cast<int>(v);
+}
+
+std::string belt_start_text(int belt_start) {
+  if (belt_start == 0) return "stationary";
+  if (belt_start == 1) return "+1";
+  return fmt::format("{}", belt_start);
+}
+
+std::vector<double> parse_value_list(std::string_view key, std::string_view text) {
+  std::vector<double> values;
+  const auto items = split(trim(text), ',');
+  for (std::size_t i = 0; i < items.size(); ++i)
+    values.push_back(parse_number(fmt::format("{} entry #{}", key, i + 1), items[i]));
+  return values;
 }
 
 std::vector<double> parse_switch_time_list(std::string_view key, std::string_view text) {

@@ -21,8 +21,10 @@ namespace stickslip::io {
 namespace {
 
 // Axis order when [grid] has no `order` key (TOML tables are unordered):
-// lambda, mu, then the other symbols in this order.
-constexpr const char* default_axis_order[] = {"lambda", "mu", "m", "k", "g", "V", "ta"};
+// lambda, mu, then the other symbols in this order, then belt levels vI and
+// rates rI in the order of their names.
+constexpr const char* default_axis_order[] = {"lambda", "mu", "mu_s", "mu_k", "c",
+                                              "m",      "k",  "g",    "V",    "ta"};
 
 struct context {
   std::string_view origin;
@@ -106,14 +108,56 @@ bool read_bool(const context& cx, const std::string& dotted, const toml::node& n
   return n.as_boolean()->get();
 }
 
+std::vector<double> read_numbers(const context& cx, const std::string& dotted,
+                                 const toml::node& n) {
+  const auto* a = n.as_array();
+  if (!a) cx.wrong(dotted, n, "an array of numbers");
+  std::vector<double> values;
+  for (std::size_t i = 0; i < a->size(); ++i)
+    values.push_back(read_number(cx, fmt::format("{}[{}]", dotted, i), *a->get(i)));
+  return values;
+}
+
+// The generator: an array of n rows of n rates (q_ii = -sum of the others).
+std::vector<double> read_generator(const context& cx, const std::string& dotted,
+                                   const toml::node& n) {
+  const auto* a = n.as_array();
+  if (!a || a->empty()) cx.wrong(dotted, n, "an array of rows [[q11, q12, ...], ...]");
+  std::vector<double> q;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto row = read_numbers(cx, fmt::format("{}[{}]", dotted, i), *a->get(i));
+    if (row.size() != a->size())
+      cx.wrong(fmt::format("{}[{}]", dotted, i), *a->get(i),
+               fmt::format("a row of {} rates (the matrix is n x n, n = {} rows)", a->size(),
+                           a->size()));
+    q.insert(q.end(), row.begin(), row.end());
+  }
+  return q;
+}
+
 void read_model(const context& cx, const toml::table& t, model_parameters& p) {
+  // "mu" sets mu_s and mu_k both: read it first, so that mu_s and mu_k in
+  // the same table refine it whatever their order in the file.
+  if (const auto* mu = t.get("mu")) set_parameter(p, "mu", read_number(cx, "model.mu", *mu));
   for (auto&& [k, n] : t) {
     const std::string key(k.str());
     const std::string dotted = "model." + key;
-    if (std::find_if(std::begin(parameter_names), std::end(parameter_names),
-                     [&](const char* s) { return key == s; }) == std::end(parameter_names))
-      cx.unknown_key(dotted, k, "[model] takes m, k, g, mu, V, lambda, ta");
-    parameter_by_name(p, key) = read_number(cx, dotted, n);
+    if (key == "mu") continue;
+    if (key == "belt_levels") {
+      p.belt_levels = read_numbers(cx, dotted, n);
+    } else if (key == "belt_rates") {
+      p.belt_rates = read_numbers(cx, dotted, n);
+    } else if (key == "belt_generator") {
+      p.belt_generator = read_generator(cx, dotted, n);
+    } else if (std::find_if(std::begin(recorded_parameter_names), std::end(recorded_parameter_names),
+                            [&](const char* s) { return key == s; }) !=
+               std::end(recorded_parameter_names)) {
+      set_parameter(p, key, read_number(cx, dotted, n));
+    } else {
+      cx.unknown_key(dotted, k,
+                     "[model] takes m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt_levels, "
+                     "belt_rates, belt_generator");
+    }
   }
 }
 
@@ -136,16 +180,26 @@ void read_initial(const context& cx, const toml::table& t, initial_condition_law
     } else if (key == "xdot0") {
       read_range(cx, dotted, n, law.velocity_min, law.velocity_max);
     } else if (key == "belt_start") {
+      // The level count is checked with the model (sweep validate).
       const auto* s = n.as_string();
       const std::string v = s ? s->get() : "";
-      if (v == "random")
+      if (n.is_integer() && n.as_integer()->get() >= -1 && n.as_integer()->get() != 0 &&
+          n.as_integer()->get() <= 1000000)
+        law.belt_start = static_cast<int>(n.as_integer()->get());
+      else if (v == "stationary" || v == "random")
         law.belt_start = 0;
       else if (v == "+1" || v == "1")
         law.belt_start = 1;
       else if (v == "-1")
         law.belt_start = -1;
+      else if (!v.empty() && v.size() < 7 && std::all_of(v.begin(), v.end(), [](char c) {
+                 return c >= '0' && c <= '9';
+               }) && v[0] != '0')
+        law.belt_start = std::stoi(v);
       else
-        cx.wrong(dotted, n, "one of the strings \"random\", \"+1\", \"-1\"");
+        cx.wrong(dotted, n,
+                 "\"stationary\", \"+1\" (first level), \"-1\" (second level), or a level "
+                 "number 1..n");
     } else {
       cx.unknown_key(dotted, k, "[initial] takes x0, xdot0, belt_start");
     }
@@ -153,17 +207,20 @@ void read_initial(const context& cx, const toml::table& t, initial_condition_law
 }
 
 std::vector<double> read_axis_values(const context& cx, const std::string& dotted,
-                                     const toml::node& n) {
+                                     const toml::node& n, grid_domain domain) {
   if (n.is_string()) return parse_grid(fmt::format("{} at {}", dotted, cx.at(n.source())),
-                                       n.as_string()->get());
+                                       n.as_string()->get(), domain);
   const auto* a = n.as_array();
   if (!a) cx.wrong(dotted, n, "a grid spec string (\"lin:a:b:n\", ...) or an array of numbers");
-  if (a->empty()) cx.wrong(dotted, n, "a non-empty array of numbers > 0 (the list is empty)");
+  if (a->empty()) cx.wrong(dotted, n, "a non-empty array of numbers (the list is empty)");
   std::vector<double> values;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const auto& item = *a->get(i);
     const double v = read_number(cx, fmt::format("{}[{}]", dotted, i), item);
-    if (!(v > 0.0)) cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number > 0");
+    if (domain == grid_domain::positive && !(v > 0.0))
+      cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number > 0");
+    if (domain == grid_domain::non_negative && !(v >= 0.0))
+      cx.wrong(fmt::format("{}[{}]", dotted, i), item, "a number >= 0");
     values.push_back(v);
   }
   return values;
@@ -191,10 +248,11 @@ void read_grid(const context& cx, const toml::table& t, std::vector<axis>& axes)
       continue;
     }
     const std::string dotted = "grid." + key;
-    if (std::find_if(std::begin(parameter_names), std::end(parameter_names),
-                     [&](const char* s) { return key == s; }) == std::end(parameter_names))
-      cx.unknown_key(dotted, k, "[grid] takes order and m, k, g, mu, V, lambda, ta");
-    found.push_back({key, read_axis_values(cx, dotted, n)});
+    if (!is_parameter_symbol(key) || key.find('-') != std::string::npos)
+      cx.unknown_key(dotted, k,
+                     "[grid] takes order and m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt "
+                     "levels v1..vN, two-level belt rates r1, r2");
+    found.push_back({key, read_axis_values(cx, dotted, n, grid_domain_of(key))});
   }
   std::vector<std::string> order;
   if (order_node) {
@@ -212,6 +270,11 @@ void read_grid(const context& cx, const toml::table& t, std::vector<axis>& axes)
       cx.wrong("grid.order", *order_node, "every swept parameter of [grid] listed");
   } else {
     for (const char* s : default_axis_order) order.emplace_back(s);
+    std::vector<std::string> indexed;
+    for (const auto& a : found)
+      if (std::find(order.begin(), order.end(), a.name) == order.end()) indexed.push_back(a.name);
+    std::sort(indexed.begin(), indexed.end());
+    order.insert(order.end(), indexed.begin(), indexed.end());
   }
   for (const auto& name : order)
     for (auto& a : found)
@@ -315,13 +378,33 @@ sweep_spec read_sweep_toml_file(const std::string& path) {
 std::string to_toml(const sweep_spec& s) {
   std::string out = "# stickslip sweep configuration, fully resolved (docs/config.md)\n\n[model]\n";
   for (const char* name : parameter_names)
-    out += fmt::format("{} = {}\n", name, toml_float(parameter_by_name(s.base, name)));
+    out += fmt::format("{} = {}\n", name, toml_float(parameter_value(s.base, name)));
+  // The family's values as given (unset mu_s, mu_k and belt arrays stay unset).
+  const auto& b = s.base;
+  out += fmt::format("c = {}\n", toml_float(b.damping));
+  if (b.static_friction > 0) out += fmt::format("mu_s = {}\n", toml_float(b.static_friction));
+  if (b.kinetic_friction > 0) out += fmt::format("mu_k = {}\n", toml_float(b.kinetic_friction));
+  auto array = [](const std::vector<double>& v, std::size_t from, std::size_t count) {
+    std::string a = "[";
+    for (std::size_t i = 0; i < count; ++i) a += (i ? ", " : "") + toml_float(v[from + i]);
+    return a + "]";
+  };
+  if (!b.belt_levels.empty())
+    out += fmt::format("belt_levels = {}\n", array(b.belt_levels, 0, b.belt_levels.size()));
+  if (!b.belt_rates.empty())
+    out += fmt::format("belt_rates = {}\n", array(b.belt_rates, 0, b.belt_rates.size()));
+  if (!b.belt_generator.empty()) {
+    const std::size_t n = b.levels().size();
+    out += "belt_generator = [";
+    for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + array(b.belt_generator, i * n, n);
+    out += "]\n";
+  }
 
   const auto& law = s.initial;
   out += fmt::format("\n[initial]\nx0 = [{}, {}]\nxdot0 = [{}, {}]\nbelt_start = \"{}\"\n",
                      toml_float(law.position_min), toml_float(law.position_max),
                      toml_float(law.velocity_min), toml_float(law.velocity_max),
-                     law.belt_start == 0 ? "random" : (law.belt_start > 0 ? "+1" : "-1"));
+                     belt_start_text(law.belt_start));
 
   out += "\n[grid]\n";
   if (!s.axes.empty()) {

@@ -1,5 +1,7 @@
 #include "json_emitter.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace stickslip::io::detail {
@@ -143,6 +145,40 @@ void json_emitter::value(std::string_view s) {
 void json_emitter::null() {
   before_value();
   out_.write("null");
+}
+
+void emit_model_members(json_emitter& j, const model_parameters& p,
+                        const std::vector<std::string>& swept) {
+  for (const char* sym : recorded_parameter_names) {
+    if (std::find(swept.begin(), swept.end(), sym) != swept.end()) {
+      j.key(sym);
+      j.null();
+    } else {
+      j.member(sym, parameter_value(p, sym));
+    }
+  }
+  const auto levels = p.levels();
+  const auto q = p.generator();
+  const std::size_t n = levels.size();
+  j.key("belt_levels");
+  j.begin_array();
+  for (double v : levels) j.value(v);
+  j.end_array();
+  j.key("belt_generator");
+  j.begin_array();
+  for (std::size_t i = 0; i < n; ++i) {
+    j.begin_array();
+    for (std::size_t k = 0; k < n; ++k) j.value(q[i * n + k]);
+    j.end_array();
+  }
+  j.end_array();
+  if (n == 2) {
+    j.key("belt_rates");
+    j.begin_array();
+    j.value(q[1]);
+    j.value(q[2]);
+    j.end_array();
+  }
 }
 
 }  // namespace stickslip::io::detail

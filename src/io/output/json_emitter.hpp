@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stickslip/io/atomic_file.hpp"
+#include "stickslip/parameters.hpp"
 
 namespace stickslip::io::detail {
 
@@ -68,5 +69,12 @@ class json_emitter {
   std::vector<level> stack_;
   bool after_key_ = false;
 };
+
+// The members of a model description: every recorded scalar
+// (recorded_parameter_names, resolved: mu_s of a model without one is mu),
+// null for a symbol in `swept`; then the resolved belt: "belt_levels" [v_i],
+// "belt_generator" [[q_ij]] and, for two levels, "belt_rates" [r1, r2].
+void emit_model_members(json_emitter& j, const model_parameters& p,
+                        const std::vector<std::string>& swept = {});
 
 }  // namespace stickslip::io::detail

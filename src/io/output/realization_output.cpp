@@ -114,12 +114,15 @@ std::string realization_json(const realization_report& r, bool with_events) {
   j.begin_object(layout::multi_line);
   j.key("parameters");
   j.begin_object();
-  for (const char* name : parameter_names) j.member(name, parameter_by_name(r.request.parameters, name));
+  emit_model_members(j, r.request.parameters);
   j.end_object();
   j.member("seed", r.request.seed);
   j.member("realization", r.request.realization);
   emit_initial_conditions(j, r);
-  j.member("switch_times", r.request.switch_times.has_value() ? "given" : "poisson");
+  // "poisson" for the paper's telegraph belt, "markov" for any other belt.
+  j.member("switch_times", r.request.switch_times.has_value()          ? "given"
+                           : r.request.parameters.is_paper_model() ? "poisson"
+                                                                   : "markov");
   emit_statistics(j, r);
   emit_episodes(j, r);
   if (with_events) emit_events(j, r);

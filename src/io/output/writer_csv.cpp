@@ -28,7 +28,7 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   out.put('\n');
   for (const auto& p : rs.points) {
     const auto& s = p.stats;
-    for (const auto& sym : symbols) out.print("{},", parameter_by_name(p.parameters, sym));
+    for (const auto& sym : symbols) out.print("{},", parameter_value(p.parameters, sym));
     out.print("{}", s.realizations);
     for (const auto& q : quantities()) {
       const auto& mv = s.*q.moments;
@@ -55,7 +55,7 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
     // The point's coordinates once, reused for every one of its records.
     std::string prefix = fmt::format("{},", i);
     for (const auto& sym : symbols)
-      prefix += fmt::format("{},", parameter_by_name(rs.points[i].parameters, sym));
+      prefix += fmt::format("{},", parameter_value(rs.points[i].parameters, sym));
     for (const auto& r : rs.records[i]) {
       out.write(prefix);
       // -1 marks "no stick" for first_stick_start/duration, as in realization_record.

@@ -53,7 +53,9 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
   j.begin_object();
   for (const auto& q : quantities()) {
     if (!q.score) continue;
-    const auto d = score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate);
+    const auto d = has_poisson_switching(p.parameters)
+                       ? score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate)
+                       : estimate{};
     j.key(q.summary_name);
     j.begin_object();
     j.member("value", d.value);
@@ -66,7 +68,8 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
   j.begin_object();
   for (const auto& q : quantities()) {
     if (!q.score) continue;
-    const auto c = control_variate_mean(s.*q.score, s.*q.moments);
+    const auto c = has_poisson_switching(p.parameters) ? control_variate_mean(s.*q.score, s.*q.moments)
+                                                       : controlled_mean{};
     j.key(q.summary_name);
     j.begin_object();
     j.member("mean", c.mean.value);
@@ -86,7 +89,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
   const auto& s = p.stats;
   j.begin_object();
   for (const auto& sym : point_parameter_symbols(spec))
-    j.member(sym, parameter_by_name(p.parameters, sym));
+    j.member(sym, parameter_value(p.parameters, sym));
   j.member("realizations", s.realizations);
   for (const auto& q : quantities()) {
     j.key(q.summary_name);
@@ -126,19 +129,9 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.begin_object(layout::multi_line);
   // A swept parameter has no single value: null in "base", named in "swept".
   const auto swept = swept_symbols(s);
-  const auto is_swept = [&](const char* sym) {
-    return std::find(swept.begin(), swept.end(), sym) != swept.end();
-  };
   j.key("base");
   j.begin_object();
-  for (const char* sym : parameter_names) {
-    if (is_swept(sym)) {
-      j.key(sym);
-      j.null();
-    } else {
-      j.member(sym, parameter_by_name(s.base, sym));
-    }
-  }
+  emit_model_members(j, s.base, swept);
   j.end_object();
   j.key("swept");
   j.begin_array();
@@ -148,7 +141,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.begin_array(layout::multi_line);
   for (const auto& ax : s.axes) {
     j.begin_object();
-    j.member("name", info_for(ax.name).symbol);
+    j.member("name", canonical_symbol(ax.name));
     j.key("values");
     j.begin_array();
     for (double v : ax.values) j.value(v);
@@ -162,7 +155,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("position_max", s.initial.position_max);
   j.member("velocity_min", s.initial.velocity_min);
   j.member("velocity_max", s.initial.velocity_max);
-  j.member("belt_start", belt_start_name(s.initial.belt_start));
+  j.member("belt_start", belt_start_text(s.initial.belt_start));
   j.end_object();
   j.member("seed", s.seed);
   j.member("realizations", s.realizations);

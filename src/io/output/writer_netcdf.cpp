@@ -67,10 +67,10 @@ nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc
 
 // A parameter's long_name: its long alias in words and its symbol
 // ("switch rate lambda").
-std::string parameter_long_name(const parameter_info& info) {
+std::string parameter_long_name(const parameter_info& info, const std::string& symbol) {
   std::string n = info.long_name;
   std::replace(n.begin(), n.end(), '-', ' ');
-  return n + " " + info.symbol;
+  return n + " " + symbol;
 }
 
 // One value per grid point, computed by `value(point)`.
@@ -132,12 +132,13 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
     l.grid.push_back(f.addDim("point", 1));
   } else {
     for (const auto& ax : spec.axes) {
-      const auto& info = info_for(ax.name);
-      auto dim = f.addDim(info.symbol, ax.values.size());
+      const std::string sym = canonical_symbol(ax.name);
+      const auto& info = info_for(sym);
+      auto dim = f.addDim(sym, ax.values.size());
       l.grid.push_back(dim);
-      auto v = f.addVar(info.symbol, nc::ncDouble, dim);
-      describe(v, info.units, parameter_long_name(info),
-               fmt::format("swept model parameter {}: {}", info.symbol, info.description));
+      auto v = f.addVar(sym, nc::ncDouble, dim);
+      describe(v, info.units, parameter_long_name(info, sym),
+               fmt::format("swept model parameter {}: {}", sym, info.description));
       v.putVar(ax.values.data());
     }
   }
@@ -151,24 +152,33 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
 }
 
 void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  for (const char* sym : parameter_names) {
+  // Every recorded scalar, then the swept belt levels and rates (vI, rI).
+  std::vector<std::string> symbols(std::begin(recorded_parameter_names),
+                                   std::end(recorded_parameter_names));
+  for (const auto& sym : swept_symbols(rs.spec))
+    if (std::find(symbols.begin(), symbols.end(), sym) == symbols.end()) symbols.push_back(sym);
+  for (const auto& sym : symbols) {
     const auto& info = info_for(sym);
     auto v = add_double(f, parameter_variable_name(sym), l.grid, info.units,
-                        parameter_long_name(info),
+                        parameter_long_name(info, sym),
                         fmt::format("model parameter {} at each grid point: {}", sym,
                                     info.description),
                         false);
     v.putAtt("symbol", sym);
-    put_grid<double>(v, rs, [&](const point_result& p) { return parameter_by_name(p.parameters, sym); });
+    put_grid<double>(v, rs, [&](const point_result& p) { return parameter_value(p.parameters, sym); });
   }
   auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
-                      "a = mu m g / k: the mass can stick only while |x| <= a", false);
+                      "a = mu_s m g / k: the mass can stick only while |x + c v / k| <= a "
+                      "(|x| <= a without damping)",
+                      false);
   put_grid<double>(a, rs, [](const point_result& p) { return p.parameters.band_half_width(); });
   auto w = add_double(f, "natural_frequency", l.grid, "rad/s", "natural frequency",
                       "omega = sqrt(k / m)", false);
   put_grid<double>(w, rs, [](const point_result& p) { return p.parameters.natural_frequency(); });
   auto d = add_double(f, "max_stick_duration", l.grid, "s", "longest stick d_max",
-                      "d_max = 2 a / V: a stick that crosses the whole band", false);
+                      "d_max = 2 a / V: a stick that crosses the whole band (Markov belt: 2 a / "
+                      "smallest nonzero |v_i|, at least 5 / rate of leaving a level v = 0)",
+                      false);
   put_grid<double>(d, rs, [](const point_result& p) { return p.parameters.max_stick_duration(); });
 }
 
@@ -226,9 +236,11 @@ void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set
                                                                   ? "1"
                                                                   : std::string(q.units) + " s";
     const auto deriv = [&](const point_result& p) {
+      if (!has_poisson_switching(p.parameters)) return estimate{};
       return score_derivative(p.stats.*q.score, p.stats.*q.moments, p.parameters.switch_rate);
     };
     const auto cv = [&](const point_result& p) {
+      if (!has_poisson_switching(p.parameters)) return controlled_mean{};
       return control_variate_mean(p.stats.*q.score, p.stats.*q.moments);
     };
     const std::string lr = "likelihood-ratio (score) estimate of d E[" + sym +
@@ -443,14 +455,20 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   f.putAtt("initial_position_max", nc::ncDouble, s.initial.position_max);
   f.putAtt("initial_velocity_min", nc::ncDouble, s.initial.velocity_min);
   f.putAtt("initial_velocity_max", nc::ncDouble, s.initial.velocity_max);
-  f.putAtt("initial_belt_start", belt_start_name(s.initial.belt_start));
+  f.putAtt("initial_belt_start", belt_start_text(s.initial.belt_start));
   std::string swept;
   for (const auto& sym : swept_symbols(s)) swept += (swept.empty() ? "" : " ") + sym;
   f.putAtt("swept_parameters", swept);
   const auto sw = swept_symbols(s);
-  for (const char* sym : parameter_names)
+  for (const char* sym : recorded_parameter_names)
     if (std::find(sw.begin(), sw.end(), sym) == sw.end())
-      f.putAtt(sym, nc::ncDouble, parameter_by_name(s.base, sym));
+      f.putAtt(sym, nc::ncDouble, parameter_value(s.base, sym));
+  // The resolved belt of the base (a swept vI or rI is a coordinate instead):
+  // levels v_i [m/s] and the generator Q, row-major [1/s].
+  const auto levels = s.base.levels();
+  const auto q = s.base.generator();
+  f.putAtt("belt_levels", nc::ncDouble, levels.size(), levels.data());
+  f.putAtt("belt_generator", nc::ncDouble, q.size(), q.data());
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);

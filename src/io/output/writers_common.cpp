@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "stickslip/error.hpp"
 #include "writers_detail.hpp"
 
@@ -7,7 +9,7 @@ namespace stickslip::io::detail {
 
 std::vector<std::string> swept_symbols(const sweep_spec& s) {
   std::vector<std::string> out;
-  for (const auto& ax : s.axes) out.emplace_back(info_for(ax.name).symbol);
+  for (const auto& ax : s.axes) out.emplace_back(canonical_symbol(ax.name));
   return out;
 }
 
@@ -19,15 +21,19 @@ std::vector<std::string> point_parameter_symbols(const sweep_spec& s) {
 }
 
 std::string parameter_variable_name(const std::string& symbol) {
+  // vI and rI: belt_level_I, belt_rate_I.
+  const std::string sym = canonical_symbol(symbol);
+  if (sym != info_for(sym).symbol) {
+    std::string n = std::string(info_for(sym).long_name) + "_" + sym.substr(1);
+    std::replace(n.begin(), n.end(), '-', '_');
+    return n;
+  }
   std::string n = info_for(symbol).long_name;
   for (auto& c : n)
     if (c == '-') c = '_';
   return n;
 }
 
-const char* belt_start_name(int belt_start) noexcept {
-  return belt_start == 0 ? "random" : (belt_start > 0 ? "+1" : "-1");
-}
 
 void check_shape(const result_set& rs) {
   const auto n = point_count(rs.spec);

@@ -9,6 +9,7 @@
 
 #include "stickslip/io/atomic_file.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/io/config.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -21,8 +22,6 @@ namespace stickslip::io::detail {
 [[nodiscard]] std::vector<std::string> point_parameter_symbols(const sweep_spec& s);
 // A parameter's NetCDF variable name: its long alias with '_' ("switch_rate").
 [[nodiscard]] std::string parameter_variable_name(const std::string& symbol);
-// How the initial belt direction law is written: "random", "+1" or "-1".
-[[nodiscard]] const char* belt_start_name(int belt_start) noexcept;
 
 // How many values results.nc's writer buffers per call for the (grid, bin)
 // and (grid, trace) variables. Tests lower it to exercise the slab-wise and
