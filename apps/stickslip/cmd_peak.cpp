@@ -18,8 +18,7 @@
 #include "model_flags.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
-#include "stickslip/precision/common_peak_finder.hpp"
-#include "stickslip/precision/peak_finder.hpp"
+#include "stickslip/precision/peak_sweep.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -34,15 +33,7 @@ struct peak_flags {
 };
 
 const quantity_info& find_statistic(const std::string& name) {
-  std::string names;
-  for (const auto& q : quantities()) {
-    const bool per_realization = q.sampled == sampling::per_realization ||
-                                 q.sampled == sampling::per_realization_with_stick;
-    if (!per_realization) continue;
-    if (name == q.summary_name || name == q.name || name == q.symbol) return q;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", q.summary_name);
-  }
-  throw invalid_value("--statistic", name, "one of the per-realization statistics: " + names);
+  return precision::peak_statistic("--statistic", name);
 }
 
 std::string find_parameter(const std::string& name) {
@@ -94,57 +85,16 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   o.initial_realizations = io::parse_unsigned("--initial-realizations", f.initial, 2, 1u << 24);
   o.max_total_realizations =
       io::parse_unsigned("--max-realizations", f.budget, 2, max_realizations);
-  const auto threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
-  // Both ends of the range must be valid models (and within the work bound).
-  for (double x : {lo, hi}) {
-    auto check = spec;
-    set_parameter(check.base, over, x);
-    validate(check);
-  }
-
+  precision::sweep_peak_request q;
+  q.spec = spec;
+  q.over = over;
+  q.statistic = &stat;
+  q.options = o;
+  q.common_random_numbers = f.method == "common";
+  q.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
-  // --method common: each stage runs `groups` sweeps with common random
-  // numbers across the points (seeds hashed from (--seed, stage, group));
-  // --method independent: one sweep per stage, every point its own streams.
-  const auto sweep_means = [&](const std::vector<double>& xs, std::uint64_t n,
-                               std::uint64_t seed, bool crn) {
-    sweep_spec s = spec;
-    s.axes = {axis{over, xs}};
-    s.realizations = n;
-    s.seed = seed;
-    s.common_random_numbers = crn;
-    validate(s);
-    return run_sweep(s, threads);
-  };
-  precision::peak_result r;
-  if (f.method == "common") {
-    precision::common_peak_options co;
-    co.base = o;
-    const precision::group_evaluator eval = [&](const std::vector<double>& xs, std::uint64_t n,
-                                                std::size_t groups, std::uint64_t stage) {
-      std::vector<std::vector<double>> means(groups);
-      for (std::size_t g = 0; g < groups; ++g) {
-        const auto seed = precision::stage_seed(precision::stage_seed(spec.seed, stage), g);
-        const auto result = sweep_means(xs, n, seed, true);
-        for (const auto& p : result.points) means[g].push_back((p.stats.*(stat.moments)).mean());
-      }
-      return means;
-    };
-    r = precision::find_peak_common(eval, co);
-  } else {
-    const precision::evaluator eval = [&](const std::vector<double>& xs, std::uint64_t n,
-                                          std::uint64_t stage) {
-      const auto result = sweep_means(xs, n, precision::stage_seed(spec.seed, stage), false);
-      std::vector<precision::evaluation> out;
-      for (std::size_t i = 0; i < xs.size(); ++i) {
-        const auto& m = result.points[i].stats.*(stat.moments);
-        out.push_back({xs[i], m.mean(), m.std_error()});
-      }
-      return out;
-    };
-    r = precision::find_peak(eval, o);
-  }
+  const auto r = precision::find_peak_by_sweeps(q);
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
