@@ -18,7 +18,7 @@
 #include "model_flags.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
-#include "stickslip/precision/peak_finder.hpp"
+#include "stickslip/precision/peak_sweep.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -29,18 +29,11 @@ struct peak_flags {
   model_flags model;
   std::string statistic = "R", over = "lambda", range, target = "0.01";
   std::string initial = "1000", budget = "400000000", threads = "0", format = "text";
+  std::string method = "common";
 };
 
 const quantity_info& find_statistic(const std::string& name) {
-  std::string names;
-  for (const auto& q : quantities()) {
-    const bool per_realization = q.sampled == sampling::per_realization ||
-                                 q.sampled == sampling::per_realization_with_stick;
-    if (!per_realization) continue;
-    if (name == q.summary_name || name == q.name || name == q.symbol) return q;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", q.summary_name);
-  }
-  throw invalid_value("--statistic", name, "one of the per-realization statistics: " + names);
+  return precision::peak_statistic("--statistic", name);
 }
 
 std::string find_parameter(const std::string& name) {
@@ -92,45 +85,29 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   o.initial_realizations = io::parse_unsigned("--initial-realizations", f.initial, 2, 1u << 24);
   o.max_total_realizations =
       io::parse_unsigned("--max-realizations", f.budget, 2, max_realizations);
-  const auto threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
-  // Both ends of the range must be valid models (and within the work bound).
-  for (double x : {lo, hi}) {
-    auto check = spec;
-    set_parameter(check.base, over, x);
-    validate(check);
-  }
-
+  precision::sweep_peak_request q;
+  q.spec = spec;
+  q.over = over;
+  q.statistic = &stat;
+  q.options = o;
+  q.common_random_numbers = f.method == "common";
+  q.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
-  const precision::evaluator eval = [&](const std::vector<double>& xs, std::uint64_t n,
-                                        std::uint64_t stage) {
-    sweep_spec s = spec;
-    s.axes = {axis{over, xs}};
-    s.realizations = n;
-    s.seed = precision::stage_seed(spec.seed, stage);
-    validate(s);
-    const auto result = run_sweep(s, threads);
-    std::vector<precision::evaluation> out;
-    for (std::size_t i = 0; i < xs.size(); ++i) {
-      const auto& m = result.points[i].stats.*(stat.moments);
-      out.push_back({xs[i], m.mean(), m.std_error()});
-    }
-    return out;
-  };
-  const auto r = precision::find_peak(eval, o);
+  const auto r = precision::find_peak_by_sweeps(q);
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
 
   if (f.format == "json") {
     fmt::print(
-        "{{\n  \"statistic\": \"{}\",\n  \"over\": \"{}\",\n  \"range\": [{}, {}],\n"
+        "{{\n  \"statistic\": \"{}\",\n  \"method\": \"{}\",\n  \"over\": \"{}\",\n  \"range\": [{}, {}],\n"
         "  \"target_halfwidth\": {},\n  \"target_met\": {},\n  \"argmax\": {},\n"
         "  \"argmax_ci95\": [{}, {}],\n  \"argmax_sampling_halfwidth\": {},\n"
         "  \"argmax_model_bias\": {},\n  \"max\": {},\n  \"max_ci95\": [{}, {}],\n"
         "  \"realizations\": {},\n  \"stages\": {},\n  \"window\": [{}, {}],\n  \"seed\": {},\n"
         "  \"elapsed_seconds\": {},\n  \"cpu_seconds\": {}\n}}\n",
-        stat.summary_name, over, json_number(lo), json_number(hi),
+        stat.summary_name, f.method, over, json_number(lo), json_number(hi),
         json_number(o.target_halfwidth), r.target_met ? "true" : "false", json_number(r.argmax),
         json_number(r.argmax_lo), json_number(r.argmax_hi), json_number(r.sampling_halfwidth),
         json_number(r.model_bias), json_number(r.max), json_number(r.max_lo),
@@ -176,6 +153,12 @@ void add_peak_command(CLI::App& app, const invocation&) {
   cmd->add_option("--max-realizations", f->budget,
                   "budget of realizations over all stages (default 400000000)")
       ->type_name("N");
+  cmd->add_option("--method", f->method,
+                  "common: each stage runs 20 independent groups, common random numbers "
+                  "across the points within a group (smooth curves; the interval from the "
+                  "groups' spread); independent: every point its own streams (default common)")
+      ->type_name("common|independent")
+      ->check(CLI::IsMember({"common", "independent"}));
   cmd->add_option("--threads", f->threads, "worker threads, 0 = all cores (default 0)");
   cmd->add_option("--format", f->format, "output: text or json (default text)")
       ->type_name("text|json")

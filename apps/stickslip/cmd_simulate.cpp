@@ -40,6 +40,7 @@ struct simulate_options {
   std::string events_file;
   std::string trajectory_step, trajectory_file;
   bool overwrite = false;
+  bool common_random_numbers = false;
   CLI::Option *x0_opt = nullptr, *xdot0_opt = nullptr, *belt_opt = nullptr;
   CLI::Option *times_opt = nullptr, *times_file_opt = nullptr, *trajectory_opt = nullptr;
 };
@@ -67,6 +68,7 @@ io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   req.seed = resolve_seed(o.model, req.seed);
   req.max_events = resolve_max_events(o.model, req.max_events);
   req.realization = io::parse_unsigned("--realization", o.realization);
+  req.common_random_numbers = o.common_random_numbers;
   if (o.x0_opt->count() > 0) req.x0 = io::parse_number("--x0 (initial position)", o.x0);
   if (o.xdot0_opt->count() > 0)
     req.xdot0 = io::parse_number("--xdot0 (initial velocity)", o.xdot0);
@@ -152,6 +154,9 @@ void add_simulate_command(CLI::App& app, const invocation&) {
   cmd->add_option("--realization", o.realization,
                   "realization index R: the same streams as realization R of a sweep (default 0)")
       ->type_name("R");
+  cmd->add_flag("--common-random-numbers", o.common_random_numbers,
+                "the streams of a sweep run with --common-random-numbers (the same for every "
+                "grid point) instead of this point's own");
   const char* replay = "Replay (fixed inputs instead of random draws)";
   o.x0_opt = cmd->add_option("--x0", o.x0, "initial position x0 [m] (default: drawn)")
                  ->type_name("X")

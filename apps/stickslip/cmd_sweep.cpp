@@ -58,6 +58,10 @@ struct sweep_options {
   CLI::Option* belt_start_opt = nullptr;
   std::string shard;                       // "i/n"
   std::string checkpoint_interval = "2";   // seconds between journal segments
+  bool common_random_numbers = false;
+  std::string target_ci, max_realizations, min_realizations;
+  CLI::Option *crn_opt = nullptr, *target_opt = nullptr, *max_real_opt = nullptr,
+              *min_real_opt = nullptr;
   CLI::Option *config_opt = nullptr, *realizations_opt = nullptr, *block_size_opt = nullptr,
               *bins_opt = nullptr, *records_opt = nullptr, *engine_opt = nullptr;
 };
@@ -96,6 +100,32 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
   spec.axes.insert(spec.axes.end(), added.begin(), added.end());
 }
 
+// --common-random-numbers, --target-ci STAT:H [--max-realizations N]
+// [--min-realizations N]. With a target, the cap per point is
+// --max-realizations (default 10^6), not --realizations.
+void apply_precision_flags(const sweep_options& o, sweep_spec& spec) {
+  if (o.crn_opt->count() > 0) spec.common_random_numbers = o.common_random_numbers;
+  if (o.target_opt->count() > 0) {
+    if (o.realizations_opt->count() > 0)
+      throw invalid_value("--realizations", o.realizations,
+                          "not with --target-ci: the stop rule chooses the realizations per "
+                          "point; cap them with --max-realizations");
+    io::parse_target_ci("--target-ci", o.target_ci, spec);
+    if (o.max_real_opt->count() == 0 && spec.realizations == sweep_spec{}.realizations)
+      spec.realizations = 1'000'000;
+  } else if (o.max_real_opt->count() > 0 || o.min_real_opt->count() > 0) {
+    throw invalid_value(o.max_real_opt->count() > 0 ? "--max-realizations" : "--min-realizations",
+                        o.max_real_opt->count() > 0 ? o.max_realizations : o.min_realizations,
+                        "only with --target-ci STAT:HALFWIDTH");
+  }
+  if (o.max_real_opt->count() > 0)
+    spec.realizations =
+        io::parse_unsigned("--max-realizations", o.max_realizations, 1, max_realizations);
+  if (o.min_real_opt->count() > 0)
+    spec.min_realizations =
+        io::parse_unsigned("--min-realizations", o.min_realizations, 2, max_realizations);
+}
+
 // (a) The resolved, validated spec: defaults < --config file < --preset < flags.
 sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   sweep_spec spec = o.config_opt->count() > 0 ? io::read_sweep_toml_file(o.config) : sweep_spec{};
@@ -114,6 +144,7 @@ sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
     spec.initial.belt_start =
         io::parse_belt_start("--belt-start", o.belt_start, spec.base.levels().size());
   if (o.engine_opt->count() > 0) spec.engine = io::parse_engine("--engine", o.engine);
+  apply_precision_flags(o, spec);
   validate(spec);
   return spec;
 }
@@ -166,7 +197,11 @@ void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_ou
                where, resumed, io::journal_path(plan.dir));
     return;
   }
-  const std::uint64_t n = point_count(spec) * spec.realizations;
+  std::uint64_t n = point_count(spec) * spec.realizations;
+  if (out.results) {  // with --target-ci, what the stop rule chose
+    n = 0;
+    for (const auto& p : out.results->points) n += p.stats.realizations;
+  }
   fmt::print(stderr, "{} realizations in {:.3g} s ({} grid points, {}{}) -> {}\n", n,
              out.elapsed_this_run, point_count(spec), where, resumed, plan.dir);
 }
@@ -264,6 +299,27 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                                  "fast (default: SIMD lanes) or reference (one realization at a "
                                  "time, the plain exact path); results are bit-identical")
                      ->type_name("NAME");
+  const char* precision = "Precision (docs/precision.md)";
+  o.crn_opt = cmd->add_flag("--common-random-numbers", o.common_random_numbers,
+                            "realization r of every grid point uses the same random numbers "
+                            "(initial state, unit exponentials of the switch times): smooth "
+                            "curves, low-variance differences; points are then correlated")
+                  ->group(precision);
+  o.target_opt = cmd->add_option("--target-ci", o.target_ci,
+                                 "run blocks at each point until the 95% half-width of the mean "
+                                 "of STAT (R, sticks_per_time, slips_per_time) is <= HALFWIDTH")
+                     ->type_name("STAT:HALFWIDTH")
+                     ->group(precision);
+  o.max_real_opt = cmd->add_option("--max-realizations", o.max_realizations,
+                                   "with --target-ci: at most N realizations per point "
+                                   "(default 1000000)")
+                       ->type_name("N")
+                       ->group(precision);
+  o.min_real_opt = cmd->add_option("--min-realizations", o.min_realizations,
+                                   "with --target-ci: at least N realizations per point before "
+                                   "the stop rule applies (default 1000)")
+                       ->type_name("N")
+                       ->group(precision);
   cmd->add_option("-o,--output", o.out_dir,
                   "output directory; holds the checkpoint journal DIR/.journal while running")
       ->type_name("DIR")

@@ -140,6 +140,7 @@ void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
     std::vector<std::uint64_t> out;
     while (!failure.first && out.size() < n && next < todo.size()) {
       const auto i = todo[next++];
+      if (merger.point_finished(unit_at(s, i).point)) continue;  // precision target met
       // Asked again at hand-out: the caller may have stopped wanting units
       // since the list was made (SIGTERM: finish what is out, hand out no more).
       if (hooks.wanted && !hooks.wanted(unit_at(s, i))) continue;

@@ -22,6 +22,15 @@ enum class substream : std::uint64_t { initial_conditions = 0, belt_switches = 1
 // and in `simulate`.
 [[nodiscard]] std::uint64_t point_key(const model_parameters& p) noexcept;
 
+// The key every grid point uses instead of point_key with common random
+// numbers (sweep_spec::common_random_numbers, `--common-random-numbers`):
+// realization r of every point then draws the same initial conditions and the
+// same unit-rate exponentials E_j = -log(U_j) (switch times Y_j = sum E_i /
+// lambda), so differences between points have low variance while each point
+// stays exact and unbiased. The constant is "CRN" in ASCII, fixed forever:
+// changing it changes every common-random-number result.
+inline constexpr std::uint64_t common_stream_key = 0x43524EULL;
+
 class random_stream {
  public:
   using philox = r123::Philox4x64;

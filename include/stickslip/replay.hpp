@@ -32,6 +32,9 @@ struct replay_request {
   // it the belt alternates between two levels (more levels need it).
   std::optional<std::vector<std::size_t>> switch_levels;
   bool keep_events = true, keep_segments = true;
+  // Replay realization r of a sweep run with common random numbers: the
+  // streams of common_stream_key instead of point_key(parameters).
+  bool common_random_numbers = false;
 };
 
 struct realization_trace {

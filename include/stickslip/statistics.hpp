@@ -18,6 +18,7 @@
 
 #include "stickslip/accumulators/histogram.hpp"
 #include "stickslip/accumulators/mean_variance.hpp"
+#include "stickslip/accumulators/score_moments.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/observer.hpp"
@@ -52,6 +53,15 @@ struct convergence_point {
   double stick_duration_mean, stick_duration_ci95_half_width;
 };
 
+// Whether the belt switches at the Poisson rate lambda (two levels left at
+// the same rate lambda: no belt_rates, no belt_generator), so that the
+// score N/lambda - t_a, hence the likelihood-ratio derivative over lambda and
+// the control variate N of score_moments.hpp, apply. Writers report NaN for
+// these estimates at other points.
+[[nodiscard]] inline bool has_poisson_switching(const model_parameters& p) noexcept {
+  return p.belt_rates.empty() && p.belt_generator.empty();
+}
+
 class point_statistics {
  public:
   point_statistics() = default;
@@ -73,6 +83,10 @@ class point_statistics {
   mean_variance slip_duration;         // H, pooled over counted slips
   histogram stick_fraction_hist, stick_duration_hist, first_stick_duration_hist,
       slip_duration_hist;
+  // Against K = N - lambda t_a (N belt switches): d mean/dlambda and the
+  // control-variate means of R, S_T/t_a, S_L/t_a (score_moments.hpp).
+  score_moments stick_fraction_score, sticks_per_time_score, slips_per_time_score;
+  double expected_switches = 0.0;  // lambda t_a of the point (not merged: the same)
   std::uint64_t realizations = 0;
   std::uint64_t no_stick = 0;              // realizations without any stick
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a

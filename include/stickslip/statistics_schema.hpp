@@ -51,6 +51,10 @@ struct quantity_info {
   mean_variance point_statistics::*moments;
   histogram point_statistics::*density;  // nullptr when range == none
   histogram_range range;
+  // Moments against the belt switch count (score derivative d mean/dlambda
+  // and control-variate mean, accumulators/score_moments.hpp); nullptr for
+  // the pooled and conditional quantities (not one value per realization).
+  score_moments point_statistics::*score = nullptr;
 };
 
 struct counter_info {
@@ -75,35 +79,36 @@ inline constexpr std::array<quantity_info, 6> quantity_table{{
     {"stick_fraction", "R", "R", "1", "stick fraction",
      "total stick time in [0, t_a] divided by t_a, one value per realization", "realizations",
      sampling::per_realization, [](rec r, double) noexcept { return r.stick_fraction; },
-     &ps::stick_fraction, &ps::stick_fraction_hist, histogram_range::unit_interval},
+     &ps::stick_fraction, &ps::stick_fraction_hist, histogram_range::unit_interval,
+     &ps::stick_fraction_score},
     {"sticks_per_time", "sticks_per_time", "S_T/t_a", "1/s", "stick rate",
      "number of sticks of positive length beginning in [0, t_a) (a stick cut off by t_a "
      "counts), divided by t_a, one value per realization",
      "realizations", sampling::per_realization,
      [](rec r, double window) noexcept { return r.sticks / window; }, &ps::sticks_per_time,
-     nullptr, histogram_range::none},
+     nullptr, histogram_range::none, &ps::sticks_per_time_score},
     {"slips_per_time", "slips_per_time", "S_L/t_a", "1/s", "slip rate",
      "number of slips beginning after the first stick (the slip before the first stick is "
      "not counted), divided by t_a, one value per realization",
      "realizations", sampling::per_realization,
      [](rec r, double window) noexcept { return r.slips / window; }, &ps::slips_per_time,
-     nullptr, histogram_range::none},
+     nullptr, histogram_range::none, &ps::slips_per_time_score},
     {"stick_duration", "stick_duration", "D", "s", "stick duration",
      "duration D_i of every stick, pooled over all sticks of all realizations (a stick cut "
      "off by t_a enters clipped)",
      "sticks, over all realizations", sampling::per_stick, nullptr, &ps::stick_duration,
-     &ps::stick_duration_hist, histogram_range::stick_duration},
+     &ps::stick_duration_hist, histogram_range::stick_duration, nullptr},
     {"first_stick_duration", "first_stick_duration", "D_1", "s", "first stick duration",
      "duration of the first stick, over the realizations that have a stick (see "
      "no_stick_count); it may be censored by t_a (see first_stick_censored_count)",
      "realizations with at least one stick", sampling::per_realization_with_stick,
      [](rec r, double) noexcept { return r.first_stick_duration; }, &ps::first_stick_duration,
-     &ps::first_stick_duration_hist, histogram_range::stick_duration},
+     &ps::first_stick_duration_hist, histogram_range::stick_duration, nullptr},
     {"slip_duration", "slip_duration", "H", "s", "slip duration",
      "duration H_i of every counted slip (those beginning after the first stick), pooled "
      "over all realizations",
      "counted slips, over all realizations", sampling::per_counted_slip, nullptr,
-     &ps::slip_duration, &ps::slip_duration_hist, histogram_range::slip_duration},
+     &ps::slip_duration, &ps::slip_duration_hist, histogram_range::slip_duration, nullptr},
 }};
 
 inline constexpr std::array<counter_info, 6> counter_table{{

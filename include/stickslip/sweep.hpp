@@ -4,6 +4,7 @@
 // result is bit-identical for any number of threads, ranks or shards.
 #pragma once
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -14,6 +15,7 @@
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/statistics.hpp"
+#include "stickslip/statistics_schema.hpp"
 
 namespace stickslip {
 
@@ -59,8 +61,32 @@ struct sweep_spec {
   std::int64_t max_events = default_max_events;
   bool keep_records = false;       // raw per-realization records (memory grows with N)
   sweep_engine engine = sweep_engine::fast;  // does not change results, only speed
+  // Common random numbers (docs/precision.md): every point draws its streams
+  // with common_stream_key instead of point_key, so realization r of every
+  // point has the same x0, x'0, belt start and unit exponentials. Points are
+  // then correlated (differences between them have low variance); each point
+  // alone is exactly what it is without the flag, in distribution.
+  bool common_random_numbers = false;
+  // Adaptive sampling (--target-ci STAT:HALFWIDTH), off when target_statistic
+  // is empty: each point stops after the first block, in block order, at
+  // which at least min_realizations are merged and the 95 % half-width of
+  // the mean of target_statistic (a per-realization quantity of the schema,
+  // by its summary name: R, sticks_per_time, slips_per_time) is <=
+  // target_halfwidth; `realizations` is then the cap per point. The rule
+  // sees only the ordered merge, so results do not depend on threads,
+  // ranks or resume; later blocks computed ahead are dropped.
+  std::string target_statistic;
+  double target_halfwidth = 0.0;
+  std::uint64_t min_realizations = 1000;
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
+
+// The key of the random streams of point p: point_key(p), or
+// common_stream_key with common random numbers.
+[[nodiscard]] inline std::uint64_t stream_key(const sweep_spec& s,
+                                              const model_parameters& p) noexcept {
+  return s.common_random_numbers ? common_stream_key : point_key(p);
+}
 
 // Throws stickslip::error naming the first problem (unknown or repeated axis,
 // empty axis, a value given twice on one axis, invalid point, zero
@@ -120,9 +146,19 @@ event_counts simulate_realization(const sweep_spec& s, const model_parameters& p
 // blocks of 50), keeping memory flat in N.
 [[nodiscard]] bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept;
 
+// The precision target's quantity (sweep_spec::target_statistic), or nullptr
+// when there is none. Throws stickslip::error for a name that is not a
+// per-realization quantity of the schema.
+[[nodiscard]] const quantity_info* target_quantity(const sweep_spec& s);
+// Whether a point with these merged statistics has met the precision target
+// (false without one).
+[[nodiscard]] bool meets_target(const sweep_spec& s, const point_statistics& p);
+
 // Accepts block results in any order; merges each point's blocks in block
 // order and records a convergence point after the blocks that
-// records_convergence_after() selects.
+// records_convergence_after() selects. With a precision target a point
+// stops at the first block after which meets_target(); later blocks of it
+// are dropped.
 class ordered_merger {
  public:
   explicit ordered_merger(const sweep_spec& s);
@@ -132,6 +168,13 @@ class ordered_merger {
   // memory with the shard's size).
   void discard_results() noexcept { discard_ = true; }
   [[nodiscard]] bool complete() const noexcept;
+  // Whether a point needs no more blocks: all merged, or (--target-ci) its
+  // stop rule met. Safe to call from any thread without the caller's lock
+  // (schedulers skip the units of finished points).
+  [[nodiscard]] bool point_finished(std::size_t point) const noexcept {
+    return finished_[point].load(std::memory_order_relaxed) != 0;
+  }
+  // Units merged, plus the units a stopped point no longer needs.
   [[nodiscard]] std::uint64_t merged_units() const noexcept { return merged_; }
   [[nodiscard]] std::vector<point_statistics>& points() noexcept { return points_; }
   [[nodiscard]] std::vector<std::vector<realization_record>>& records() noexcept { return records_; }
@@ -141,6 +184,7 @@ class ordered_merger {
   std::vector<point_statistics> points_;
   std::vector<std::vector<realization_record>> records_;
   std::vector<std::uint64_t> next_block_;
+  std::vector<std::atomic<unsigned char>> finished_;
   std::map<work_unit, block_result> pending_;
   std::uint64_t merged_ = 0;
   bool discard_ = false;
@@ -215,7 +259,7 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
 template <class Observer>
 event_counts simulate_realization(const sweep_spec& s, const model_parameters& p,
                                   std::uint64_t realization, Observer& obs) {
-  const auto key = point_key(p);
+  const auto key = stream_key(s, p);
   const auto ic = draw_initial_conditions(s.initial, s.seed, key, realization);
   poisson_switches sw(p.switch_rate, s.seed, key, realization);
   return simulate(p, ic, sw, obs, s.max_events);

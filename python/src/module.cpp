@@ -22,6 +22,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/precision/peak_sweep.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/trajectory.hpp"
@@ -108,8 +109,10 @@ int belt_start_from(const std::string& text, const model_parameters& p) {
 py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
-                   std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events) {
+                   std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
+                   bool common_random_numbers) {
   replay_request r;
+  r.common_random_numbers = common_random_numbers;
   r.parameters = parameters_from(model);
   r.seed = seed;
   r.realization = realization;
@@ -292,10 +295,19 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
                   std::size_t bins, bool records, const std::string& engine, std::int64_t max_events,
                   unsigned threads, const std::string& output, bool resume, bool keep_journal,
                   double checkpoint_interval, const std::string& netcdf_path, const std::string& command_line,
-                  const py::object& progress, const std::optional<std::string>& belt_start) {
-  const sweep_spec spec =
+                  const py::object& progress, const std::optional<std::string>& belt_start,
+                  bool common_random_numbers, const std::string& target_ci,
+                  std::uint64_t min_realizations) {
+  sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
+  // Issue 13: common random numbers, adaptive sampling (realizations is then the cap).
+  spec.common_random_numbers = common_random_numbers;
+  if (!target_ci.empty()) {
+    io::parse_target_ci("target_ci", target_ci, spec);
+    spec.min_realizations = min_realizations;
+  }
+  validate(spec);
   if (!(checkpoint_interval >= 0) || checkpoint_interval > 86400)
     throw invalid_parameter("checkpoint_interval", checkpoint_interval, "0 .. 86400 seconds");
   io::run_metadata meta = io::make_metadata(0, nullptr, io::to_toml(spec));
@@ -352,6 +364,56 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
     io::write_netcdf(*outcome.results, meta, netcdf_path);
 }
 
+// stickslip.peak(): the CLI's `peak` (precision/peak_sweep.hpp), the same
+// numbers for the same arguments. The GIL is released while it runs.
+py::dict peak_py(const py::dict& model, const std::string& over, const std::string& statistic,
+                 double lo, double hi, double target, const std::string& method,
+                 std::uint64_t seed, unsigned threads, std::uint64_t initial,
+                 std::uint64_t budget, std::int64_t max_events) {
+  if (method != "common" && method != "independent")
+    throw invalid_value("method", method, "common or independent");
+  precision::sweep_peak_request q;
+  q.spec.base = parameters_from(model);
+  q.spec.seed = seed;
+  q.spec.max_events = max_events;
+  q.over = canonical_symbol(over);
+  q.statistic = &precision::peak_statistic("statistic", statistic);
+  q.options.lo = lo;
+  q.options.hi = hi;
+  q.options.log_scan = lo > 0 && hi / lo >= 4;
+  q.options.target_halfwidth = target;
+  q.options.initial_realizations = initial;
+  q.options.max_total_realizations = budget;
+  q.common_random_numbers = method == "common";
+  q.threads = threads;
+  precision::peak_result r;
+  const auto start = std::chrono::steady_clock::now();
+  {
+    py::gil_scoped_release release;
+    r = precision::find_peak_by_sweeps(q);
+  }
+  py::dict d;
+  d["statistic"] = q.statistic->summary_name;
+  d["method"] = method;
+  d["over"] = q.over;
+  d["range"] = py::make_tuple(lo, hi);
+  d["target_halfwidth"] = target;
+  d["target_met"] = r.target_met;
+  d["argmax"] = r.argmax;
+  d["argmax_ci95"] = py::make_tuple(r.argmax_lo, r.argmax_hi);
+  d["argmax_sampling_halfwidth"] = r.sampling_halfwidth;
+  d["argmax_model_bias"] = r.model_bias;
+  d["max"] = r.max;
+  d["max_ci95"] = py::make_tuple(r.max_lo, r.max_hi);
+  d["realizations"] = r.realizations;
+  d["stages"] = r.stages;
+  d["window"] = py::make_tuple(r.window_lo, r.window_hi);
+  d["seed"] = seed;
+  d["elapsed_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_stickslip, m) {
@@ -370,14 +432,20 @@ PYBIND11_MODULE(_stickslip, m) {
   });
   m.def("replay", &replay_py, py::arg("parameters"), py::arg("seed"), py::arg("realization"),
         py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"), py::arg("switch_times"),
-        py::arg("switch_levels"), py::arg("max_events"));
+        py::arg("switch_levels"), py::arg("max_events"), py::arg("common_random_numbers") = false);
   m.def("run_sweep", &run_sweep_py, py::arg("base"), py::arg("axes"), py::arg("realizations"),
         py::arg("seed"), py::arg("block_size"), py::arg("bins"), py::arg("records"),
         py::arg("engine"), py::arg("max_events"), py::arg("threads"), py::arg("output"),
         py::arg("resume"), py::arg("keep_journal"), py::arg("checkpoint_interval"),
         py::arg("netcdf_path"),
-        py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none());
+        py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
+        py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
+        py::arg("min_realizations") = 1000);
   m.def("sample_trajectory", &sample_trajectory_py, py::arg("segments"), py::arg("dt"));
+  m.def("peak", &peak_py, py::arg("model"), py::arg("over"), py::arg("statistic"), py::arg("lo"),
+        py::arg("hi"), py::arg("target_halfwidth"), py::arg("method"), py::arg("seed"),
+        py::arg("threads"), py::arg("initial_realizations"), py::arg("max_realizations"),
+        py::arg("max_events"));
   m.def("resolve_parameters", [](const py::dict& model) { return model_dict(parameters_from(model)); },
         py::arg("model"));
   m.attr("default_max_events") = stickslip::default_max_events;

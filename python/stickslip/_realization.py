@@ -71,7 +71,7 @@ class Realization:
 
 def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, switch_times=None,
              switch_levels=None, belt_levels=None, belt_rates=None, belt_generator=None,
-             max_events=None, **model):
+             max_events=None, common_random_numbers=False, **model):
     """One realization of the stick-slip oscillator, exactly as
     `stickslip simulate` computes it: realization `realization` of the sweep
     point with these parameters and `seed`, unless x0, xdot0, belt_start or
@@ -91,6 +91,8 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
         goes to, as the lines 't level' of --switch-times-file; needed for
         more than two levels (default: two levels alternate).
     max_events: bound on the events of the realization (default 1e8).
+    common_random_numbers: replay realization `realization` of a sweep run
+        with common_random_numbers=True (the streams every point shares).
 
     Returns a Realization. Raises stickslip.Error for bad input.
     """
@@ -105,7 +107,8 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
                             None if x0 is None else float(x0),
                             None if xdot0 is None else float(xdot0),
                             belt_start_text(belt_start), times, levels,
-                            _stickslip.default_max_events if max_events is None else int(max_events))
+                            _stickslip.default_max_events if max_events is None else int(max_events),
+                            common_random_numbers=bool(common_random_numbers))
     return Realization(seed, realization, raw)
 
 

@@ -49,7 +49,8 @@ def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
 def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50, bins=50,
           records=False, engine="fast", max_events=None, output=None, resume=False,
           keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
-          belt_generator=None, belt_start=None, **model):
+          belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
+          min_realizations=1000, **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
 
@@ -76,6 +77,12 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     keep_journal: with output, keep the journal after the outputs are written.
     checkpoint_interval: with output, seconds between journal segments
         (default 2; 0 = after every unit).
+    common_random_numbers: realization r of every grid point uses the same
+        random numbers (smooth curves, low-variance differences; points are
+        then correlated; docs/precision.md).
+    target_ci: "STAT:HALFWIDTH" (e.g. "R:0.002"): each point runs until the
+        95% half-width of the mean of STAT meets it; `realizations` is then
+        the cap per point, min_realizations (default 1000) the minimum.
 
     Returns an xarray.Dataset with the variables, coordinates and attributes of
     the results.nc the CLI writes for the same arguments. Ctrl-C stops within
@@ -99,7 +106,10 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
                                  bool(records), str(engine), max_events, int(threads),
                                  "" if output is None else builtins.str(output), bool(resume),
                                  bool(keep_journal), float(checkpoint_interval), nc, command, update,
-                                 belt_start_text(belt_start))
+                                 belt_start_text(belt_start),
+                                 common_random_numbers=bool(common_random_numbers),
+                                 target_ci="" if target_ci is None else builtins.str(target_ci),
+                                 min_realizations=int(min_realizations))
             return open(output if output is not None else nc)
     finally:
         if bar is not None:

@@ -261,7 +261,7 @@ class lane_engine {
       : s_(s), p_(p), fp_(family), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), ak_(a_), w_(p.natural_frequency()), V_(p.belt_speed),
-        ta_(p.window), key_(point_key(p)), max_steps_(static_cast<double>(s.max_events)) {
+        ta_(p.window), key_(stream_key(s, p)), max_steps_(static_cast<double>(s.max_events)) {
     if constexpr (Family) {
       const oscillator_model& m = fp_->model;
       a_ = m.static_band_half_width();
@@ -822,7 +822,10 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;
-  if (!p.is_paper_model()) fp.emplace(p);
+  if (!p.is_paper_model()) {
+    fp.emplace(p);
+    fp->key = stream_key(s, p);  // common random numbers: one key for every point
+  }
   statistics_collector collect(s, p, outs, point, first_block, fp.has_value());
   run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   return outs;
@@ -833,7 +836,10 @@ std::vector<realization_trace> TraceRealizationsLanes(const sweep_spec& s, std::
   const auto p = point_parameters(s, point);
   std::vector<realization_trace> out(last > first ? last - first : 0);
   std::optional<family_point> fp;
-  if (!p.is_paper_model()) fp.emplace(p);
+  if (!p.is_paper_model()) {
+    fp.emplace(p);
+    fp->key = stream_key(s, p);
+  }
   trace_collector collect(s, p, first, out, fp ? &*fp : nullptr);
   run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   return out;

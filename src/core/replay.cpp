@@ -23,7 +23,8 @@ struct trace_observer : observer_base {
 // The model family (or given switch levels): simulate_model with the start
 // drawn as the sweep draws it (model_realization.hpp), then the fixed inputs.
 void replay_family(const replay_request& r, const model_parameters& p, realization_trace& out) {
-  const family_point fp(p);
+  family_point fp(p);
+  if (r.common_random_numbers) fp.key = common_stream_key;  // as the sweep draws it
   const std::size_t levels = fp.model.belt.level_count();
   model_initial_state start = draw_model_initial_state(fp, r.initial, r.seed, r.realization);
   if (r.x0) start.position = *r.x0;
@@ -67,6 +68,7 @@ realization_trace replay(const replay_request& r) {
   spec.seed = r.seed;
   spec.initial = r.initial;
   spec.max_events = r.max_events;
+  spec.common_random_numbers = r.common_random_numbers;
   validate(spec);
   const std::size_t levels = spec.base.levels().size();
   if (r.belt_start) validate_belt_start(*r.belt_start, levels, false);
@@ -87,7 +89,7 @@ realization_trace replay(const replay_request& r) {
   // The parameters as asked (lambda may be 0 with given switch times): the
   // same key, hence the same x0 and x'0, as before this replay had a family.
   const model_parameters p = paper_form(r.parameters);
-  const auto key = point_key(p);
+  const auto key = stream_key(spec, p);  // point_key(p), or the common key
   auto& ic = out.initial;
   ic = draw_initial_conditions(r.initial, r.seed, key, r.realization);
   if (r.x0) ic.position = *r.x0;

@@ -119,6 +119,12 @@ void put(writer& w, const point_statistics& s) {
     if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
   for (const auto& c : counters()) w.u64(c.value(s));
+  for (const auto& q : quantities())
+    if (q.score) {
+      w.u64((s.*q.score).count());
+      for (int i = 0; i < 5; ++i) w.f64((s.*q.score).sum(i));
+    }
+  w.f64(s.expected_switches);
   w.u64(s.convergence.size());
   for (const auto& c : s.convergence) {
     w.u64(c.realizations);
@@ -135,6 +141,14 @@ point_statistics get_statistics(reader& r) {
     if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
+  for (const auto& q : quantities())
+    if (q.score) {
+      const auto count = r.u64("score moments");
+      double sums[5];
+      for (double& x : sums) x = r.f64("score moments");
+      s.*q.score = score_moments::from_raw(count, sums);
+    }
+  s.expected_switches = r.f64("expected switches");
   const auto n = r.count("convergence trace", 40);
   s.convergence.resize(n);
   for (auto& c : s.convergence) {
@@ -238,6 +252,10 @@ bytes serialize(const sweep_spec& s) {
   w.i64(s.max_events);
   w.u8(s.keep_records ? 1 : 0);
   w.u8(static_cast<std::uint8_t>(s.engine));
+  w.u8(s.common_random_numbers ? 1 : 0);
+  w.str(s.target_statistic);
+  w.f64(s.target_halfwidth);
+  w.u64(s.min_realizations);
   return w.take();
 }
 
@@ -271,6 +289,10 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   if (engine > static_cast<std::uint8_t>(sweep_engine::reference))
     throw corrupt(fmt::format("unknown engine {}", engine));
   s.engine = static_cast<sweep_engine>(engine);
+  s.common_random_numbers = r.boolean("common_random_numbers");
+  s.target_statistic = r.str("target statistic");
+  s.target_halfwidth = r.f64("target half-width");
+  s.min_realizations = r.u64("min realizations");
   r.finish("sweep spec");
   return s;
 }
@@ -413,6 +435,14 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
     return fmt::format("max events: {} vs {}", a.max_events, b.max_events);
   if (a.keep_records != b.keep_records)
     return fmt::format("keep records: {} vs {}", a.keep_records, b.keep_records);
+  if (a.common_random_numbers != b.common_random_numbers)
+    return fmt::format("common random numbers: {} vs {}", a.common_random_numbers,
+                       b.common_random_numbers);
+  if (a.target_statistic != b.target_statistic || a.target_halfwidth != b.target_halfwidth ||
+      a.min_realizations != b.min_realizations)
+    return fmt::format("target CI: {}:{} (min {}) vs {}:{} (min {})", a.target_statistic,
+                       a.target_halfwidth, a.min_realizations, b.target_statistic,
+                       b.target_halfwidth, b.min_realizations);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

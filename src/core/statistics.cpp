@@ -7,7 +7,8 @@
 namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
-point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h) {
+point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h)
+    : expected_switches(p.switch_rate * p.window) {
   for (const auto& q : quantities())
     if (q.density) this->*q.density = histogram(0.0, histogram_upper(q.range, p, h), h.bins);
 }
@@ -29,6 +30,8 @@ void add_quantity(point_statistics& s, const realization_record& r,
     }
     const double x = q.value(r, window);
     moments.add(x);
+    if constexpr (q.score != nullptr)
+      (s.*q.score).add(x, static_cast<double>(r.events.belt_switches) - s.expected_switches);
     if constexpr (q.density != nullptr) (s.*q.density).add(x);
   } else {
     const auto& xs = q.sampled == sampling::per_stick ? sticks : slips;
@@ -58,6 +61,7 @@ void point_statistics::add(const realization_record& r, const std::vector<double
 point_statistics& point_statistics::operator+=(const point_statistics& o) {
   for (const auto& q : quantities()) {
     this->*q.moments += o.*q.moments;
+    if (q.score) this->*q.score += o.*q.score;
     if (q.density) this->*q.density += o.*q.density;
   }
   realizations += o.realizations;

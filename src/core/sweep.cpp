@@ -115,6 +115,14 @@ void validate(const sweep_spec& s) {
                                 " axis: mu sets mu_s and mu_k both");
   if (s.realizations < 1)
     throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
+  if (target_quantity(s)) {
+    if (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth))
+      throw invalid_parameter("target CI half-width", s.target_halfwidth, "finite and > 0");
+    if (s.min_realizations < 2 || s.min_realizations > s.realizations)
+      throw invalid_value("min_realizations", std::to_string(s.min_realizations),
+                          "2 .. the maximum realizations per point (" +
+                              std::to_string(s.realizations) + ")");
+  }
   if (s.realizations > max_realizations)
     throw invalid_value("realizations", std::to_string(s.realizations),
                         "1 .. 2^40 = " + std::to_string(max_realizations));
@@ -250,7 +258,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
-  const auto key = point_key(p);
+  const auto key = stream_key(s, p);
   realization_observer obs(p.window);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
@@ -269,7 +277,8 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
 // belt (model/model_realization.hpp), into the same observer and statistics.
 block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
-  const family_point fp(p);
+  family_point fp(p);
+  fp.key = stream_key(s, p);  // common random numbers: one key for every point
   block_result out;
   out.stats = point_statistics(p, s.histograms);
   const std::uint64_t first = u.block * s.block_size;
@@ -289,8 +298,27 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   return out;
 }
 
+const quantity_info* target_quantity(const sweep_spec& s) {
+  if (s.target_statistic.empty()) return nullptr;
+  std::string allowed;
+  for (const auto& q : quantities()) {
+    if (q.sampled != sampling::per_realization) continue;
+    if (s.target_statistic == q.summary_name || s.target_statistic == q.name) return &q;
+    allowed += (allowed.empty() ? "" : ", ") + std::string(q.summary_name);
+  }
+  throw invalid_value("target CI statistic", s.target_statistic,
+                      "a statistic with one value per realization: " + allowed);
+}
+
+bool meets_target(const sweep_spec& s, const point_statistics& p) {
+  const quantity_info* q = target_quantity(s);
+  if (!q || p.realizations < s.min_realizations) return false;
+  return (p.*q->moments).ci95_half_width() <= s.target_halfwidth;
+}
+
 ordered_merger::ordered_merger(const sweep_spec& s)
-    : spec_(&s), records_(point_count(s)), next_block_(point_count(s), 0) {
+    : spec_(&s), records_(point_count(s)), next_block_(point_count(s), 0),
+      finished_(point_count(s)) {
   points_.reserve(point_count(s));
   for (std::size_t i = 0; i < point_count(s); ++i)
     points_.emplace_back(point_parameters(s, i), s.histograms);
@@ -308,6 +336,7 @@ void ordered_merger::add(const work_unit& u, block_result r) {
     ++merged_;
     return;
   }
+  if (point_finished(u.point)) return;  // a block after the point met its target
   pending_.emplace(u, std::move(r));
   const auto nb = blocks_per_point(*spec_);
   auto it = pending_.find(work_unit{u.point, next_block_[u.point]});
@@ -315,13 +344,25 @@ void ordered_merger::add(const work_unit& u, block_result r) {
     auto& dst = points_[u.point];
     dst += it->second.stats;
     const std::uint64_t merged_blocks = next_block_[u.point] + 1;
-    if (records_convergence_after(merged_blocks, nb)) dst.record_convergence();
+    const bool stop = merged_blocks < nb && meets_target(*spec_, dst);
+    if (records_convergence_after(merged_blocks, nb) || stop) dst.record_convergence();
     auto& rec = records_[u.point];
     rec.insert(rec.end(), std::make_move_iterator(it->second.records.begin()),
                std::make_move_iterator(it->second.records.end()));
     pending_.erase(it);
     ++merged_;
-    if (++next_block_[u.point] >= nb) break;
+    if (++next_block_[u.point] >= nb) {
+      finished_[u.point].store(1, std::memory_order_relaxed);
+      break;
+    }
+    if (stop) {
+      // The blocks this point no longer needs count as done; any of them
+      // computed ahead (pending now or arriving later) are dropped.
+      merged_ += nb - next_block_[u.point];
+      finished_[u.point].store(1, std::memory_order_relaxed);
+      std::erase_if(pending_, [&](const auto& kv) { return kv.first.point == u.point; });
+      break;
+    }
     it = pending_.find(work_unit{u.point, next_block_[u.point]});
   }
 }
@@ -386,6 +427,8 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
   auto scheduled = [&](std::uint64_t i) {
     return work_unit{order[static_cast<std::size_t>(i / nb)], i % nb};
   };
+  // Skipping the units of finished points (a precision target met) saves
+  // work only; the merger drops whatever still arrives for them.
   const std::uint64_t batch = units_per_batch(s);
   std::atomic<std::uint64_t> next{0};
   std::mutex mu;
@@ -400,6 +443,7 @@ void run_units(const sweep_spec& s, unsigned threads, ordered_merger& merger,
       units.clear();
       for (std::uint64_t i = i0; i < i1; ++i) {
         const auto u = scheduled(i);
+        if (merger.point_finished(u.point)) continue;
         if (!hooks.wanted || hooks.wanted(u)) units.push_back(u);
       }
       try {

@@ -39,6 +39,10 @@ io::journal_contents load_journal(const sweep_spec& spec, const run_plan& plan) 
 run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                           const io::run_metadata& fresh, runner& r) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (plan.slice && !spec.target_statistic.empty())
+    throw invalid_value("--shard", plan.slice->tag(),
+                        "no shards with a precision target (--target-ci): the stop rule "
+                        "needs every block of a point in one run");
   run_outcome out;
   io::journal_contents loaded = load_journal(spec, plan);
   out.metadata = loaded.metadata ? *loaded.metadata : fresh;

@@ -21,12 +21,23 @@ mlo, mhi = a["max_ci95"]
 assert mlo <= a["max"] <= mhi and 0 < a["max"] < 1, a
 assert isinstance(a["realizations"], int) and a["realizations"] > 0, a
 assert a["statistic"] == "R" and a["over"] == "lambda", a
+assert a["method"] == "common", a  # the default: common random numbers, batch-means interval
 # Any thread count: the same numbers, bit for bit (only the timings differ).
 for key in a:
     if key not in ("elapsed_seconds", "cpu_seconds"):
         assert a[key] == b[key], (key, a[key], b[key])
 PY
 pass
+
+# The earlier method (independent streams per point) is still there.
+run_ok "${args[@]}" --method independent --threads 2 && cp "$WORK/stdout" ind.json
+"$PY" - ind.json <<'PY' || fail "peak --method independent"
+import json, sys
+a = json.load(open(sys.argv[1]))
+assert a["method"] == "independent" and a["target_met"] is True, a
+lo, hi = a["argmax_ci95"]
+assert lo <= a["argmax"] <= hi and (hi - lo) / 2 <= 0.3 * (1 + 1e-12), a
+PY
 
 # Bad input: exit 2, the flag, the value, the allowed values; nothing on stdout.
 expect_peak_error() {

@@ -189,3 +189,32 @@ def test_an_exception_in_the_progress_callback_stops_the_sweep_cleanly(tmp_path)
     assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
     assert "raised: callback failed" in p.stdout
     assert (out / ".journal").exists()  # the finished units are journaled for a resume
+
+
+def test_common_random_numbers_and_target_ci_equal_the_cli(cli, tmp_path):
+    """Issue 13's flags give the CLI's results.nc, bit for bit."""
+    out = tmp_path / "cli"
+    cli("sweep", *CLI_GRID, "--common-random-numbers", "--target-ci", "R:0.004",
+        "--max-realizations", "20000", "--min-realizations", "500", "--threads", "2",
+        "-o", str(out))
+    ds = stickslip.sweep(**GRID, realizations=20000, common_random_numbers=True,
+                         target_ci="R:0.004", min_realizations=500, threads=2)
+    assert_same_dataset(ds, xr.open_dataset(out / "results.nc"))
+    assert int(ds.attrs["common_random_numbers"]) == 1
+    hw = (ds.stick_fraction_ci95_high - ds.stick_fraction_ci95_low) / 2
+    assert float(hw.max()) <= 0.004
+    assert len(set(ds.realizations.values.ravel().tolist())) > 1
+
+
+def test_simulate_replays_a_common_random_number_realization():
+    ds = stickslip.sweep(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=50, seed=3,
+                         common_random_numbers=True)
+    assert int(ds.attrs["common_random_numbers"]) == 1
+    one = stickslip.simulate(lam=3.8, mu=5.0, k=40.0, seed=3, realization=0,
+                             common_random_numbers=True)
+    other = stickslip.simulate(lam=1.0, mu=5.0, k=40.0, seed=3, realization=0,
+                               common_random_numbers=True)
+    own = stickslip.simulate(lam=3.8, mu=5.0, k=40.0, seed=3, realization=0)
+    # Common random numbers: every point starts from the same state.
+    assert (one.x0, one.xdot0, one.belt_start) == (other.x0, other.xdot0, other.belt_start)
+    assert own.x0 != one.x0

@@ -15,6 +15,11 @@ inline bool same_bits(const mean_variance& a, const mean_variance& b) {
   return a.count() == b.count() && same_bits(a.mean(), b.mean()) &&
          same_bits(a.sum_sq_dev(), b.sum_sq_dev());
 }
+inline bool same_bits(const score_moments& a, const score_moments& b) {
+  bool ok = a.count() == b.count();
+  for (int i = 0; i < 5; ++i) ok = ok && same_bits(a.sum(i), b.sum(i));
+  return ok;
+}
 inline bool same_bits(const event_counts& a, const event_counts& b) {
   return a.belt_switches == b.belt_switches && a.stick_onsets == b.stick_onsets &&
          a.stick_breaks == b.stick_breaks && a.slip_reversals == b.slip_reversals;
@@ -26,7 +31,9 @@ inline bool same_bits(const point_statistics& a, const point_statistics& b) {
   for (const auto& q : quantities()) {
     ok = ok && same_bits(a.*q.moments, b.*q.moments);
     if (q.density) ok = ok && a.*q.density == b.*q.density;
+    if (q.score) ok = ok && same_bits(a.*q.score, b.*q.score);
   }
+  ok = ok && same_bits(a.expected_switches, b.expected_switches);
   for (const auto& c : counters()) ok = ok && c.value(a) == c.value(b);
   for (std::size_t i = 0; ok && i < a.convergence.size(); ++i) {
     const auto &x = a.convergence[i], &y = b.convergence[i];

@@ -225,6 +225,27 @@ TEST(ToToml, RoundTripsTheEngine) {
   EXPECT_THROW((void)parse_sweep_toml("[sweep]\nengine = 1\n", "e.toml"), stickslip::error);
 }
 
+// Issue 13's keys: written only when set (configurations without them read
+// and print as before), and read back exactly.
+TEST(ToToml, RoundTripsCommonRandomNumbersAndTheTargetCi) {
+  sweep_spec s;
+  EXPECT_THAT(to_toml(s), Not(HasSubstr("common_random_numbers")));
+  EXPECT_THAT(to_toml(s), Not(HasSubstr("target_ci")));
+  s.common_random_numbers = true;
+  s.target_statistic = std::string(1, 'R');
+  s.target_halfwidth = 0.0025;
+  s.min_realizations = 300;
+  s.realizations = 100000;
+  const auto text = to_toml(s);
+  EXPECT_THAT(text, HasSubstr("common_random_numbers = true"));
+  EXPECT_THAT(text, HasSubstr("target_ci = \"R:0.0025\""));
+  EXPECT_EQ(parse_sweep_toml(text, "crn.toml"), s);
+  EXPECT_THROW((void)parse_sweep_toml("[sweep]\ntarget_ci = \"D:0.1\"\n", "t.toml"), stickslip::error);
+  EXPECT_THROW((void)parse_sweep_toml("[sweep]\ntarget_ci = 0.1\n", "t.toml"), stickslip::error);
+  EXPECT_THROW((void)parse_sweep_toml("[sweep]\ncommon_random_numbers = 1\n", "t.toml"),
+               stickslip::error);
+}
+
 TEST(ToToml, IsReadableAndComplete) {
   const auto text = to_toml(parse_sweep_toml(paper_toml, "p.toml"));
   for (const char* key : {"[model]", "[initial]", "[grid]", "[sweep]", "[histograms]",

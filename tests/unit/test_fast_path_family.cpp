@@ -261,6 +261,24 @@ TEST(FastPathFamily, SweepStatisticsEqualTheReference) {
   expect_engines_agree(s, 3);
 }
 
+// With common random numbers every point draws from one key: the lanes must
+// use it for the family's start level and switch waits too.
+TEST(FastPathFamily, CommonRandomNumbersEqualTheReference) {
+  sweep_spec s;
+  s.base.stiffness = 40.0;
+  s.base.window = 20.0;
+  s.base.static_friction = 8.0;
+  s.base.belt_levels = {1.5, -0.5};
+  s.base.belt_rates = {2.0, 1.0};
+  s.realizations = 60;
+  s.block_size = 16;
+  s.seed = 9;
+  s.keep_records = true;
+  s.common_random_numbers = true;
+  s.axes = {{"mu_k", {0.5, 4.0, 8.0}}};
+  expect_engines_agree(s, 2);
+}
+
 TEST(FastPathFamily, OtherModelsStayOnSimulateModel) {
   model_parameters p;
   p.static_friction = 6.0;

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "stickslip/error.hpp"
+#include "stickslip/precision/common_peak_finder.hpp"
 #include "stickslip/precision/peak_finder.hpp"
 
 namespace sp = stickslip::precision;
@@ -48,6 +49,32 @@ sp::evaluator noisy(const curve& c, std::uint64_t problem_seed) {
       out.push_back({x, mean, se_hat});
     }
     return out;
+  };
+}
+
+// The noise of common random numbers: within a group of n realizations the
+// points share their random numbers, so the group's error is a random curve,
+// not independent per point. Modelled as a common level Z0 plus a Brownian
+// motion in x (the variance of the difference of two points grows linearly
+// with their distance, as measured for R(lambda): docs/precision.md) plus a
+// small independent part:
+//   e_g(x) = sigma(x)/sqrt(n) (Z0 + kappa B(x/x0) + 0.1 Z_x).
+// Groups and stages are independent.
+sp::group_evaluator crn_noisy(const curve& c, double kappa, std::uint64_t problem_seed) {
+  return [c, kappa, problem_seed](const std::vector<double>& xs, std::uint64_t n,
+                                  std::size_t groups, std::uint64_t stage) {
+    std::mt19937_64 g(sp::stage_seed(problem_seed, stage));
+    std::vector<std::vector<double>> means(groups);
+    for (auto& row : means) {
+      const double level = normal(g);
+      double walk = 0.0;
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        if (i > 0) walk += std::sqrt((xs[i] - xs[i - 1]) / c.argmax) * normal(g);
+        const double se = c.sigma(xs[i]) / std::sqrt(static_cast<double>(n));
+        row.push_back(c.mean(xs[i]) + se * (level + kappa * walk + 0.1 * normal(g)));
+      }
+    }
+    return means;
   };
 }
 
@@ -216,4 +243,55 @@ TEST(PeakFinder, StageSeedsDifferFromEachOtherAndFromTheSeed) {
   EXPECT_NE(sp::stage_seed(1, 1), sp::stage_seed(2, 0));
   EXPECT_NE(sp::stage_seed(1, 0), 1u);
   EXPECT_EQ(sp::stage_seed(7, 3), sp::stage_seed(7, 3));
+}
+
+TEST(StudentT, QuantilesMatchTables) {
+  // Two-sided 95 %: t_{0.975} for 4, 9, 19, 49 degrees of freedom.
+  EXPECT_NEAR(sp::student_t95(4), 2.7764, 8e-3);
+  EXPECT_NEAR(sp::student_t95(9), 2.2622, 5e-4);
+  EXPECT_NEAR(sp::student_t95(19), 2.0930, 2e-4);
+  EXPECT_NEAR(sp::student_t95(49), 2.0096, 1e-4);
+}
+
+// find_peak_common (common random numbers, batch-means intervals) on the
+// same 240 problems as find_peak, with the common-random-number noise model.
+TEST(CommonPeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
+  int covered = 0, met = 0, total = 0, max_covered = 0;
+  double work = 0;
+  for (int i = 0; i < 240; ++i) {
+    const double x0 = 0.5 * std::pow(16.0, (i % 40) / 39.0);
+    curve c = i % 3 == 0   ? gamma_shape(x0, 1.5 + (i % 7) * 0.5, 0.4, 0.2)
+              : i % 3 == 1 ? lognormal_shape(x0, 0.6 + (i % 5) * 0.2, 0.3, 0.25)
+                           : skewed_quartic(x0, 0.5, 0.05);
+    sp::common_peak_options o;
+    o.base.lo = x0 / (3.0 + (i % 4));
+    o.base.hi = x0 * (4.0 + (i % 5));
+    o.base.log_scan = true;
+    o.base.target_halfwidth = x0 * (i % 2 ? 0.01 : 0.03);
+    o.base.initial_realizations = 400;
+    o.base.max_total_realizations = std::uint64_t{1} << 40;
+    o.base.max_stages = 60;
+    const double kappa = 0.3 + 0.4 * (i % 5);  // 0.3 .. 1.9
+    const auto r = sp::find_peak_common(crn_noisy(c, kappa, 5000 + i), o);
+    ++total;
+    met += r.target_met;
+    work += std::log(static_cast<double>(r.realizations));
+    if (r.argmax_lo <= c.argmax && c.argmax <= r.argmax_hi) {
+      ++covered;
+    } else {
+      std::printf("not covered: %s x0 %g kappa %g [%g, %g] bias %g\n", c.name, x0, kappa,
+                  r.argmax_lo, r.argmax_hi, r.model_bias);
+    }
+    if (r.max_lo <= c.mean(c.argmax) && c.mean(c.argmax) <= r.max_hi) ++max_covered;
+    if (r.target_met) {
+      EXPECT_LE(r.halfwidth(), o.base.target_halfwidth * (1 + 1e-12));
+    }
+  }
+  const double coverage = static_cast<double>(covered) / total;
+  std::printf("common: argmax coverage %d/%d = %.3f, max coverage %d/%d, target met %d/%d, mean ln "
+              "realizations %.3f\n",
+              covered, total, coverage, max_covered, total, met, total, work / total);
+  EXPECT_GE(coverage, 0.93);
+  EXPECT_EQ(met, total);
+  EXPECT_GE(static_cast<double>(max_covered) / total, 0.93);
 }

@@ -40,6 +40,9 @@ enum class grid_domain : unsigned char { positive, non_negative, any };
 
 // "fast" or "reference" (the engine never changes results, only speed).
 [[nodiscard]] sweep_engine parse_engine(std::string_view key, std::string_view text);
+// "STAT:HALFWIDTH" (e.g. "R:0.002") into s.target_statistic and
+// s.target_halfwidth; throws naming `key` when malformed or unknown.
+void parse_target_ci(std::string_view key, std::string_view text, sweep_spec& s);
 
 // Reads a sweep spec from TOML text (see docs/config.md for the keys). Keys
 // not given keep the defaults of sweep_spec. Does not call validate(): flags

@@ -320,4 +320,24 @@ sweep_engine parse_engine(std::string_view key, std::string_view text) {
   throw invalid_value(std::string(key), std::string(text), "fast or reference");
 }
 
+void parse_target_ci(std::string_view key, std::string_view text, sweep_spec& s) {
+  const auto colon = text.rfind(':');
+  if (colon == std::string_view::npos || colon == 0)
+    throw invalid_value(std::string(key), std::string(text),
+                        "STAT:HALFWIDTH, e.g. R:0.002 (a statistic and the 95% half-width of "
+                        "its mean)");
+  sweep_spec t;
+  t.target_statistic = std::string(text.substr(0, colon));
+  try {
+    (void)target_quantity(t);  // throws for an unknown statistic
+  } catch (const error& e) {
+    throw error(e.code(), fmt::format("{} {}: {}", key, text, e.what()));
+  }
+  const double h = parse_number(key, text.substr(colon + 1));
+  if (!(h > 0.0) || !std::isfinite(h))
+    throw invalid_parameter(std::string(key) + " half-width", h, "finite and > 0");
+  s.target_statistic = t.target_statistic;
+  s.target_halfwidth = h;
+}
+
 }  // namespace stickslip::io

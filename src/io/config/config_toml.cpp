@@ -299,10 +299,17 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
     else if (key == "engine") {
       if (!n.is_string()) cx.wrong(dotted, n, "a string: \"fast\" or \"reference\"");
       s.engine = parse_engine(dotted, n.as_string()->get());
+    } else if (key == "common_random_numbers") {
+      s.common_random_numbers = read_bool(cx, dotted, n);
+    } else if (key == "target_ci") {
+      if (!n.is_string()) cx.wrong(dotted, n, "a string \"STAT:HALFWIDTH\", e.g. \"R:0.002\"");
+      parse_target_ci(dotted, n.as_string()->get(), s);
+    } else if (key == "min_realizations") {
+      s.min_realizations = read_u64(cx, dotted, n, 2, max_realizations);
     } else
       cx.unknown_key(dotted, k,
                      "[sweep] takes realizations, seed, block_size, max_events, keep_records, "
-                     "engine");
+                     "engine, common_random_numbers, target_ci, min_realizations");
   }
 }
 
@@ -418,6 +425,11 @@ std::string to_toml(const sweep_spec& s) {
       "keep_records = {}\nengine = \"{}\"\n",
       toml_u64(s.realizations), toml_u64(s.seed), toml_u64(s.block_size), s.max_events,
       s.keep_records, to_string(s.engine));
+  // Written only when set, so configurations without them read as before.
+  if (s.common_random_numbers) out += "common_random_numbers = true\n";
+  if (!s.target_statistic.empty())
+    out += fmt::format("target_ci = \"{}:{}\"\nmin_realizations = {}\n", s.target_statistic,
+                       toml_float(s.target_halfwidth), toml_u64(s.min_realizations));
   out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
                      toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
                      toml_float(s.histograms.slip_duration_max));

@@ -36,6 +36,51 @@ void emit_statistic(json_emitter& j, const mean_variance& mv) {
   j.end_object();
 }
 
+void emit_interval(json_emitter& j, const estimate& e) {
+  j.key("ci95");
+  j.begin_array();
+  j.value(e.value - e.ci95_half_width());
+  j.value(e.value + e.ci95_half_width());
+  j.end_array();
+}
+
+// "dmean_dlambda": the likelihood-ratio derivative of each mean over lambda,
+// "control_variate": each mean with the belt switch count as control
+// (accumulators/score_moments.hpp).
+void emit_score_estimates(json_emitter& j, const point_result& p) {
+  const auto& s = p.stats;
+  j.key("dmean_dlambda");
+  j.begin_object();
+  for (const auto& q : quantities()) {
+    if (!q.score) continue;
+    const auto d = has_poisson_switching(p.parameters)
+                       ? score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate)
+                       : estimate{};
+    j.key(q.summary_name);
+    j.begin_object();
+    j.member("value", d.value);
+    j.member("std_error", d.std_error);
+    emit_interval(j, d);
+    j.end_object();
+  }
+  j.end_object();
+  j.key("control_variate");
+  j.begin_object();
+  for (const auto& q : quantities()) {
+    if (!q.score) continue;
+    const auto c = has_poisson_switching(p.parameters) ? control_variate_mean(s.*q.score, s.*q.moments)
+                                                       : controlled_mean{};
+    j.key(q.summary_name);
+    j.begin_object();
+    j.member("mean", c.mean.value);
+    j.member("std_error", c.mean.std_error);
+    emit_interval(j, c.mean);
+    j.member("variance_reduction", c.variance_reduction);
+    j.end_object();
+  }
+  j.end_object();
+}
+
 // The point's parameters and realizations, every quantity of the schema,
 // the counters that belong to no group, the sample counts of the quantities
 // not sampled once per realization ("samples"), then each group of counters
@@ -69,6 +114,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
       if (c.group && group == c.group) j.member(c.summary_name, c.value(s));
     j.end_object();
   }
+  emit_score_estimates(j, p);
   j.end_object();
 }
 
@@ -116,6 +162,18 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("block_size", s.block_size);
   j.member("max_events", static_cast<std::int64_t>(s.max_events));
   j.member("keep_records", s.keep_records);
+  j.member("common_random_numbers", s.common_random_numbers);
+  j.key("target_ci");
+  if (s.target_statistic.empty()) {
+    j.null();
+  } else {
+    j.begin_object();
+    j.member("statistic", s.target_statistic);
+    j.member("halfwidth", s.target_halfwidth);
+    j.member("min_realizations", s.min_realizations);
+    j.member("max_realizations", s.realizations);
+    j.end_object();
+  }
   j.key("histograms");
   j.begin_object();
   j.member("bins", static_cast<std::uint64_t>(s.histograms.bins));

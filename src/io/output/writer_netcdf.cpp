@@ -215,11 +215,73 @@ void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs)
 
 void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   auto n = add_count(f, "realizations", l.grid, "realizations",
-                     "independent realizations simulated at the point");
+                     "independent realizations simulated at the point (with a precision "
+                     "target, target_ci_*, the number its stop rule chose)");
   put_grid<long long>(n, rs, [](const point_result& p) { return p.stats.realizations; });
   for (const auto& c : counters()) {
     auto v = add_count(f, c.name, l.grid, c.long_name, c.description);
     put_grid<long long>(v, rs, [&](const point_result& p) { return c.value(p.stats); });
+  }
+}
+
+// Per quantity with score moments (R, S_T/t_a, S_L/t_a): the likelihood-ratio
+// derivative of its mean over lambda and the control-variate mean with the
+// belt switch count as control (accumulators/score_moments.hpp,
+// docs/precision.md), each with its 95% CI.
+void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  for (const auto& q : quantities()) {
+    if (!q.score) continue;
+    const std::string n = q.name, sym = q.symbol;
+    const std::string units = std::string(q.units) == "1" ? "s" : std::string(q.units) == "1/s"
+                                                                  ? "1"
+                                                                  : std::string(q.units) + " s";
+    const auto deriv = [&](const point_result& p) {
+      if (!has_poisson_switching(p.parameters)) return estimate{};
+      return score_derivative(p.stats.*q.score, p.stats.*q.moments, p.parameters.switch_rate);
+    };
+    const auto cv = [&](const point_result& p) {
+      if (!has_poisson_switching(p.parameters)) return controlled_mean{};
+      return control_variate_mean(p.stats.*q.score, p.stats.*q.moments);
+    };
+    const std::string lr = "likelihood-ratio (score) estimate of d E[" + sym +
+                           "]/d lambda: mean of (X - mean X)(N/lambda - t_a), N the belt "
+                           "switches of the realization in [0, t_a]";
+    auto d = add_double(f, n + "_dmean_dlambda", l.grid, units, "slope " + sym, "d mean/d lambda: " + lr);
+    put_grid<double>(d, rs, [&](const point_result& p) { return deriv(p).value; });
+    auto dlo = add_double(f, n + "_dmean_dlambda_ci95_low", l.grid, units,
+                          "slope low " + sym,
+                          "value - 1.96 x its delta-method standard error; " + lr);
+    put_grid<double>(dlo, rs, [&](const point_result& p) {
+      return deriv(p).value - deriv(p).ci95_half_width();
+    });
+    auto dhi = add_double(f, n + "_dmean_dlambda_ci95_high", l.grid, units,
+                          "slope high " + sym,
+                          "value + 1.96 x its delta-method standard error; " + lr);
+    put_grid<double>(dhi, rs, [&](const point_result& p) {
+      return deriv(p).value + deriv(p).ci95_half_width();
+    });
+    const std::string cvd = "control-variate mean of " + sym +
+                            ": mean X - beta (mean N - lambda t_a), beta = Cov(X, N)/Var(N) "
+                            "(N the belt switches, known mean lambda t_a)";
+    auto m = add_double(f, n + "_cv_mean", l.grid, q.units, "CV mean " + sym, cvd);
+    put_grid<double>(m, rs, [&](const point_result& p) { return cv(p).mean.value; });
+    auto mlo = add_double(f, n + "_cv_ci95_low", l.grid, q.units,
+                          "CV mean low " + sym,
+                          "mean - 1.96 x the residual standard error; " + cvd);
+    put_grid<double>(mlo, rs, [&](const point_result& p) {
+      return cv(p).mean.value - cv(p).mean.ci95_half_width();
+    });
+    auto mhi = add_double(f, n + "_cv_ci95_high", l.grid, q.units,
+                          "CV mean high " + sym,
+                          "mean + 1.96 x the residual standard error; " + cvd);
+    put_grid<double>(mhi, rs, [&](const point_result& p) {
+      return cv(p).mean.value + cv(p).mean.ci95_half_width();
+    });
+    auto vr = add_double(f, n + "_cv_variance_reduction", l.grid, "1",
+                         "CV gain " + sym,
+                         "Var(X) / residual variance = 1/(1 - rho^2), rho = corr(X, N): how "
+                         "many times fewer realizations the control-variate mean needs");
+    put_grid<double>(vr, rs, [&](const point_result& p) { return cv(p).variance_reduction; });
   }
 }
 
@@ -380,6 +442,12 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   f.putAtt("block_size", nc::ncUint64, static_cast<unsigned long long>(s.block_size));
   f.putAtt("max_events", nc::ncInt64, static_cast<long long>(s.max_events));
   f.putAtt("keep_records", nc::ncInt, s.keep_records ? 1 : 0);
+  f.putAtt("common_random_numbers", nc::ncInt, s.common_random_numbers ? 1 : 0);
+  if (!s.target_statistic.empty()) {
+    f.putAtt("target_ci_statistic", s.target_statistic);
+    f.putAtt("target_ci_halfwidth", nc::ncDouble, s.target_halfwidth);
+    f.putAtt("min_realizations", nc::ncUint64, static_cast<unsigned long long>(s.min_realizations));
+  }
   f.putAtt("histogram_bins", nc::ncUint64, static_cast<unsigned long long>(s.histograms.bins));
   f.putAtt("histogram_stick_duration_max", nc::ncDouble, s.histograms.stick_duration_max);
   f.putAtt("histogram_slip_duration_max", nc::ncDouble, s.histograms.slip_duration_max);
@@ -413,6 +481,7 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_parameters(f, l, rs);
   write_statistics(f, l, rs);
   write_counts(f, l, rs);
+  write_score_estimates(f, l, rs);
   write_histograms(f, l, rs);
   write_convergence(f, l, rs);
   f.close();

@@ -1,0 +1,116 @@
+// Moments of a per-realization value X against the centred number of belt
+// switches K = N - lambda t_a of its realization, for two estimators that
+// use the Poisson switching (docs/precision.md):
+//
+//   likelihood-ratio (score) derivative: the path density of the switch
+//   times on [0, t_a] is lambda^N exp(-lambda t_a), so its score is
+//   S = d/dlambda log(...) = N / lambda - t_a = K / lambda, and
+//       d E[X] / dlambda = E[X S] = Cov(X, K) / lambda      (E[K] = 0).
+//   Estimate: D = (mean(X K) - mean(X) mean(K)) / lambda, the mean of
+//   (X_i - mean X) S_i; delta method: Var(D) ~ Var((X - mu_X) K) / (n lambda^2).
+//
+//   control variate: K has the known mean 0, so
+//       X_cv = mean(X) - beta mean(K),  beta = Cov(X, K) / Var(K),
+//   is unbiased up to O(1/n) with the residual variance
+//   Var(X) (1 - rho^2) per realization; the reduction factor is 1/(1 - rho^2).
+//
+// Accumulated as plain sums of K, K^2, X K, X K^2, X^2 K^2: merging is
+// addition (exact up to rounding; merged in block order, so reproducible),
+// and K is centred by its known mean, so the sums do not cancel. X's own
+// mean and variance come from its mean_variance.
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "stickslip/accumulators/mean_variance.hpp"
+
+namespace stickslip {
+
+class score_moments {
+ public:
+  // One realization: its value x and K = N - lambda t_a.
+  void add(double x, double k) noexcept {
+    ++n_;
+    const double xk = x * k;
+    sk_ += k;
+    skk_ += k * k;
+    sxk_ += xk;
+    sxkk_ += xk * k;
+    sxxkk_ += xk * xk;
+  }
+  score_moments& operator+=(const score_moments& o) noexcept {
+    n_ += o.n_;
+    sk_ += o.sk_;
+    skk_ += o.skk_;
+    sxk_ += o.sxk_;
+    sxkk_ += o.sxkk_;
+    sxxkk_ += o.sxxkk_;
+    return *this;
+  }
+  [[nodiscard]] std::uint64_t count() const noexcept { return n_; }
+  // The sums in a fixed order (serialization): K, K^2, X K, X K^2, X^2 K^2.
+  [[nodiscard]] double sum(int i) const noexcept {
+    const double s[5] = {sk_, skk_, sxk_, sxkk_, sxxkk_};
+    return s[i];
+  }
+  static score_moments from_raw(std::uint64_t n, const double (&s)[5]) noexcept {
+    score_moments m;
+    m.n_ = n;
+    m.sk_ = s[0];
+    m.skk_ = s[1];
+    m.sxk_ = s[2];
+    m.sxkk_ = s[3];
+    m.sxxkk_ = s[4];
+    return m;
+  }
+  friend bool operator==(const score_moments&, const score_moments&) = default;
+
+ private:
+  std::uint64_t n_ = 0;
+  double sk_ = 0.0, skk_ = 0.0, sxk_ = 0.0, sxkk_ = 0.0, sxxkk_ = 0.0;
+};
+
+// An estimate with its standard error; NaN below 3 realizations.
+struct estimate {
+  double value = NAN;
+  double std_error = NAN;
+  [[nodiscard]] double ci95_half_width() const noexcept { return z95 * std_error; }
+};
+
+// d E[X] / dlambda by the likelihood ratio (score) of the Poisson switching.
+// Preconditions: m and x hold the same realizations, rate = lambda > 0.
+[[nodiscard]] inline estimate score_derivative(const score_moments& m, const mean_variance& x,
+                                               double rate) noexcept {
+  const auto n = static_cast<double>(m.count());
+  if (m.count() < 3 || x.count() != m.count()) return {};
+  const double xm = x.mean();
+  const double k = m.sum(0) / n, kk = m.sum(1) / n, xk = m.sum(2) / n;
+  const double xkk = m.sum(3) / n, xxkk = m.sum(4) / n;
+  const double d = xk - xm * k;  // mean((X_i - mean X) K_i)
+  // Var((X - mu) K) = E[X^2 K^2] - 2 mu E[X K^2] + mu^2 E[K^2] - (E[(X - mu) K])^2
+  const double var = std::max(0.0, xxkk - 2.0 * xm * xkk + xm * xm * kk - d * d);
+  return {d / rate, std::sqrt(var / (n - 1.0)) / rate};
+}
+
+// The control-variate mean of X with control K (known mean 0) and the
+// variance reduction factor Var(X) / residual variance.
+struct controlled_mean {
+  estimate mean;
+  double variance_reduction = NAN;
+};
+[[nodiscard]] inline controlled_mean control_variate_mean(const score_moments& m,
+                                                          const mean_variance& x) noexcept {
+  const auto n = static_cast<double>(m.count());
+  if (m.count() < 3 || x.count() != m.count()) return {};
+  const double xm = x.mean();
+  const double k = m.sum(0) / n, kk = m.sum(1) / n, xk = m.sum(2) / n;
+  const double cov = (xk - xm * k) * n / (n - 1.0);  // sample Cov(X, K)
+  const double vk = (kk - k * k) * n / (n - 1.0);    // sample Var(K)
+  const double vx = x.variance();
+  if (!(vk > 0.0)) return {{xm, x.std_error()}, 1.0};
+  const double beta = cov / vk;
+  const double resid = std::max(0.0, (vx - cov * beta) * (n - 1.0) / (n - 2.0));
+  return {{xm - beta * k, std::sqrt(resid / n)}, resid > 0.0 ? vx / resid : INFINITY};
+}
+
+}  // namespace stickslip

@@ -1,0 +1,33 @@
+// The peak finders evaluated with exact sweeps: what `stickslip peak` and
+// Python's stickslip.peak() run (docs/precision.md). Each evaluation is a
+// run_sweep over one axis, the parameter `over`, with seeds hashed from
+// (spec.seed, stage[, group]), so the result is the same for any number of
+// threads. No I/O.
+#pragma once
+#include <string>
+
+#include "stickslip/precision/common_peak_finder.hpp"
+#include "stickslip/precision/peak_finder.hpp"
+#include "stickslip/statistics_schema.hpp"
+#include "stickslip/sweep.hpp"
+
+namespace stickslip::precision {
+
+struct sweep_peak_request {
+  sweep_spec spec;          // the model (base), seed and max_events; axes and realizations ignored
+  std::string over;         // the parameter symbol to maximize over
+  const quantity_info* statistic = nullptr;  // a per-realization statistic of the schema
+  peak_options options;     // range, target, budget
+  bool common_random_numbers = true;  // find_peak_common, else find_peak
+  unsigned threads = 0;     // per sweep, 0 = all cores
+};
+
+// The per-realization statistic named `name` (summary name, name or symbol);
+// throws stickslip::error naming `key` and the allowed names otherwise.
+[[nodiscard]] const quantity_info& peak_statistic(const std::string& key, const std::string& name);
+
+// Validates the request (both ends of the range valid models) and runs the
+// finder. Throws stickslip::error like find_peak.
+[[nodiscard]] peak_result find_peak_by_sweeps(const sweep_peak_request& q);
+
+}  // namespace stickslip::precision

@@ -1,0 +1,52 @@
+"""stickslip.peak(): the maximizer of a mean statistic over one parameter,
+exactly as `stickslip peak` computes it (docs/precision.md)."""
+from . import _stickslip
+from ._parameters import belt_arguments, describe, model_arguments
+
+
+def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # noqa: A002
+         method="common", seed=1, threads=0, initial_realizations=1000,
+         max_realizations=400_000_000, max_events=None, belt_levels=None, belt_rates=None,
+         belt_generator=None, **model):
+    """Locate the maximizer of the mean of `statistic` over the parameter
+    `over` to a 95 % half-width `target_halfwidth`; the interval counts both
+    the sampling error and the bias of the local model.
+
+    Model parameters (keyword arguments, numbers; not the one in `over`):
+{params}
+    statistic: "R" (default), "sticks_per_time", "slips_per_time" or
+        "first_stick_duration".
+    over: the parameter symbol to maximize over (default "lambda").
+    range: (lo, hi), required unless over="lambda" (default (0.1, 100)).
+    method: "common" (default: groups with common random numbers) or
+        "independent" (every point its own streams).
+    seed, threads, initial_realizations, max_realizations, max_events: as
+        the CLI's flags.
+
+    Returns a dict with the CLI's JSON fields: argmax, argmax_ci95, max,
+    max_ci95, realizations, stages, target_met, elapsed_seconds, ...
+    Raises stickslip.Error for bad input.
+    """
+    params = model_arguments(model)
+    if model:
+        raise TypeError(f"peak() got unexpected keyword arguments: {', '.join(model)}")
+    params = {k: float(v) for k, v in params.items()}
+    params.update(belt_arguments(belt_levels, belt_rates, belt_generator))
+    if over in params:
+        raise _stickslip.Error(f"invalid {over}: {params[over]} (allowed: not given: over={over!r} "
+                               "sweeps it over range)")
+    if range is None:
+        if over != "lambda":
+            raise _stickslip.Error("invalid range: None (allowed: (lo, hi), required unless "
+                                   "over='lambda')")
+        range = (0.1, 100.0)
+    lo, hi = (float(v) for v in range)
+    if not (lo > 0 and hi > lo):
+        raise _stickslip.Error(f"invalid range: {range!r} (allowed: (lo, hi) with 0 < lo < hi)")
+    return _stickslip.peak(params, str(over), str(statistic), lo, hi, float(target_halfwidth),
+                           str(method), int(seed), int(threads), int(initial_realizations),
+                           int(max_realizations),
+                           _stickslip.default_max_events if max_events is None else int(max_events))
+
+
+peak.__doc__ = peak.__doc__.format(params=describe())

@@ -1,0 +1,298 @@
+// Issue 13's sampling tools: common random numbers (sweep_spec::
+// common_random_numbers), the likelihood-ratio derivative of a mean over
+// lambda and the control-variate mean (accumulators/score_moments.hpp), and
+// adaptive sampling to a target CI half-width (sweep_spec::target_statistic).
+// Statistical checks use fixed seeds and tolerances from standard errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "stickslip/error.hpp"
+#include "stickslip/replay.hpp"
+#include "stickslip/sweep.hpp"
+#include "same_bits.hpp"
+
+namespace stickslip {
+namespace {
+using testing_support::same_bits;
+
+// The paper's figures (k = 40), mu = 5, lambda over `lambdas`.
+sweep_spec figure_spec(std::vector<double> lambdas, std::uint64_t n, bool crn,
+                       std::uint64_t seed = 13) {
+  sweep_spec s;
+  s.base.stiffness = 40.0;
+  s.base.friction_coefficient = 5.0;
+  s.axes = {{"lambda", std::move(lambdas)}};
+  s.realizations = n;
+  s.seed = seed;
+  s.common_random_numbers = crn;
+  return s;
+}
+
+// Sample mean and variance, with the standard error of the variance from
+// the fourth central moment: Var(s^2) ~ (m4 - s^4) / n.
+struct moments {
+  double mean = 0, var = 0, var_se = 0;
+};
+moments moments_of(const std::vector<double>& x) {
+  const auto n = static_cast<double>(x.size());
+  moments m;
+  for (double v : x) m.mean += v / n;
+  double m2 = 0, m4 = 0;
+  for (double v : x) {
+    const double d = (v - m.mean) * (v - m.mean);
+    m2 += d / n;
+    m4 += d * d / n;
+  }
+  m.var = m2 * n / (n - 1);
+  m.var_se = std::sqrt(std::max(0.0, m4 - m2 * m2) / n);
+  return m;
+}
+
+std::vector<double> stick_fractions(const result_set& rs, std::size_t point) {
+  std::vector<double> out;
+  for (const auto& r : rs.records[point]) out.push_back(r.stick_fraction);
+  return out;
+}
+
+TEST(CommonRandomNumbers, PointsShareInitialStateAndUnitExponentials) {
+  auto s = figure_spec({1.0, 2.5, 7.0}, 64, true);
+  s.keep_records = true;
+  const auto rs = run_sweep(s, 1);
+  for (std::size_t p = 1; p < 3; ++p)
+    for (std::size_t r = 0; r < 64; ++r) {
+      const auto &a = rs.records[0][r], &b = rs.records[p][r];
+      EXPECT_EQ(a.x0, b.x0);
+      EXPECT_EQ(a.xdot0, b.xdot0);
+      EXPECT_EQ(a.belt_start, b.belt_start);
+    }
+  // The switch times: W_j lambda = E_j at every point (up to the rounding
+  // of the multiplication by 1/lambda and of the running sum).
+  for (std::uint64_t r = 0; r < 4; ++r) {
+    const auto p1 = point_parameters(s, 0), p2 = point_parameters(s, 2);
+    poisson_switches a(p1.switch_rate, s.seed, stream_key(s, p1), r);
+    poisson_switches b(p2.switch_rate, s.seed, stream_key(s, p2), r);
+    double ya = 0, yb = 0;
+    for (int j = 0; j < 100; ++j) {
+      const double na = a.next(), nb = b.next();
+      const double ea = (na - ya) * p1.switch_rate, eb = (nb - yb) * p2.switch_rate;
+      EXPECT_NEAR(ea, eb, 1e-9 * (1 + ea)) << "r " << r << " j " << j;
+      ya = na, yb = nb;
+    }
+  }
+  // Without the flag, each point has its own streams.
+  s.common_random_numbers = false;
+  const auto ind = run_sweep(s, 1);
+  EXPECT_NE(ind.records[0][0].x0, ind.records[1][0].x0);
+}
+
+TEST(CommonRandomNumbers, BothEnginesAndReplayGiveTheSameBits) {
+  auto s = figure_spec({0.7, 3.8}, 150, true);
+  s.keep_records = true;
+  const auto fast = run_sweep(s, 2);
+  s.engine = sweep_engine::reference;
+  const auto ref = run_sweep(s, 1);
+  for (std::size_t p = 0; p < 2; ++p) {
+    EXPECT_TRUE(same_bits(fast.points[p].stats, ref.points[p].stats));
+    for (std::uint64_t r : {0u, 77u, 149u}) {
+      replay_request q;
+      q.parameters = point_parameters(s, p);
+      q.seed = s.seed;
+      q.realization = r;
+      q.common_random_numbers = true;
+      const auto t = replay(q);
+      EXPECT_EQ(t.record.stick_fraction, fast.records[p][r].stick_fraction);
+      EXPECT_EQ(t.record.events.belt_switches, fast.records[p][r].events.belt_switches);
+      EXPECT_EQ(t.record.x0, fast.records[p][r].x0);
+      q.common_random_numbers = false;  // the point's own streams: another realization
+      EXPECT_NE(replay(q).record.x0, fast.records[p][r].x0);
+    }
+  }
+}
+
+TEST(CommonRandomNumbers, ResultsDoNotDependOnThreads) {
+  const auto s = figure_spec({0.5, 1.0, 2.0, 3.8, 8.0}, 700, true);
+  const auto one = run_sweep(s, 1), two = run_sweep(s, 2);
+  for (std::size_t p = 0; p < one.points.size(); ++p)
+    EXPECT_TRUE(same_bits(one.points[p].stats, two.points[p].stats)) << "point " << p;
+}
+
+// The point of common random numbers: the difference of the means at two
+// neighbouring lambdas has a far smaller variance than with independent
+// streams. Per realization, D_r = R_r(lambda_2) - R_r(lambda_1).
+TEST(CommonRandomNumbers, DifferencesBetweenNeighboursHaveMuchLowerVariance) {
+  const std::uint64_t n = 4000;
+  for (const auto& pair : std::vector<std::vector<double>>{{1.0, 1.1}, {3.6, 3.8}}) {
+    std::vector<double> d_crn, d_ind;
+    for (bool crn : {true, false}) {
+      auto s = figure_spec(pair, n, crn);
+      s.keep_records = true;
+      const auto rs = run_sweep(s, 2);
+      const auto a = stick_fractions(rs, 0), b = stick_fractions(rs, 1);
+      auto& d = crn ? d_crn : d_ind;
+      for (std::size_t r = 0; r < n; ++r) d.push_back(b[r] - a[r]);
+    }
+    const auto c = moments_of(d_crn), i = moments_of(d_ind);
+    std::printf("lambda %g -> %g: Var(D) CRN %.3g +- %.2g, independent %.3g +- %.2g, ratio %.3g\n",
+                pair[0], pair[1], c.var, c.var_se, i.var, i.var_se, c.var / i.var);
+    // At least 10x lower, beyond 4 standard errors of both variances.
+    EXPECT_LT(c.var + 4 * c.var_se, 0.1 * (i.var - 4 * i.var_se));
+  }
+}
+
+// The likelihood-ratio derivative against common-random-number central
+// differences (R(lambda + h) - R(lambda - h)) / 2h, at six lambdas, each
+// with its standard error (the differences' from the per-realization
+// differences); they must agree within 3.5 combined standard errors, and
+// the test must have power (some derivatives many standard errors from 0).
+TEST(ScoreDerivative, AgreesWithCommonRandomNumberDifferences) {
+  const std::uint64_t n = 20000;
+  int strong = 0;
+  for (double lambda : {0.3, 0.8, 1.5, 3.0, 6.0, 12.0}) {
+    const double h = 0.04 * lambda;
+    auto s = figure_spec({lambda - h, lambda, lambda + h}, n, true, 29);
+    s.keep_records = true;
+    const auto rs = run_sweep(s, 2);
+    const auto lo = stick_fractions(rs, 0), hi = stick_fractions(rs, 2);
+    std::vector<double> d(n);
+    for (std::size_t r = 0; r < n; ++r) d[r] = (hi[r] - lo[r]) / (2 * h);
+    const auto fd = moments_of(d);
+    const double fd_se = std::sqrt(fd.var / n);
+    const auto& mid = rs.points[1].stats;
+    const auto lr = score_derivative(mid.stick_fraction_score, mid.stick_fraction, lambda);
+    std::printf("lambda %5.2f: LR %.5f +- %.5f, CRN difference %.5f +- %.5f\n", lambda, lr.value,
+                lr.std_error, fd.mean, fd_se);
+    EXPECT_LT(std::abs(lr.value - fd.mean), 3.5 * std::hypot(lr.std_error, fd_se))
+        << "lambda " << lambda;
+    if (std::abs(fd.mean) > 6 * std::hypot(lr.std_error, fd_se)) ++strong;
+  }
+  EXPECT_GE(strong, 3);
+}
+
+// The delta-method standard error of the score derivative against the
+// spread of the estimate over independent replicates.
+TEST(ScoreDerivative, StandardErrorMatchesTheSpreadOverReplicates) {
+  std::vector<double> values;
+  double se2 = 0;
+  const int m = 60;
+  for (int k = 0; k < m; ++k) {
+    const auto rs = run_sweep(figure_spec({1.0}, 1000, false, 1000 + k), 2);
+    const auto& st = rs.points[0].stats;
+    const auto e = score_derivative(st.stick_fraction_score, st.stick_fraction, 1.0);
+    values.push_back(e.value);
+    se2 += e.std_error * e.std_error / m;
+  }
+  const auto spread = moments_of(values);
+  std::printf("score derivative: replicate variance %.3g +- %.2g, mean reported SE^2 %.3g\n",
+              spread.var, spread.var_se, se2);
+  EXPECT_NEAR(spread.var, se2, 3.5 * spread.var_se);
+}
+
+// Control variate N (known mean lambda t_a): unbiased (the mean over
+// replicates of the difference to the plain mean is 0 within its standard
+// error), its reported standard error matches its spread, and it reduces
+// the variance by the reported factor.
+TEST(ControlVariate, IsUnbiasedAndReducesTheVarianceOfTheStickRate) {
+  const int m = 80;
+  std::vector<double> plain, cv, diff;
+  double se2 = 0, reported_gain = 0;
+  for (int k = 0; k < m; ++k) {
+    const auto rs = run_sweep(figure_spec({0.6}, 1000, false, 5000 + k), 2);
+    const auto& st = rs.points[0].stats;
+    const auto c = control_variate_mean(st.sticks_per_time_score, st.sticks_per_time);
+    plain.push_back(st.sticks_per_time.mean());
+    cv.push_back(c.mean.value);
+    diff.push_back(c.mean.value - st.sticks_per_time.mean());
+    se2 += c.mean.std_error * c.mean.std_error / m;
+    reported_gain += c.variance_reduction / m;
+  }
+  const auto p = moments_of(plain), c = moments_of(cv), d = moments_of(diff);
+  std::printf("control variate: Var plain %.3g, Var cv %.3g (+- %.2g), gain %.3g, reported %.3g, "
+              "reported SE^2 %.3g, mean difference %.3g +- %.3g\n",
+              p.var, c.var, c.var_se, p.var / c.var, reported_gain, se2, d.mean,
+              std::sqrt(d.var / m));
+  EXPECT_LT(std::abs(d.mean), 3.5 * std::sqrt(d.var / m));  // unbiased
+  EXPECT_NEAR(c.var, se2, 3.5 * c.var_se);                  // its SE is honest
+  EXPECT_GT(reported_gain, 2.0);
+  EXPECT_LT(c.var + 3.5 * c.var_se, p.var / 2);             // it reduces the variance
+}
+
+// Adaptive sampling: every point stops at the first block after which the
+// half-width meets the target (so one block less would not), the same for
+// any thread count.
+TEST(TargetCi, EveryPointMeetsTheTargetAtTheFirstBlockThatDoes) {
+  auto s = figure_spec({0.2, 0.8, 3.8, 15.0}, 200000, false);
+  s.target_statistic = "R";
+  s.target_halfwidth = 0.004;
+  s.min_realizations = 500;
+  const auto one = run_sweep(s, 1), two = run_sweep(s, 2);
+  bool differ = false;
+  for (std::size_t p = 0; p < one.points.size(); ++p) {
+    const auto& st = one.points[p].stats;
+    EXPECT_TRUE(same_bits(st, two.points[p].stats)) << "point " << p;
+    EXPECT_LE(st.stick_fraction.ci95_half_width(), s.target_halfwidth);
+    EXPECT_LT(st.realizations, s.realizations);
+    EXPECT_EQ(st.realizations % s.block_size, 0u);
+    // One block less: the plain sweep with that many realizations misses it.
+    auto fewer = s;
+    fewer.target_statistic.clear();
+    fewer.axes[0].values = {s.axes[0].values[p]};
+    fewer.realizations = st.realizations - s.block_size;
+    if (fewer.realizations >= s.min_realizations) {
+      const auto f = run_sweep(fewer, 2);
+      EXPECT_GT(f.points[0].stats.stick_fraction.ci95_half_width(), s.target_halfwidth);
+    }
+    if (st.realizations != one.points[0].stats.realizations) differ = true;
+    std::printf("lambda %g: %llu realizations, half-width %.5f\n", s.axes[0].values[p],
+                static_cast<unsigned long long>(st.realizations),
+                st.stick_fraction.ci95_half_width());
+  }
+  EXPECT_TRUE(differ) << "the realizations are chosen per point";
+}
+
+TEST(TargetCi, BadTargetsAreRefusedByName) {
+  auto s = figure_spec({1.0}, 1000, false);
+  s.target_statistic = "stick_duration";  // pooled: not one value per realization
+  s.target_halfwidth = 0.01;
+  EXPECT_THROW(validate(s), error);
+  s.target_statistic = "R";
+  s.target_halfwidth = -1;
+  EXPECT_THROW(validate(s), error);
+  s.target_halfwidth = 0.01;
+  s.min_realizations = 5000;  // above the cap
+  EXPECT_THROW(validate(s), error);
+  s.min_realizations = 100;
+  EXPECT_NO_THROW(validate(s));
+}
+
+}  // namespace
+}  // namespace stickslip
+
+namespace stickslip {
+namespace {
+
+// The model family (Markov belts, damping) draws with the common key too;
+// the score estimators apply only where the belt switches at rate lambda.
+TEST(CommonRandomNumbers, FamilyPointsShareTheirRandomNumbersToo) {
+  sweep_spec s = figure_spec({1.0}, 40, true);
+  s.axes = {{"c", {0.1, 0.5}}, {"r1", {1.0, 2.0}}};
+  s.keep_records = true;
+  const auto rs = run_sweep(s, 2);
+  ASSERT_FALSE(point_parameters(s, 0).is_paper_model());
+  for (std::size_t p = 1; p < rs.points.size(); ++p)
+    for (std::size_t r = 0; r < 40; ++r) {
+      EXPECT_EQ(rs.records[p][r].x0, rs.records[0][r].x0);
+      EXPECT_EQ(rs.records[p][r].xdot0, rs.records[0][r].xdot0);
+    }
+  s.common_random_numbers = false;
+  EXPECT_NE(run_sweep(s, 2).records[1][0].x0, rs.records[1][0].x0);
+  model_parameters q;
+  EXPECT_TRUE(has_poisson_switching(q));
+  q.belt_rates = {1.0, 2.0};
+  EXPECT_FALSE(has_poisson_switching(q));
+}
+
+}  // namespace
+}  // namespace stickslip
