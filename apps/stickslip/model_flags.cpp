@@ -43,7 +43,7 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
   f.belt_levels_option =
       cmd.add_option("--belt-levels", f.belt_levels,
                      "belt velocity levels v1,v2,... [m/s]: n >= 2 distinct values, any sign, 0 "
-                     "allowed (default +V,-V); more than two need a generator in TOML")
+                     "allowed (default +V,-V); more than two need --belt-generator")
           ->type_name("LIST")
           ->group("Model family (docs/models.md)");
   f.belt_rates_option =
