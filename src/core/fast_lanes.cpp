@@ -145,7 +145,7 @@ class statistics_collector {
                        std::vector<block_result>& outs, std::size_t point,
                        std::uint64_t first_block)
       : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
-  [[nodiscard]] observer make() const { return observer(p_.window); }
+  [[nodiscard]] observer make() const { return observer(p_); }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);
   }
@@ -155,7 +155,7 @@ class statistics_collector {
   }
   void deliver(std::uint64_t r, observer& o) {
     auto& out = outs_[r / s_.block_size - first_block_];
-    out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
+    out.stats.add(o.samples(), p_.window);
     if (s_.keep_records) out.records.push_back(o.record());
   }
   void fallback() {
@@ -215,6 +215,10 @@ class lane_engine {
   static_assert(!observes_segments<observer>,
                 "the lane engine reports no segments: observe them with simulate()");
   static constexpr bool with_events = observes_events<observer>;
+  // An observer of pieces of motion gets their sums instead (set_paper_sums):
+  // the time at +V and at -V and the slips' relative travel |v dt - dx|,
+  // accumulated here piece by piece in simulate()'s order, so the same bits.
+  static constexpr bool with_pieces = observes_pieces<observer>;
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
@@ -256,6 +260,7 @@ class lane_engine {
     act_[l] = 1.0;
     n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
     steps_[l] = 0.0;
+    lt0_[l] = lt1_[l] = trav_[l] = 0.0;
     // simulate(): initial state and mode.
     const double a = a_, V = V_;
     const double x = ic.position, z = ic.velocity, v = ic.belt_direction >= 0 ? V : -V;
@@ -278,6 +283,7 @@ class lane_engine {
 
   void finish_realization(int l) {
     obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true});
+    if constexpr (with_pieces) obs_[l]->set_paper_sums(lt0_[l], lt1_[l], trav_[l]);
     collect_.end(*obs_[l], event_counts{
         static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
         static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])});
@@ -380,6 +386,11 @@ class lane_engine {
     const double t_next = std::min(t_root, tsw_[l]);
     arv_[l] = 0.0;
     if (t_next >= ta) {
+      if constexpr (with_pieces) {
+        const double dt = ta - t;
+        const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
+        add_slip_piece(l, v, dt, x, physics::rotated_position(o, z, w, cs, sn));
+      }
       finish_realization(l);
       return;
     }
@@ -387,6 +398,7 @@ class lane_engine {
       const double dt = tsw_[l] - t;
       const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
       x_[l] = physics::rotated_position(o, z, w, cs, sn);
+      if constexpr (with_pieces) add_slip_piece(l, v, dt, x, x_[l]);
       z_[l] = physics::rotated_velocity(o, z, cs, sn);
       t_[l] = tsw_[l];
       v_[l] = -v;
@@ -402,9 +414,16 @@ class lane_engine {
       return;
     }
     x_[l] = physics::root_position(o, sigma, std::sqrt(o.disc), w);
+    if constexpr (with_pieces) add_slip_piece(l, v, t_root - t, x, x_[l]);
     z_[l] = v;
     t_[l] = t_root;
     root_contact(l, sigma);
+  }
+
+  // A slip piece of the scalar path: the vector step's sums, lane l alone.
+  void add_slip_piece(int l, double v, double dt, double x0, double x1) noexcept {
+    (v > 0 ? lt0_[l] : lt1_[l]) += dt;
+    trav_[l] += std::abs(v * dt - (x1 - x0));
   }
 
   // simulate()'s contact_at (physics::resolve_contact): a stick, a grazing
@@ -581,6 +600,21 @@ class lane_engine {
                                         IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),
                         code);
 
+      // the piece of motion of this round (simulate()'s piece(): from the
+      // state at the start of the round to the unresolved end, x_root or the
+      // rotated x): time at the level, and a slip's |v dt - dx|
+      if constexpr (with_pieces) {
+        const vec dt = Sub(nt, t[k]);
+        const vec x_end = IfThenElse(sroot, x_root, xr[k]);
+        const vec travel = hn::Abs(Sub(Mul(v[k], dt), Sub(x_end, x[k])));
+        const mask up = hn::Gt(v[k], zero);
+        const mask rn0 = run[k];
+        hn::Store(Add(hn::Load(d, lt0_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d, lt0_ + j);
+        hn::Store(Add(hn::Load(d, lt1_ + j), hn::IfThenElseZero(hn::AndNot(up, rn0), dt)), d, lt1_ + j);
+        hn::Store(Add(hn::Load(d, trav_ + j), hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)), d,
+                  trav_ + j);
+      }
+
       // idle lanes keep their state
       const mask rn = run[k];
       hn::Store(IfThenElse(rn, nt, t[k]), d, t_ + j);
@@ -677,6 +711,9 @@ class lane_engine {
   // doubles up to 2^53; act_: 1 while the lane runs a realization.
   HWY_ALIGN double n_sw_[lanes] = {}, n_on_[lanes] = {}, n_brk_[lanes] = {}, n_rev_[lanes] = {};
   HWY_ALIGN double steps_[lanes] = {}, act_[lanes] = {};
+  // The sums of the pieces of motion (with_pieces): time at +V, at -V, and
+  // the slips' relative travel.
+  HWY_ALIGN double lt0_[lanes] = {}, lt1_[lanes] = {}, trav_[lanes] = {};
   double max_steps_;
   // What the last vector step left to do, one bit per lane.
   std::uint32_t pop_ = 0, close_stick_ = 0, close_slip_ = 0, fin_ = 0;

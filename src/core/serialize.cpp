@@ -119,6 +119,25 @@ void put(writer& w, const point_statistics& s) {
     if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
   for (const auto& c : counters()) w.u64(c.value(s));
+  for (const auto& l : level_quantities()) {
+    w.u64((s.*l.moments).size());
+    for (const auto& m : s.*l.moments) put(w, m);
+  }
+  // Joint histograms sparsely (a block's sticks fill few of the (bins + 2)^2
+  // cells; the journal buffers these bytes): the cell count, the number of
+  // non-zero cells, then (index, count) for each, in index order.
+  for (const auto& j : joint_histograms()) {
+    const auto& cells = (s.*j.counts).cells();
+    w.u64(cells.size());
+    std::uint64_t nonzero = 0;
+    for (auto c : cells) nonzero += c != 0;
+    w.u64(nonzero);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (cells[i] != 0) {
+        w.u64(i);
+        w.u64(cells[i]);
+      }
+  }
   w.u64(s.convergence.size());
   for (const auto& c : s.convergence) {
     w.u64(c.realizations);
@@ -135,6 +154,30 @@ point_statistics get_statistics(reader& r) {
     if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
+  for (const auto& l : level_quantities()) {
+    auto& moments = s.*l.moments;
+    moments.resize(r.count(l.name, 24));
+    for (auto& m : moments) m = get_mean_variance(r);
+  }
+  // A joint histogram has the binnings of its two quantities' histograms.
+  for (const auto& j : joint_histograms()) {
+    histogram2d h(s.*quantity_table[j.x].density, s.*quantity_table[j.y].density);
+    const auto n = r.u64(j.name);
+    if (n != h.cells().size())
+      throw corrupt(fmt::format("{}: {} cells, its binnings have {}", j.name, n, h.cells().size()));
+    std::vector<std::uint64_t> cells(n, 0);
+    const auto nonzero = r.count(j.name, 16);
+    std::uint64_t last = 0;
+    for (std::size_t k = 0; k < nonzero; ++k) {
+      const auto i = r.u64(j.name);
+      if (i >= n || (k > 0 && i <= last))
+        throw corrupt(fmt::format("{}: cell index {} out of order or range", j.name, i));
+      last = i;
+      cells[static_cast<std::size_t>(i)] = r.u64(j.name);
+    }
+    h.set_raw(std::move(cells));
+    s.*j.counts = std::move(h);
+  }
   const auto n = r.count("convergence trace", 40);
   s.convergence.resize(n);
   for (auto& c : s.convergence) {
@@ -147,7 +190,7 @@ point_statistics get_statistics(reader& r) {
   return s;
 }
 
-constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 32;
+constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 32;
 
 void put(writer& w, const realization_record& x) {
   w.u64(x.realization);
@@ -160,6 +203,8 @@ void put(writer& w, const realization_record& x) {
   w.f64(x.first_stick_start);
   w.f64(x.first_stick_duration);
   w.u8(x.first_stick_censored ? 1 : 0);
+  w.f64(x.friction_power);
+  w.f64(x.damping_power);
   put(w, x.events);
 }
 realization_record get_record(reader& r) {
@@ -176,6 +221,8 @@ realization_record get_record(reader& r) {
   x.first_stick_start = r.f64("record");
   x.first_stick_duration = r.f64("record");
   x.first_stick_censored = r.boolean("record censoring flag");
+  x.friction_power = r.f64("record");
+  x.damping_power = r.f64("record");
   x.events = get_counts(r);
   return x;
 }
@@ -331,6 +378,10 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   for (const auto& q : quantities())
     if (q.density && !(b.stats.*q.density).same_binning(fresh.*q.density))
       throw bad(fmt::format("histogram binning of {} differs", q.name));
+  for (const auto& l : level_quantities())
+    if ((b.stats.*l.moments).size() != (fresh.*l.moments).size())
+      throw bad(fmt::format("{} values of {}, the point has {} belt levels",
+                            (b.stats.*l.moments).size(), l.name, (fresh.*l.moments).size()));
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))
     throw bad(fmt::format("{} raw records", b.records.size()));

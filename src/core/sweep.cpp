@@ -242,7 +242,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const auto key = point_key(p);
-  realization_observer obs(p.window);
+  realization_observer obs(p);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
     poisson_switches sw(p.switch_rate, s.seed, key, r);
@@ -250,7 +250,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
     const auto counts = simulate(p, ic, sw, obs, s.max_events);
     obs.finish();
     obs.record().events = counts;
-    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    out.stats.add(obs.samples(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }
   return out;
@@ -267,14 +267,14 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const std::size_t levels = fp.model.belt.level_count();
-  realization_observer obs(p.window);
+  realization_observer obs(p);
   for (std::uint64_t r = first; r < last; ++r) {
     const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
     obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));
     const auto counts = simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
     obs.finish();
     obs.record().events = counts;
-    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    out.stats.add(obs.samples(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }
   return out;

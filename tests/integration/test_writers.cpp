@@ -246,10 +246,13 @@ TEST_F(writers, SummaryJsonCarriesEveryStatisticRoundTripExact) {
     const auto expected = fmt::format(
         "{{\"lambda\": {}, \"mu\": {}, \"realizations\": 200, \"R\": {}, \"sticks_per_time\": {}, "
         "\"slips_per_time\": {}, \"stick_duration\": {}, \"first_stick_duration\": {}, "
-        "\"slip_duration\": {}, \"no_stick\": {}",
+        "\"slip_duration\": {}, \"stick_onset_position\": {}, \"friction_power\": {}, "
+        "\"damping_power\": {}, \"belt_level_fraction\": [{}, {}], \"no_stick\": {}",
         p.parameters.switch_rate, p.parameters.friction_coefficient, stat(s.stick_fraction),
         stat(s.sticks_per_time), stat(s.slips_per_time), stat(s.stick_duration),
-        stat(s.first_stick_duration), stat(s.slip_duration), s.no_stick);
+        stat(s.first_stick_duration), stat(s.slip_duration), stat(s.stick_onset_position),
+        stat(s.friction_power), stat(s.damping_power), stat(s.level_fraction.at(0)),
+        stat(s.level_fraction.at(1)), s.no_stick);
     EXPECT_NE(text.find(expected), std::string::npos) << expected;
   }
   EXPECT_NE(text.find("\"seed\": 7"), std::string::npos);
