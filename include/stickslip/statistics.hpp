@@ -70,6 +70,7 @@ struct convergence_point {
   std::uint64_t realizations;
   double R_mean, R_ci95_half_width;
   double stick_duration_mean, stick_duration_ci95_half_width;
+  friend bool operator==(const convergence_point&, const convergence_point&) = default;
 };
 
 class point_statistics {

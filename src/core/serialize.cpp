@@ -213,8 +213,11 @@ realization_record get_record(reader& r) {
   x.x0 = r.f64("record");
   x.xdot0 = r.f64("record");
   x.belt_start = static_cast<std::int8_t>(r.u8("record"));
-  if (x.belt_start != 1 && x.belt_start != -1)
-    throw corrupt(fmt::format("record belt direction {} is not +1 or -1", x.belt_start));
+  // +1 / -1 on a two-level belt, the level number 1..n on more levels
+  // (model_realization.hpp, recorded_belt_start).
+  if (x.belt_start == 0 || x.belt_start < -1)
+    throw corrupt(fmt::format("record belt start {} is not +1, -1 or a level number",
+                              x.belt_start));
   x.sticks = r.u32("record");
   x.slips = r.u32("record");
   x.stick_fraction = r.f64("record");

@@ -17,9 +17,10 @@ namespace stickslip {
 class histogram2d {
  public:
   histogram2d() = default;
-  // The binnings of x and y: empty histograms (their counts are not used).
-  histogram2d(histogram x, histogram y)
-      : x_(std::move(x)), y_(std::move(y)), cells_((x_.bins() + 2) * (y_.bins() + 2), 0) {}
+  // The binnings of x and y (their counts are not taken).
+  histogram2d(const histogram& x, const histogram& y)
+      : x_(x.lo(), x.hi(), x.bins()), y_(y.lo(), y.hi(), y.bins()),
+        cells_((x_.bins() + 2) * (y_.bins() + 2), 0) {}
 
   void add(double x, double y) noexcept { ++cells_[x_.slot(x) * (y_.bins() + 2) + y_.slot(y)]; }
   // Precondition: same binning.
