@@ -76,7 +76,9 @@ struct convergence_point {
 class point_statistics {
  public:
   point_statistics() = default;
-  point_statistics(const model_parameters& p, const histogram_spec& h);
+  // `family`: whether add() fills the statistics of issue 11
+  // (sweep_spec::family_statistics).
+  point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true);
 
   // Add one finished realization. Precondition: one level fraction per level.
   void add(const realization_samples& r, double window);
@@ -98,6 +100,7 @@ class point_statistics {
       slip_duration_hist, stick_onset_position_hist;
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
+  bool family_statistics = true;               // add() fills the five above
   std::uint64_t realizations = 0;
   std::uint64_t no_stick = 0;              // realizations without any stick
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
@@ -112,8 +115,9 @@ class point_statistics {
 class realization_observer : public observer_base {
  public:
   // The model's window, kinetic friction force mu_k m g, damping c, and
-  // belt level count.
-  explicit realization_observer(const model_parameters& p);
+  // belt level count. `family`: whether to collect the stick-onset positions
+  // (sweep_spec::family_statistics).
+  explicit realization_observer(const model_parameters& p, bool family = true);
   void reset(std::uint64_t realization, double x0, double xdot0, int belt);
   // Inline: the engines call it once per episode. It is also compiled into
   // the SIMD translation unit (fast_lanes.cpp, other -m flags), so it must
@@ -122,6 +126,12 @@ class realization_observer : public observer_base {
   // always_inline: the lane engine is compiled once per SIMD target, and GCC
   // otherwise leaves this call out of line there (+8 % CPU in the study).
   [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
+    collect_episode<true>(e);
+  }
+  // The onset positions only when `Onsets` (and the observer's flag): the
+  // lane engine's paper_statistics_observer compiles them out.
+  template <bool Onsets>
+  [[gnu::always_inline, gnu::flatten]] void collect_episode(const episode& e) {
     const double d = e.duration();
     if (e.kind == mode::stick) {
       if (!(d > 0.0)) return;  // sticks of positive length only
@@ -133,7 +143,9 @@ class realization_observer : public observer_base {
       ++rec_.sticks;
       total_stick_ += d;
       sticks_.push_back(d);
-      onsets_.push_back(e.position_at_start);
+      if constexpr (Onsets) {
+        if (family_) onsets_.push_back(e.position_at_start);
+      }
     } else if (rec_.sticks > 0) {  // slips after the first stick
       ++rec_.slips;
       slips_.push_back(d);
@@ -176,10 +188,24 @@ class realization_observer : public observer_base {
 
  private:
   double window_, kinetic_force_, damping_, mass_, stiffness_;
+  bool family_;
   double total_stick_ = 0, slip_travel_ = 0, damping_work_ = 0;
   realization_record rec_;
   std::vector<double> sticks_, slips_, onsets_;
   std::vector<double> level_time_, level_fraction_;
+};
+
+// realization_observer without the statistics of issue 11
+// (sweep_spec::family_statistics off): no onset positions, and no pieces of
+// motion (observer_base's no-op, so the lane engine does not sum them). The
+// paper study runs the lane engine with it, at the speed from before.
+class paper_statistics_observer : public realization_observer {
+ public:
+  using realization_observer::realization_observer;
+  using observer_base::on_piece;
+  [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
+    collect_episode<false>(e);
+  }
 };
 
 }  // namespace stickslip

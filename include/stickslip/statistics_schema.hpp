@@ -206,6 +206,9 @@ inline constexpr std::array<counter_info, 6> counter_table{{
 inline constexpr const auto& quantity_table = detail::schema::quantity_table;
 inline constexpr const auto& counter_table = detail::schema::counter_table;
 inline constexpr const auto& level_table = detail::schema::level_table;
+// The first rows of quantity_table are the paper's; the rest, the level and
+// joint rows are the family's (sweep_spec::family_statistics).
+inline constexpr std::size_t paper_quantity_count = 6;
 inline constexpr const auto& joint_table = detail::schema::joint_table;
 static_assert(quantity_table[3].sampled == sampling::per_stick &&
               quantity_table[6].sampled == sampling::per_stick_onset);

@@ -138,14 +138,15 @@ enum : int {
 
 // The sweep's statistics: realization_observer, then point_statistics::add
 // in realization order into the block of each realization.
+template <class Observer>
 class statistics_collector {
  public:
-  using observer = realization_observer;
+  using observer = Observer;
   statistics_collector(const sweep_spec& s, const model_parameters& p,
                        std::vector<block_result>& outs, std::size_t point,
                        std::uint64_t first_block)
       : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
-  [[nodiscard]] observer make() const { return observer(p_); }
+  [[nodiscard]] observer make() const { return observer(p_, s_.family_statistics); }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);
   }
@@ -180,6 +181,8 @@ struct trace_observer : observer_base {
   void on_event(const event& e) { trace.events.push_back(e); }
 };
 static_assert(observes_events<trace_observer> && !observes_segments<trace_observer>);
+static_assert(observes_pieces<realization_observer> && !observes_pieces<paper_statistics_observer>,
+              "the lane engine sums pieces of motion only with the family statistics");
 static_assert(!observes_events<realization_observer> && !observes_segments<realization_observer>,
               "the lane engine builds events only for observers that take them");
 
@@ -747,11 +750,18 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   const std::uint64_t first = first_block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, (first_block + count) * s.block_size);
   for (std::uint64_t b = 0; b < count; ++b) {
-    outs[b].stats = point_statistics(p, s.histograms);
+    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
-  statistics_collector collect(s, p, outs, point, first_block);
-  run_lanes(s, p, collect, first, last);
+  // Two instantiations: with the statistics of issue 11, or without their
+  // per-stick and per-round work (sweep_spec::family_statistics).
+  if (s.family_statistics) {
+    statistics_collector<realization_observer> collect(s, p, outs, point, first_block);
+    run_lanes(s, p, collect, first, last);
+  } else {
+    statistics_collector<paper_statistics_observer> collect(s, p, outs, point, first_block);
+    run_lanes(s, p, collect, first, last);
+  }
   return outs;
 }
 

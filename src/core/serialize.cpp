@@ -118,6 +118,7 @@ void put(writer& w, const point_statistics& s) {
   for (const auto& q : quantities())
     if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
+  w.u8(s.family_statistics ? 1 : 0);
   for (const auto& c : counters()) w.u64(c.value(s));
   for (const auto& l : level_quantities()) {
     w.u64((s.*l.moments).size());
@@ -153,6 +154,7 @@ point_statistics get_statistics(reader& r) {
   for (const auto& q : quantities())
     if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
+  s.family_statistics = r.boolean("family statistics flag");
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
   for (const auto& l : level_quantities()) {
     auto& moments = s.*l.moments;
@@ -288,6 +290,7 @@ bytes serialize(const sweep_spec& s) {
   w.i64(s.max_events);
   w.u8(s.keep_records ? 1 : 0);
   w.u8(static_cast<std::uint8_t>(s.engine));
+  w.u8(s.family_statistics ? 1 : 0);
   return w.take();
 }
 
@@ -321,6 +324,7 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   if (engine > static_cast<std::uint8_t>(sweep_engine::reference))
     throw corrupt(fmt::format("unknown engine {}", engine));
   s.engine = static_cast<sweep_engine>(engine);
+  s.family_statistics = r.boolean("family_statistics");
   r.finish("sweep spec");
   return s;
 }
@@ -467,6 +471,8 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
     return fmt::format("max events: {} vs {}", a.max_events, b.max_events);
   if (a.keep_records != b.keep_records)
     return fmt::format("keep records: {} vs {}", a.keep_records, b.keep_records);
+  if (a.family_statistics != b.family_statistics)
+    return fmt::format("family statistics: {} vs {}", a.family_statistics, b.family_statistics);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

@@ -8,7 +8,9 @@
 namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
-point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h) {
+point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
+                                   bool family)
+    : family_statistics(family) {
   for (const auto& q : quantities())
     if (q.density)
       this->*q.density =
@@ -26,6 +28,9 @@ namespace {
 template <std::size_t I>
 void add_quantity(point_statistics& s, const realization_samples& in, double window) noexcept {
   constexpr const quantity_info& q = quantity_table[I];
+  if constexpr (I >= paper_quantity_count) {
+    if (!s.family_statistics) return;
+  }
   const realization_record& r = in.record;
   mean_variance& moments = s.*q.moments;
   if constexpr (q.sampled == sampling::per_realization ||
@@ -60,6 +65,10 @@ void point_statistics::add(const realization_samples& in, double window) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (add_quantity<I>(*this, in, window), ...);
   }(std::make_index_sequence<quantity_table.size()>{});
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
+  }(std::make_index_sequence<counter_table.size()>{});
+  if (!family_statistics) return;
   for (const auto& l : level_quantities()) {
     auto& moments = this->*l.moments;
     for (std::size_t i = 0; i < moments.size(); ++i) moments[i].add(in.level_fractions[i]);
@@ -67,11 +76,9 @@ void point_statistics::add(const realization_samples& in, double window) {
   for (const auto& j : joint_histograms()) {
     const auto& xs = j.x_sampled == sampling::per_stick ? in.sticks : in.onsets;
     const auto& ys = j.y_sampled == sampling::per_stick ? in.sticks : in.onsets;
-    for (std::size_t i = 0; i < xs.size(); ++i) (this->*j.counts).add(xs[i], ys[i]);
+    const std::size_t n = std::min(xs.size(), ys.size());
+    for (std::size_t i = 0; i < n; ++i) (this->*j.counts).add(xs[i], ys[i]);
   }
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
-  }(std::make_index_sequence<counter_table.size()>{});
 }
 
 point_statistics& point_statistics::operator+=(const point_statistics& o) {
@@ -93,12 +100,13 @@ void point_statistics::record_convergence() {
                          stick_duration.mean(), stick_duration.ci95_half_width()});
 }
 
-realization_observer::realization_observer(const model_parameters& p)
+realization_observer::realization_observer(const model_parameters& p, bool family)
     : window_(p.window),
       kinetic_force_(p.mu_k() * p.mass * p.gravity),
       damping_(p.damping),
       mass_(p.mass),
       stiffness_(p.stiffness),
+      family_(family),
       level_time_(p.levels().size(), 0.0),
       level_fraction_(p.levels().size(), 0.0) {}
 

@@ -237,12 +237,12 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
   block_result out;
-  out.stats = point_statistics(p, s.histograms);
+  out.stats = point_statistics(p, s.histograms, s.family_statistics);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const auto key = point_key(p);
-  realization_observer obs(p);
+  realization_observer obs(p, s.family_statistics);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
     poisson_switches sw(p.switch_rate, s.seed, key, r);
@@ -262,12 +262,12 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
   const family_point fp(p);
   block_result out;
-  out.stats = point_statistics(p, s.histograms);
+  out.stats = point_statistics(p, s.histograms, s.family_statistics);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const std::size_t levels = fp.model.belt.level_count();
-  realization_observer obs(p);
+  realization_observer obs(p, s.family_statistics);
   for (std::uint64_t r = first; r < last; ++r) {
     const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
     obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));
@@ -284,7 +284,7 @@ ordered_merger::ordered_merger(const sweep_spec& s)
     : spec_(&s), records_(point_count(s)), next_block_(point_count(s), 0) {
   points_.reserve(point_count(s));
   for (std::size_t i = 0; i < point_count(s); ++i)
-    points_.emplace_back(point_parameters(s, i), s.histograms);
+    points_.emplace_back(point_parameters(s, i), s.histograms, s.family_statistics);
 }
 
 bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept {
