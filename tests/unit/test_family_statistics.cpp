@@ -166,5 +166,31 @@ TEST(FamilyStatistics, FamilyEngineGivesTheLaneEnginesStatisticsOnThePaperModel)
               differ, point_count(s) * blocks_per_point(s));
 }
 
+// The paper study's setting: the paper's statistics are the same bits, the
+// family's stay empty, on both engines.
+TEST(FamilyStatistics, OffLeavesThePapersStatisticsAndEmptiesTheFamilys) {
+  for (const sweep_engine engine : {sweep_engine::fast, sweep_engine::reference}) {
+    sweep_spec on = paper_spec();
+    on.engine = engine;
+    sweep_spec off = on;
+    off.family_statistics = false;
+    const auto a = run_sweep(on, 2), b = run_sweep(off, 2);
+    for (std::size_t i = 0; i < a.points.size(); ++i) {
+      const auto &x = a.points[i].stats, &y = b.points[i].stats;
+      for (std::size_t q = 0; q < paper_quantity_count; ++q) {
+        EXPECT_TRUE(x.*quantity_table[q].moments == y.*quantity_table[q].moments) << q;
+        if (quantity_table[q].density) {
+          EXPECT_TRUE(x.*quantity_table[q].density == y.*quantity_table[q].density) << q;
+        }
+      }
+      EXPECT_EQ(x.events, y.events);
+      EXPECT_EQ(y.stick_onset_position.count(), 0u);
+      EXPECT_EQ(y.friction_power.count(), 0u);
+      EXPECT_EQ(y.level_fraction[0].count(), 0u);
+      EXPECT_EQ(y.stick_duration_onset.total(), 0u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace stickslip
