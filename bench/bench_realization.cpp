@@ -40,7 +40,7 @@ void BM_realization_poisson(benchmark::State& state) {
   spec.base = p;
   event_counts total;
   std::int64_t runs = 0;
-  realization_observer obs(p.window);
+  realization_observer obs(p);
   for (auto _ : state) {
     const auto r = static_cast<std::uint64_t>(runs) % pool;
     const auto ic = draw_initial_conditions(spec.initial, spec.seed, point_key(p), r);

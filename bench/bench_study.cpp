@@ -6,7 +6,8 @@
 // medians). Release builds only.
 //
 //   stickslip_bench_study [--k 4] [--threads 2] [--realizations 2000]
-//                         [--engine fast|reference] [--no-floor]
+//                         [--engine fast|reference] [--no-floor] [--family-statistics]
+//   --family-statistics: also the statistics of issue 11 (off in the study)
 //   fast = the lane engine (the default), reference = simulate one
 //   realization at a time (same results). The SIMD target is the one chosen
 //   at run time (printed).
@@ -34,6 +35,7 @@ stickslip::sweep_spec paper_study(double stiffness, std::uint64_t realizations) 
   for (int i = 0; i < 40; ++i) lambda.push_back(0.1 * std::pow(300.0, i / 39.0));
   for (int i = 0; i < 8; ++i) mu.push_back(0.5 + 6.5 * i / 7.0);
   s.axes = {{"lambda", lambda}, {"mu", mu}};
+  s.family_statistics = false;  // as the study runs it (--family-statistics: on)
   return s;
 }
 
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
   unsigned threads = 2;
   std::uint64_t realizations = 2000;
   bool floor = true;
+  bool family = false;
   std::uint64_t block_size = 0;  // 0: the sweep's default (50)
   auto engine = stickslip::sweep_engine::fast;
   for (int i = 1; i < argc; ++i) {
@@ -73,16 +76,19 @@ int main(int argc, char** argv) {
       }
     }
     else if (a == "--no-floor") floor = false;
+    else if (a == "--family-statistics") family = true;
     else if (a == "--block-size" && has) block_size = std::strtoull(argv[++i], nullptr, 10);
     else {
       std::fprintf(stderr, "usage: %s [--k K] [--threads N] [--realizations R] "
-                   "[--engine fast|reference] [--block-size B] [--no-floor]\n", argv[0]);
+                   "[--engine fast|reference] [--block-size B] [--no-floor] "
+                   "[--family-statistics]\n", argv[0]);
       return 2;
     }
   }
   auto s = paper_study(k, realizations);
   if (block_size > 0) s.block_size = block_size;
   s.engine = engine;
+  s.family_statistics = family;
 
   const double c0 = cpu_seconds();
   const auto rs = stickslip::run_sweep(s, threads);
@@ -91,8 +97,8 @@ int main(int argc, char** argv) {
   for (const auto& p : rs.points) ev += p.stats.events;
   const double wall = rs.elapsed_seconds;
   const double n_real = static_cast<double>(s.realizations) * static_cast<double>(rs.points.size());
-  std::printf("k=%g threads=%u engine=%s simd_target=%s\n", k, threads,
-              stickslip::to_string(engine), stickslip::detail::fm::target_name());
+  std::printf("k=%g threads=%u engine=%s family_statistics=%d simd_target=%s\n", k, threads,
+              stickslip::to_string(engine), family ? 1 : 0, stickslip::detail::fm::target_name());
   std::printf("study_seconds=%.4f\nstudy_cpu_seconds=%.4f\n", wall, cpu);
   std::printf("realizations=%.0f\nrealizations_per_s=%.4g\n", n_real, n_real / wall);
   std::printf("events=%llu\nevents_per_s=%.4g\n", static_cast<unsigned long long>(ev.total()),

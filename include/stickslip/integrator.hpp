@@ -35,6 +35,7 @@
 #include "stickslip/detail/event_physics.hpp"
 #include "stickslip/detail/fast_math.hpp"
 #include "stickslip/episode.hpp"
+#include "stickslip/observer.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/parameters.hpp"
@@ -183,6 +184,14 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     return false;
   };
 
+  // A piece of motion from the current state (observer.hpp): level 0 is +V.
+  auto piece = [&](mode kind, double dt, double x0, double x1, double z0, double z1,
+                   double sig) {
+    if constexpr (takes_pieces<Observer>)
+      obs.on_piece(motion_piece{kind, v > 0 ? std::size_t{0} : std::size_t{1}, dt, x0, x1, z0, z1,
+                                v, sig});
+  };
+
   episode ep{m, 0.0, 0.0, x, v, false};
   // Zero-length episodes (only possible at t = 0: a belt switch at t = 0) are
   // no interval of either mode and are not reported.
@@ -202,12 +211,16 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       const double t_next = std::min(t_edge, t_switch);
       obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w});
       if (t_next >= ta) {
-        x = detail::physics::stick_position(x, v, t, ta);
+        const double x_end = detail::physics::stick_position(x, v, t, ta);
+        piece(mode::stick, ta - t, x, x_end, v, v, 0.0);
+        x = x_end;
         t = ta;
         break;
       }
       if (t_switch <= t_edge) {  // belt switch ends the stick
-        x = std::clamp(detail::physics::stick_position(x, v, t, t_switch), -a, a);
+        const double x_end = std::clamp(detail::physics::stick_position(x, v, t, t_switch), -a, a);
+        piece(mode::stick, t_switch - t, x, x_end, v, v, 0.0);
+        x = x_end;
         z = v;
         t = t_switch;
         v = -v;
@@ -220,6 +233,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
         close_episode(t, mode::slip);
         t_switch = switches.next();
       } else {  // stick breaks at the band edge; exact state, then grazing orbit
+        piece(mode::stick, t_edge - t, x, s * a, v, v, 0.0);
         x = s * a;
         z = v;
         t = t_edge;
@@ -255,8 +269,11 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     if (t_next >= ta || t_switch <= t_root) {  // the slip runs to t_a or to a belt switch
       const double t_end = std::min(t_switch, ta);
       const double cs = detail::fm::cos(w * (t_end - t)), sn = detail::fm::sin(w * (t_end - t));
-      x = detail::physics::rotated_position(o, z, w, cs, sn);
-      z = detail::physics::rotated_velocity(o, z, cs, sn);
+      const double x_end = detail::physics::rotated_position(o, z, w, cs, sn);
+      const double z_end = detail::physics::rotated_velocity(o, z, cs, sn);
+      piece(mode::slip, t_end - t, x, x_end, z, z_end, sigma);
+      x = x_end;
+      z = z_end;
       t = t_end;
       if (t_next >= ta) break;
       v = -v;  // belt switch during a slip
@@ -277,7 +294,9 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     }
     // Relative velocity reaches zero: x' = v, x from the conserved B (on a
     // mirror return x is where the stick ended, exactly).
-    if (!mirror) x = detail::physics::root_position(o, sigma, std::sqrt(disc), w);
+    const double x_root = mirror ? x : detail::physics::root_position(o, sigma, std::sqrt(disc), w);
+    piece(mode::slip, t_root - t, x, x_root, z, v, sigma);
+    x = x_root;
     z = v;
     t = t_root;
     after_reversal = mirror = false;

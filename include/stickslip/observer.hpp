@@ -2,16 +2,34 @@
 // stepper and observer are separate). Any type with these members works;
 // inherit observer_base to get no-op defaults that the compiler removes.
 #pragma once
+#include <cstddef>
 #include <type_traits>
 
 #include "stickslip/episode.hpp"
 
 namespace stickslip {
 
+// One piece of motion between two consecutive state updates of an engine
+// (an event, a touch of the band edge, t_a), at one belt level. `end_*` is
+// the state the motion reaches, before the engine resolves what happens
+// there (a contact clamps x into the band); the next piece starts from the
+// resolved state. What the statistics integrate over time (the time at each
+// belt level, the energy dissipated) is a sum over pieces (docs/model.md).
+struct motion_piece {
+  mode kind;
+  std::size_t level;     // index of the belt level (paper's model: 0 = +V, 1 = -V)
+  double duration;       // t_end - t_start
+  double start_position, end_position;
+  double start_velocity, end_velocity;  // x' (a stick: v)
+  double belt_velocity;  // v
+  double sigma;          // friction direction sgn(v - x') of a slip (0 while sticking)
+};
+
 struct observer_base {
   void on_event(const event&) noexcept {}
   void on_segment(const segment&) noexcept {}
   void on_episode(const episode&) noexcept {}
+  void on_piece(const motion_piece&) noexcept {}
 };
 
 struct null_observer : observer_base {};
@@ -26,6 +44,16 @@ template <class Observer>
 inline constexpr bool observes_segments =
     !std::is_same_v<decltype(&Observer::on_segment),
                     void (observer_base::*)(const segment&) noexcept>;
+
+// Whether the engines report pieces of motion to an observer: any type with
+// on_piece (observer_base's no-op included; the compiler removes it).
+template <class Observer>
+concept takes_pieces = requires(Observer& o, const motion_piece& p) { o.on_piece(p); };
+// Whether an observer takes pieces itself (not observer_base's no-op).
+template <class Observer>
+inline constexpr bool observes_pieces =
+    !std::is_same_v<decltype(&Observer::on_piece),
+                    void (observer_base::*)(const motion_piece&) noexcept>;
 
 // Fans one stream out to two observers.
 template <class A, class B>
@@ -43,6 +71,10 @@ struct observer_pair {
   void on_episode(const episode& e) {
     first.on_episode(e);
     second.on_episode(e);
+  }
+  void on_piece(const motion_piece& p) {
+    if constexpr (takes_pieces<A>) first.on_piece(p);
+    if constexpr (takes_pieces<B>) second.on_piece(p);
   }
 };
 

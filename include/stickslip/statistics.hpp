@@ -7,16 +7,23 @@
 //   T_i, D_i   start and duration of stick i;  L_i, H_i  of slip i
 //   D_1  first stick duration (may be censored by t_a; absent if no stick)
 //   R    total stick time / t_a
+// and, for every model of the family (docs/model.md, "Statistics of the family"):
+//   X_i  stick-onset position: x at the start of stick i
+//   P_j  fraction of [0, t_a] spent at belt level j (one value per level)
+//   W_f  power dissipated by friction, (1/t_a) int mu_k m g |v - x'| dt over slips
+//   W_c  power dissipated by damping,  (1/t_a) int c x'^2 dt
 // Per grid point: mergeable accumulators of these, with densities and a
 // convergence trace. Memory is independent of the number of realizations.
 // Every accumulator of point_statistics has a row in the statistics schema
 // (statistics_schema.hpp), which says how it is sampled, binned, merged,
 // serialized and written.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "stickslip/accumulators/histogram.hpp"
+#include "stickslip/accumulators/histogram2d.hpp"
 #include "stickslip/accumulators/mean_variance.hpp"
 #include "stickslip/accumulators/score_moments.hpp"
 #include "stickslip/episode.hpp"
@@ -44,13 +51,27 @@ struct realization_record {
   double stick_fraction = 0; // R
   double first_stick_start = -1, first_stick_duration = -1;  // -1: no stick
   bool first_stick_censored = false;
+  double friction_power = 0;  // W_f [W]
+  double damping_power = 0;   // W_c [W]
   event_counts events;
+};
+
+// What one finished realization adds to the statistics: its record, the
+// duration D_i and onset position X_i of every stick (in order), the duration
+// H_i of every counted slip, and the fraction P_j of t_a at each belt level.
+struct realization_samples {
+  const realization_record& record;
+  const std::vector<double>& sticks;
+  const std::vector<double>& slips;
+  const std::vector<double>& onsets;
+  const std::vector<double>& level_fractions;
 };
 
 struct convergence_point {
   std::uint64_t realizations;
   double R_mean, R_ci95_half_width;
   double stick_duration_mean, stick_duration_ci95_half_width;
+  friend bool operator==(const convergence_point&, const convergence_point&) = default;
 };
 
 // Whether the belt switches at the Poisson rate lambda (two levels left at
@@ -65,11 +86,12 @@ struct convergence_point {
 class point_statistics {
  public:
   point_statistics() = default;
-  point_statistics(const model_parameters& p, const histogram_spec& h);
+  // `family`: whether add() fills the statistics of issue 11
+  // (sweep_spec::family_statistics).
+  point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true);
 
-  // Add one finished realization; `sticks` and `slips` hold its D_i and H_i.
-  void add(const realization_record& r, const std::vector<double>& sticks,
-           const std::vector<double>& slips, double window);
+  // Add one finished realization. Precondition: one level fraction per level.
+  void add(const realization_samples& r, double window);
   // Exact merge (see mean_variance). Precondition: same binning.
   point_statistics& operator+=(const point_statistics& o);
   void record_convergence();
@@ -81,12 +103,18 @@ class point_statistics {
   mean_variance stick_duration;        // D, pooled over all sticks
   mean_variance first_stick_duration;  // D_1, realizations with a stick
   mean_variance slip_duration;         // H, pooled over counted slips
+  mean_variance stick_onset_position;  // X, pooled over all sticks
+  mean_variance friction_power;        // W_f
+  mean_variance damping_power;         // W_c
   histogram stick_fraction_hist, stick_duration_hist, first_stick_duration_hist,
-      slip_duration_hist;
+      slip_duration_hist, stick_onset_position_hist;
   // Against K = N - lambda t_a (N belt switches): d mean/dlambda and the
   // control-variate means of R, S_T/t_a, S_L/t_a (score_moments.hpp).
   score_moments stick_fraction_score, sticks_per_time_score, slips_per_time_score;
   double expected_switches = 0.0;  // lambda t_a of the point (not merged: the same)
+  std::vector<mean_variance> level_fraction;  // P_j, one per belt level
+  histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
+  bool family_statistics = true;               // add() fills the five above
   std::uint64_t realizations = 0;
   std::uint64_t no_stick = 0;              // realizations without any stick
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
@@ -100,7 +128,10 @@ class point_statistics {
 // realization_record plus the lists of stick and slip durations.
 class realization_observer : public observer_base {
  public:
-  explicit realization_observer(double window) : window_(window) {}
+  // The model's window, kinetic friction force mu_k m g, damping c, and
+  // belt level count. `family`: whether to collect the stick-onset positions
+  // (sweep_spec::family_statistics).
+  explicit realization_observer(const model_parameters& p, bool family = true);
   void reset(std::uint64_t realization, double x0, double xdot0, int belt);
   // Inline: the engines call it once per episode. It is also compiled into
   // the SIMD translation unit (fast_lanes.cpp, other -m flags), so it must
@@ -109,6 +140,12 @@ class realization_observer : public observer_base {
   // always_inline: the lane engine is compiled once per SIMD target, and GCC
   // otherwise leaves this call out of line there (+8 % CPU in the study).
   [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
+    collect_episode<true>(e);
+  }
+  // The onset positions only when `Onsets` (and the observer's flag): the
+  // lane engine's paper_statistics_observer compiles them out.
+  template <bool Onsets>
+  [[gnu::always_inline, gnu::flatten]] void collect_episode(const episode& e) {
     const double d = e.duration();
     if (e.kind == mode::stick) {
       if (!(d > 0.0)) return;  // sticks of positive length only
@@ -120,21 +157,69 @@ class realization_observer : public observer_base {
       ++rec_.sticks;
       total_stick_ += d;
       sticks_.push_back(d);
+      if constexpr (Onsets) {
+        if (family_) onsets_.push_back(e.position_at_start);
+      }
     } else if (rec_.sticks > 0) {  // slips after the first stick
       ++rec_.slips;
       slips_.push_back(d);
     }
   }
+  // The sums over pieces of motion (motion_piece, docs/model.md): the time at
+  // each level, the relative travel |v dt - dx| of the slips, and the damping
+  // work (c v^2 dt over a stick; over a slip the energy identity
+  // c int x'^2 = sigma mu_k m g dx - d(m x'^2 / 2 + k x^2 / 2)).
+  void on_piece(const motion_piece& p) noexcept {
+    level_time_[p.level] += p.duration;
+    if (p.kind == mode::slip)
+      slip_travel_ += std::abs(p.belt_velocity * p.duration - (p.end_position - p.start_position));
+    if (damping_ > 0.0) {
+      if (p.kind == mode::stick) {
+        damping_work_ += damping_ * p.belt_velocity * p.belt_velocity * p.duration;
+      } else {
+        const double de = 0.5 * mass_ * (p.end_velocity * p.end_velocity -
+                                         p.start_velocity * p.start_velocity) +
+                          0.5 * stiffness_ * (p.end_position * p.end_position -
+                                              p.start_position * p.start_position);
+        damping_work_ += p.sigma * kinetic_force_ * (p.end_position - p.start_position) - de;
+      }
+    }
+  }
+  // The same sums, accumulated by the lane engine itself in the same order
+  // (the paper's model: two levels, no damping).
+  void set_paper_sums(double time_first, double time_second, double slip_travel) noexcept {
+    level_time_[0] = time_first;
+    level_time_[1] = time_second;
+    slip_travel_ = slip_travel;
+  }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
+  [[nodiscard]] realization_samples samples() const noexcept {
+    return {rec_, sticks_, slips_, onsets_, level_fraction_};
+  }
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }
   void finish() noexcept;
 
  private:
-  double window_;
-  double total_stick_ = 0;
+  double window_, kinetic_force_, damping_, mass_, stiffness_;
+  bool family_;
+  double total_stick_ = 0, slip_travel_ = 0, damping_work_ = 0;
   realization_record rec_;
-  std::vector<double> sticks_, slips_;
+  std::vector<double> sticks_, slips_, onsets_;
+  std::vector<double> level_time_, level_fraction_;
+};
+
+// realization_observer without the statistics of issue 11
+// (sweep_spec::family_statistics off): no onset positions, and no pieces of
+// motion (observer_base's no-op, so the lane engine does not sum them). The
+// paper study runs the lane engine with it, at the speed from before.
+class paper_statistics_observer : public realization_observer {
+ public:
+  using realization_observer::realization_observer;
+  using observer_base::on_piece;
+  [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
+    collect_episode<false>(e);
+  }
 };
 
 }  // namespace stickslip

@@ -6,9 +6,16 @@
 // (statistics.hpp), and its tests. The order of the rows is the order of the
 // serialized accumulators and of the output columns.
 //
-// Two kinds of rows:
-//   quantity  a value of a realization (R, S_T/t_a, S_L/t_a, D_i, D_1, H_i),
-//             accumulated as mean/variance and, when binned, as a histogram;
+// Four kinds of rows:
+//   quantity  a value of a realization (R, S_T/t_a, S_L/t_a, D_i, D_1, H_i,
+//             X_i, W_f, W_c), accumulated as mean/variance and, when binned,
+//             as a histogram;
+//   level quantity  one value per belt level of a realization (P_j),
+//             accumulated as mean/variance per level (the dimension
+//             belt_level of results.nc);
+//   joint histogram  two binned per-stick quantities of the same sticks
+//             (D_i, X_i), counted together in the binnings of their 1-D
+//             histograms;
 //   counter   an integer summed over realizations (no-stick realizations,
 //             censored first sticks, events by kind).
 // The paper's definitions are in statistics.hpp and docs/model.md.
@@ -16,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "stickslip/statistics.hpp"
 
@@ -27,6 +35,7 @@ enum class sampling : unsigned char {
   per_realization_with_stick,  // one value per realization with a stick: value(record, t_a)
   per_stick,                   // the duration of every stick, pooled over realizations
   per_counted_slip,            // the duration of every counted slip, pooled
+  per_stick_onset,             // the onset position of every stick, pooled
 };
 
 // The interval a quantity's histogram bins, per grid point.
@@ -35,6 +44,7 @@ enum class histogram_range : unsigned char {
   unit_interval,   // [0, 1]
   stick_duration,  // [0, d_max], d_max = 2 mu m g / (k V) (or histogram_spec::stick_duration_max)
   slip_duration,   // [0, min(t_a, 5 / lambda)] (or histogram_spec::slip_duration_max)
+  stick_band,      // [-b, b], b = a_s + c max|v_i| / k: every x where a stick can start
 };
 
 struct quantity_info {
@@ -71,11 +81,34 @@ struct counter_info {
   }
 };
 
+// A value per belt level of each realization.
+struct level_quantity_info {
+  const char* name;          // results.nc prefix: "<name>_mean" over (grid, belt_level), ...
+  const char* summary_name;  // summary.json key (an array over levels), summary.csv prefix
+  const char* symbol;
+  const char* units;
+  const char* long_name;
+  const char* description;
+  std::vector<mean_variance> point_statistics::*moments;  // one per level
+};
+
+// A joint histogram of two binned quantities sampled per stick (indices into
+// quantity_table), in their binnings.
+struct joint_histogram_info {
+  const char* name;          // results.nc "<name>_counts" over (grid, bin, bin_y)
+  const char* summary_name;  // summary.json key (nested array [x bin][y bin])
+  const char* long_name;
+  const char* description;
+  std::size_t x, y;           // rows of quantity_table
+  sampling x_sampled, y_sampled;
+  histogram2d point_statistics::*counts;
+};
+
 namespace detail::schema {
 using ps = point_statistics;
 using rec = const realization_record&;
 
-inline constexpr std::array<quantity_info, 6> quantity_table{{
+inline constexpr std::array<quantity_info, 9> quantity_table{{
     {"stick_fraction", "R", "R", "1", "stick fraction",
      "total stick time in [0, t_a] divided by t_a, one value per realization", "realizations",
      sampling::per_realization, [](rec r, double) noexcept { return r.stick_fraction; },
@@ -109,6 +142,39 @@ inline constexpr std::array<quantity_info, 6> quantity_table{{
      "over all realizations",
      "counted slips, over all realizations", sampling::per_counted_slip, nullptr,
      &ps::slip_duration, &ps::slip_duration_hist, histogram_range::slip_duration, nullptr},
+    {"stick_onset_position", "stick_onset_position", "X", "m", "stick-onset position",
+     "position x of the mass at the start of every stick of positive length (a stick at "
+     "t = 0 starts at x0), pooled over all sticks of all realizations; it lies in the stick "
+     "band |x + c v / k| <= a_s",
+     "sticks, over all realizations", sampling::per_stick_onset, nullptr,
+     &ps::stick_onset_position, &ps::stick_onset_position_hist, histogram_range::stick_band},
+    {"friction_power", "friction_power", "W_f", "W", "friction power",
+     "energy dissipated by kinetic friction over [0, t_a] divided by t_a: (1/t_a) times the "
+     "integral over the slips of mu_k m g |v - x'| dt, one value per realization",
+     "realizations", sampling::per_realization,
+     [](rec r, double) noexcept { return r.friction_power; }, &ps::friction_power, nullptr,
+     histogram_range::none},
+    {"damping_power", "damping_power", "W_c", "W", "damping power",
+     "energy dissipated by viscous damping over [0, t_a] divided by t_a: (1/t_a) times the "
+     "integral of c x'^2 dt (0 without damping), one value per realization",
+     "realizations", sampling::per_realization,
+     [](rec r, double) noexcept { return r.damping_power; }, &ps::damping_power, nullptr,
+     histogram_range::none},
+}};
+
+inline constexpr std::array<level_quantity_info, 1> level_table{{
+    {"belt_level_fraction", "belt_level_fraction", "P", "1", "level time fraction",
+     "fraction of [0, t_a] that the belt spends at each level v_j, one value per level and "
+     "realization (the values of a realization sum to 1)",
+     &ps::level_fraction},
+}};
+
+inline constexpr std::array<joint_histogram_info, 1> joint_table{{
+    {"stick_duration_onset", "stick_duration_onset_counts", "sticks by D and X",
+     "joint counts of the stick duration D_i (first dimension, the bins of "
+     "stick_duration) and the stick-onset position X_i (second dimension, the bins of "
+     "stick_onset_position) of every stick",
+     3, 6, sampling::per_stick, sampling::per_stick_onset, &ps::stick_duration_onset},
 }};
 
 inline constexpr std::array<counter_info, 6> counter_table{{
@@ -144,8 +210,21 @@ inline constexpr std::array<counter_info, 6> counter_table{{
 // iterate them at compile time (no indirect call per realization).
 inline constexpr const auto& quantity_table = detail::schema::quantity_table;
 inline constexpr const auto& counter_table = detail::schema::counter_table;
+inline constexpr const auto& level_table = detail::schema::level_table;
+// The first rows of quantity_table are the paper's; the rest, the level and
+// joint rows are the family's (sweep_spec::family_statistics).
+inline constexpr std::size_t paper_quantity_count = 6;
+inline constexpr const auto& joint_table = detail::schema::joint_table;
+static_assert(quantity_table[3].sampled == sampling::per_stick &&
+              quantity_table[6].sampled == sampling::per_stick_onset);
 [[nodiscard]] inline std::span<const quantity_info> quantities() noexcept { return quantity_table; }
 [[nodiscard]] inline std::span<const counter_info> counters() noexcept { return counter_table; }
+[[nodiscard]] inline std::span<const level_quantity_info> level_quantities() noexcept {
+  return level_table;
+}
+[[nodiscard]] inline std::span<const joint_histogram_info> joint_histograms() noexcept {
+  return joint_table;
+}
 
 // A 64-bit identity of the schema (FNV-1a over every row's names, sampling
 // and range, in order). Serialized data carries it (in serialize.hpp's
@@ -153,8 +232,10 @@ inline constexpr const auto& counter_table = detail::schema::counter_table;
 // instead of misread.
 [[nodiscard]] std::uint64_t statistics_schema_id() noexcept;
 
-// The upper end of a quantity's histogram interval at a grid point (the lower
-// end is 0). Precondition: range != none.
+// The ends of a quantity's histogram interval at a grid point (the lower end
+// is 0 but for stick_band). Precondition: range != none.
+[[nodiscard]] double histogram_lower(histogram_range range, const model_parameters& p,
+                                     const histogram_spec& h) noexcept;
 [[nodiscard]] double histogram_upper(histogram_range range, const model_parameters& p,
                                      const histogram_spec& h) noexcept;
 

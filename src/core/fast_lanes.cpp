@@ -154,14 +154,15 @@ enum : int {
 
 // The sweep's statistics: realization_observer, then point_statistics::add
 // in realization order into the block of each realization.
+template <class Observer>
 class statistics_collector {
  public:
-  using observer = realization_observer;
+  using observer = Observer;
   statistics_collector(const sweep_spec& s, const model_parameters& p,
                        std::vector<block_result>& outs, std::size_t point,
                        std::uint64_t first_block, bool family)
       : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block), family_(family) {}
-  [[nodiscard]] observer make() const { return observer(p_.window); }
+  [[nodiscard]] observer make() const { return observer(p_, s_.family_statistics); }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);
   }
@@ -171,7 +172,7 @@ class statistics_collector {
   }
   void deliver(std::uint64_t r, observer& o) {
     auto& out = outs_[r / s_.block_size - first_block_];
-    out.stats.add(o.record(), o.stick_durations(), o.slip_durations(), p_.window);
+    out.stats.add(o.samples(), p_.window);
     if (s_.keep_records) out.records.push_back(o.record());
   }
   void fallback() {
@@ -199,6 +200,8 @@ struct trace_observer : observer_base {
   void on_event(const event& e) { trace.events.push_back(e); }
 };
 static_assert(observes_events<trace_observer> && !observes_segments<trace_observer>);
+static_assert(observes_pieces<realization_observer> && !observes_pieces<paper_statistics_observer>,
+              "the lane engine sums pieces of motion only with the family statistics");
 static_assert(!observes_events<realization_observer> && !observes_segments<realization_observer>,
               "the lane engine builds events only for observers that take them");
 
@@ -252,6 +255,10 @@ class lane_engine {
   static_assert(!observes_segments<observer>,
                 "the lane engine reports no segments: observe them with simulate()");
   static constexpr bool with_events = observes_events<observer>;
+  // An observer of pieces of motion gets their sums instead (set_paper_sums):
+  // the time at +V and at -V and the slips' relative travel |v dt - dx|,
+  // accumulated here piece by piece in simulate()'s order, so the same bits.
+  static constexpr bool with_pieces = observes_pieces<observer>;
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
@@ -319,6 +326,7 @@ class lane_engine {
     act_[l] = 1.0;
     n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
     steps_[l] = 0.0;
+    lt0_[l] = lt1_[l] = trav_[l] = 0.0;
     // simulate(): initial state and mode.
     const double a = a_;
     const double x = ic.position, z = ic.velocity;
@@ -345,6 +353,7 @@ class lane_engine {
 
   void finish_realization(int l) {
     obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true});
+    if constexpr (with_pieces) obs_[l]->set_paper_sums(lt0_[l], lt1_[l], trav_[l]);
     collect_.end(*obs_[l], event_counts{
         static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
         static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])});
@@ -450,6 +459,11 @@ class lane_engine {
     const double t_next = std::min(t_root, tsw_[l]);
     arv_[l] = 0.0;
     if (t_next >= ta) {
+      if constexpr (with_pieces) {
+        const double dt = ta - t;
+        const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
+        add_slip_piece(l, v, dt, x, physics::rotated_position(o, z, w, cs, sn));
+      }
       finish_realization(l);
       return;
     }
@@ -457,6 +471,7 @@ class lane_engine {
       const double dt = tsw_[l] - t;
       const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
       x_[l] = physics::rotated_position(o, z, w, cs, sn);
+      if constexpr (with_pieces) add_slip_piece(l, v, dt, x, x_[l]);
       z_[l] = physics::rotated_velocity(o, z, cs, sn);
       t_[l] = tsw_[l];
       v_[l] = -v;
@@ -472,9 +487,16 @@ class lane_engine {
       return;
     }
     x_[l] = physics::root_position(o, sigma, std::sqrt(o.disc), w);
+    if constexpr (with_pieces) add_slip_piece(l, v, t_root - t, x, x_[l]);
     z_[l] = v;
     t_[l] = t_root;
     root_contact(l, sigma);
+  }
+
+  // A slip piece of the scalar path: the vector step's sums, lane l alone.
+  void add_slip_piece(int l, double v, double dt, double x0, double x1) noexcept {
+    (v > 0 ? lt0_[l] : lt1_[l]) += dt;
+    trav_[l] += std::abs(v * dt - (x1 - x0));
   }
 
   // simulate()'s contact_at (physics::resolve_contact): a stick, a grazing
@@ -683,6 +705,21 @@ class lane_engine {
                                         IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),
                         code);
 
+      // the piece of motion of this round (simulate()'s piece(): from the
+      // state at the start of the round to the unresolved end, x_root or the
+      // rotated x): time at the level, and a slip's |v dt - dx|
+      if constexpr (with_pieces) {
+        const vec dt = Sub(nt, t[k]);
+        const vec x_end = IfThenElse(sroot, x_root, xr[k]);
+        const vec travel = hn::Abs(Sub(Mul(v[k], dt), Sub(x_end, x[k])));
+        const mask up = hn::Gt(v[k], zero);
+        const mask rn0 = run[k];
+        hn::Store(Add(hn::Load(d, lt0_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d, lt0_ + j);
+        hn::Store(Add(hn::Load(d, lt1_ + j), hn::IfThenElseZero(hn::AndNot(up, rn0), dt)), d, lt1_ + j);
+        hn::Store(Add(hn::Load(d, trav_ + j), hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)), d,
+                  trav_ + j);
+      }
+
       // idle lanes keep their state
       const mask rn = run[k];
       hn::Store(IfThenElse(rn, nt, t[k]), d, t_ + j);
@@ -782,6 +819,9 @@ class lane_engine {
   // doubles up to 2^53; act_: 1 while the lane runs a realization.
   HWY_ALIGN double n_sw_[lanes] = {}, n_on_[lanes] = {}, n_brk_[lanes] = {}, n_rev_[lanes] = {};
   HWY_ALIGN double steps_[lanes] = {}, act_[lanes] = {};
+  // The sums of the pieces of motion (with_pieces): time at +V, at -V, and
+  // the slips' relative travel.
+  HWY_ALIGN double lt0_[lanes] = {}, lt1_[lanes] = {}, trav_[lanes] = {};
   double max_steps_;
   // What the last vector step left to do, one bit per lane.
   std::uint32_t pop_ = 0, close_stick_ = 0, close_slip_ = 0, fin_ = 0;
@@ -818,7 +858,7 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   const std::uint64_t first = first_block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, (first_block + count) * s.block_size);
   for (std::uint64_t b = 0; b < count; ++b) {
-    outs[b].stats = point_statistics(p, s.histograms);
+    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;
@@ -826,8 +866,17 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
     fp.emplace(p);
     fp->key = stream_key(s, p);  // common random numbers: one key for every point
   }
-  statistics_collector collect(s, p, outs, point, first_block, fp.has_value());
-  run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
+  // Two instantiations: with the statistics of issue 11, or without their
+  // per-stick and per-round work (sweep_spec::family_statistics).
+  if (s.family_statistics) {
+    statistics_collector<realization_observer> collect(s, p, outs, point, first_block,
+                                                       fp.has_value());
+    run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
+  } else {
+    statistics_collector<paper_statistics_observer> collect(s, p, outs, point, first_block,
+                                                            fp.has_value());
+    run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
+  }
   return outs;
 }
 

@@ -34,7 +34,7 @@ void replay_family(const replay_request& r, const model_parameters& p, realizati
   out.initial = {start.position, start.velocity, recorded_belt_start(start.level, levels)};
 
   trace_observer trace{{}, out, r.keep_events, r.keep_segments};
-  realization_observer stats(p.window);
+  realization_observer stats(p);
   stats.reset(r.realization, start.position, start.velocity, out.initial.belt_direction);
   observer_pair<trace_observer, realization_observer> both{trace, stats};
   event_counts counts;
@@ -98,7 +98,7 @@ realization_trace replay(const replay_request& r) {
   validate(ic);
 
   trace_observer trace{{}, out, r.keep_events, r.keep_segments};
-  realization_observer stats(p.window);
+  realization_observer stats(p);
   stats.reset(r.realization, ic.position, ic.velocity, ic.belt_direction);
   observer_pair<trace_observer, realization_observer> both{trace, stats};
   event_counts counts;

@@ -118,6 +118,7 @@ void put(writer& w, const point_statistics& s) {
   for (const auto& q : quantities())
     if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
+  w.u8(s.family_statistics ? 1 : 0);
   for (const auto& c : counters()) w.u64(c.value(s));
   for (const auto& q : quantities())
     if (q.score) {
@@ -125,6 +126,25 @@ void put(writer& w, const point_statistics& s) {
       for (int i = 0; i < 5; ++i) w.f64((s.*q.score).sum(i));
     }
   w.f64(s.expected_switches);
+  for (const auto& l : level_quantities()) {
+    w.u64((s.*l.moments).size());
+    for (const auto& m : s.*l.moments) put(w, m);
+  }
+  // Joint histograms sparsely (a block's sticks fill few of the (bins + 2)^2
+  // cells; the journal buffers these bytes): the cell count, the number of
+  // non-zero cells, then (index, count) for each, in index order.
+  for (const auto& j : joint_histograms()) {
+    const auto& cells = (s.*j.counts).cells();
+    w.u64(cells.size());
+    std::uint64_t nonzero = 0;
+    for (auto c : cells) nonzero += c != 0;
+    w.u64(nonzero);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (cells[i] != 0) {
+        w.u64(i);
+        w.u64(cells[i]);
+      }
+  }
   w.u64(s.convergence.size());
   for (const auto& c : s.convergence) {
     w.u64(c.realizations);
@@ -140,6 +160,7 @@ point_statistics get_statistics(reader& r) {
   for (const auto& q : quantities())
     if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
+  s.family_statistics = r.boolean("family statistics flag");
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
   for (const auto& q : quantities())
     if (q.score) {
@@ -149,6 +170,30 @@ point_statistics get_statistics(reader& r) {
       s.*q.score = score_moments::from_raw(count, sums);
     }
   s.expected_switches = r.f64("expected switches");
+  for (const auto& l : level_quantities()) {
+    auto& moments = s.*l.moments;
+    moments.resize(r.count(l.name, 24));
+    for (auto& m : moments) m = get_mean_variance(r);
+  }
+  // A joint histogram has the binnings of its two quantities' histograms.
+  for (const auto& j : joint_histograms()) {
+    histogram2d h(s.*quantity_table[j.x].density, s.*quantity_table[j.y].density);
+    const auto n = r.u64(j.name);
+    if (n != h.cells().size())
+      throw corrupt(fmt::format("{}: {} cells, its binnings have {}", j.name, n, h.cells().size()));
+    std::vector<std::uint64_t> cells(n, 0);
+    const auto nonzero = r.count(j.name, 16);
+    std::uint64_t last = 0;
+    for (std::size_t k = 0; k < nonzero; ++k) {
+      const auto i = r.u64(j.name);
+      if (i >= n || (k > 0 && i <= last))
+        throw corrupt(fmt::format("{}: cell index {} out of order or range", j.name, i));
+      last = i;
+      cells[static_cast<std::size_t>(i)] = r.u64(j.name);
+    }
+    h.set_raw(std::move(cells));
+    s.*j.counts = std::move(h);
+  }
   const auto n = r.count("convergence trace", 40);
   s.convergence.resize(n);
   for (auto& c : s.convergence) {
@@ -161,7 +206,7 @@ point_statistics get_statistics(reader& r) {
   return s;
 }
 
-constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 32;
+constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 32;
 
 void put(writer& w, const realization_record& x) {
   w.u64(x.realization);
@@ -174,6 +219,8 @@ void put(writer& w, const realization_record& x) {
   w.f64(x.first_stick_start);
   w.f64(x.first_stick_duration);
   w.u8(x.first_stick_censored ? 1 : 0);
+  w.f64(x.friction_power);
+  w.f64(x.damping_power);
   put(w, x.events);
 }
 realization_record get_record(reader& r) {
@@ -182,14 +229,19 @@ realization_record get_record(reader& r) {
   x.x0 = r.f64("record");
   x.xdot0 = r.f64("record");
   x.belt_start = static_cast<std::int8_t>(r.u8("record"));
-  if (x.belt_start != 1 && x.belt_start != -1)
-    throw corrupt(fmt::format("record belt direction {} is not +1 or -1", x.belt_start));
+  // +1 / -1 on a two-level belt, the level number 1..n on more levels
+  // (model_realization.hpp, recorded_belt_start).
+  if (x.belt_start == 0 || x.belt_start < -1)
+    throw corrupt(fmt::format("record belt start {} is not +1, -1 or a level number",
+                              x.belt_start));
   x.sticks = r.u32("record");
   x.slips = r.u32("record");
   x.stick_fraction = r.f64("record");
   x.first_stick_start = r.f64("record");
   x.first_stick_duration = r.f64("record");
   x.first_stick_censored = r.boolean("record censoring flag");
+  x.friction_power = r.f64("record");
+  x.damping_power = r.f64("record");
   x.events = get_counts(r);
   return x;
 }
@@ -256,6 +308,7 @@ bytes serialize(const sweep_spec& s) {
   w.str(s.target_statistic);
   w.f64(s.target_halfwidth);
   w.u64(s.min_realizations);
+  w.u8(s.family_statistics ? 1 : 0);
   return w.take();
 }
 
@@ -293,6 +346,7 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   s.target_statistic = r.str("target statistic");
   s.target_halfwidth = r.f64("target half-width");
   s.min_realizations = r.u64("min realizations");
+  s.family_statistics = r.boolean("family_statistics");
   r.finish("sweep spec");
   return s;
 }
@@ -353,6 +407,10 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   for (const auto& q : quantities())
     if (q.density && !(b.stats.*q.density).same_binning(fresh.*q.density))
       throw bad(fmt::format("histogram binning of {} differs", q.name));
+  for (const auto& l : level_quantities())
+    if ((b.stats.*l.moments).size() != (fresh.*l.moments).size())
+      throw bad(fmt::format("{} values of {}, the point has {} belt levels",
+                            (b.stats.*l.moments).size(), l.name, (fresh.*l.moments).size()));
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))
     throw bad(fmt::format("{} raw records", b.records.size()));
@@ -443,6 +501,8 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
     return fmt::format("target CI: {}:{} (min {}) vs {}:{} (min {})", a.target_statistic,
                        a.target_halfwidth, a.min_realizations, b.target_statistic,
                        b.target_halfwidth, b.min_realizations);
+  if (a.family_statistics != b.family_statistics)
+    return fmt::format("family statistics: {} vs {}", a.family_statistics, b.family_statistics);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

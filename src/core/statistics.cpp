@@ -2,15 +2,23 @@
 
 #include "stickslip/statistics_schema.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
-point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h)
-    : expected_switches(p.switch_rate * p.window) {
+point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
+                                   bool family)
+    : expected_switches(p.switch_rate * p.window), family_statistics(family) {
   for (const auto& q : quantities())
-    if (q.density) this->*q.density = histogram(0.0, histogram_upper(q.range, p, h), h.bins);
+    if (q.density)
+      this->*q.density =
+          histogram(histogram_lower(q.range, p, h), histogram_upper(q.range, p, h), h.bins);
+  for (const auto& l : level_quantities()) (this->*l.moments).assign(p.levels().size(), {});
+  for (const auto& j : joint_histograms())
+    this->*j.counts = histogram2d(this->*quantity_table[j.x].density,
+                                  this->*quantity_table[j.y].density);
 }
 
 namespace {
@@ -18,10 +26,12 @@ namespace {
 // One row of the schema, resolved at compile time (the row's value function
 // is inlined: this runs once per realization).
 template <std::size_t I>
-void add_quantity(point_statistics& s, const realization_record& r,
-                  const std::vector<double>& sticks, const std::vector<double>& slips,
-                  double window) noexcept {
+void add_quantity(point_statistics& s, const realization_samples& in, double window) noexcept {
   constexpr const quantity_info& q = quantity_table[I];
+  if constexpr (I >= paper_quantity_count) {
+    if (!s.family_statistics) return;
+  }
+  const realization_record& r = in.record;
   mean_variance& moments = s.*q.moments;
   if constexpr (q.sampled == sampling::per_realization ||
                 q.sampled == sampling::per_realization_with_stick) {
@@ -34,7 +44,9 @@ void add_quantity(point_statistics& s, const realization_record& r,
       (s.*q.score).add(x, static_cast<double>(r.events.belt_switches) - s.expected_switches);
     if constexpr (q.density != nullptr) (s.*q.density).add(x);
   } else {
-    const auto& xs = q.sampled == sampling::per_stick ? sticks : slips;
+    const auto& xs = q.sampled == sampling::per_stick         ? in.sticks
+                     : q.sampled == sampling::per_stick_onset ? in.onsets
+                                                              : in.slips;
     moments.add_batch(xs.data(), xs.data() + xs.size());
     if constexpr (q.density != nullptr)
       for (double x : xs) (s.*q.density).add(x);
@@ -47,15 +59,28 @@ void add_quantity(point_statistics& s, const realization_record& r,
 // the bits depend only on the samples' order, not on the order of the rows.
 // Per-realization values go in one at a time (Welford); the pooled D_i and
 // H_i of a realization as one batch (mean_variance::add_batch).
-void point_statistics::add(const realization_record& r, const std::vector<double>& sticks,
-                           const std::vector<double>& slips, double window) {
+// The level fractions one realization at a time per level (Welford); every
+// stick's (D_i, X_i) to the joint histograms.
+void point_statistics::add(const realization_samples& in, double window) {
+  const realization_record& r = in.record;
   ++realizations;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (add_quantity<I>(*this, r, sticks, slips, window), ...);
+    (add_quantity<I>(*this, in, window), ...);
   }(std::make_index_sequence<quantity_table.size()>{});
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
   }(std::make_index_sequence<counter_table.size()>{});
+  if (!family_statistics) return;
+  for (const auto& l : level_quantities()) {
+    auto& moments = this->*l.moments;
+    for (std::size_t i = 0; i < moments.size(); ++i) moments[i].add(in.level_fractions[i]);
+  }
+  for (const auto& j : joint_histograms()) {
+    const auto& xs = j.x_sampled == sampling::per_stick ? in.sticks : in.onsets;
+    const auto& ys = j.y_sampled == sampling::per_stick ? in.sticks : in.onsets;
+    const std::size_t n = std::min(xs.size(), ys.size());
+    for (std::size_t i = 0; i < n; ++i) (this->*j.counts).add(xs[i], ys[i]);
+  }
 }
 
 point_statistics& point_statistics::operator+=(const point_statistics& o) {
@@ -64,6 +89,10 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
     if (q.score) this->*q.score += o.*q.score;
     if (q.density) this->*q.density += o.*q.density;
   }
+  for (const auto& l : level_quantities())
+    for (std::size_t i = 0; i < (this->*l.moments).size(); ++i)
+      (this->*l.moments)[i] += (o.*l.moments)[i];
+  for (const auto& j : joint_histograms()) this->*j.counts += o.*j.counts;
   realizations += o.realizations;
   for (const auto& c : counters()) c.of(*this) += c.value(o);
   return *this;
@@ -74,8 +103,20 @@ void point_statistics::record_convergence() {
                          stick_duration.mean(), stick_duration.ci95_half_width()});
 }
 
+realization_observer::realization_observer(const model_parameters& p, bool family)
+    : window_(p.window),
+      kinetic_force_(p.mu_k() * p.mass * p.gravity),
+      damping_(p.damping),
+      mass_(p.mass),
+      stiffness_(p.stiffness),
+      family_(family),
+      level_time_(p.levels().size(), 0.0),
+      level_fraction_(p.levels().size(), 0.0) {}
+
 void realization_observer::reset(std::uint64_t realization, double x0, double xdot0, int belt) {
-  total_stick_ = 0;
+  total_stick_ = slip_travel_ = damping_work_ = 0;
+  std::fill(level_time_.begin(), level_time_.end(), 0.0);
+  onsets_.clear();
   rec_ = realization_record{};
   rec_.realization = realization;
   rec_.x0 = x0;
@@ -85,6 +126,12 @@ void realization_observer::reset(std::uint64_t realization, double x0, double xd
   slips_.clear();
 }
 
-void realization_observer::finish() noexcept { rec_.stick_fraction = total_stick_ / window_; }
+void realization_observer::finish() noexcept {
+  rec_.stick_fraction = total_stick_ / window_;
+  rec_.friction_power = kinetic_force_ * slip_travel_ / window_;
+  rec_.damping_power = damping_work_ / window_;
+  for (std::size_t i = 0; i < level_time_.size(); ++i)
+    level_fraction_[i] = level_time_[i] / window_;
+}
 
 }  // namespace stickslip

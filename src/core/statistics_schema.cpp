@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string_view>
 
 namespace stickslip {
@@ -36,9 +37,33 @@ std::uint64_t statistics_schema_id() noexcept {
       f.add("counter");
       f.add(c.name);
     }
+    for (const auto& l : level_table) {
+      f.add("level quantity");
+      f.add(l.name);
+    }
+    for (const auto& j : joint_table) {
+      f.add("joint histogram");
+      f.add(j.name);
+      f.byte(static_cast<unsigned char>(j.x));
+      f.byte(static_cast<unsigned char>(j.y));
+    }
     return f.h;
   }();
   return id;
+}
+
+namespace {
+// b = a_s + c max|v_i| / k: the band |x + c v / k| <= a_s at every level.
+double stick_band_half_width(const model_parameters& p) {
+  double v = 0.0;
+  for (double u : p.levels()) v = std::max(v, std::abs(u));
+  return p.band_half_width() + p.damping * v / p.stiffness;
+}
+}  // namespace
+
+double histogram_lower(histogram_range range, const model_parameters& p,
+                       const histogram_spec&) noexcept {
+  return range == histogram_range::stick_band ? -stick_band_half_width(p) : 0.0;
 }
 
 double histogram_upper(histogram_range range, const model_parameters& p,
@@ -50,6 +75,7 @@ double histogram_upper(histogram_range range, const model_parameters& p,
     case histogram_range::slip_duration:
       return h.slip_duration_max > 0 ? h.slip_duration_max
                                      : std::min(p.window, 5.0 / p.switch_rate);
+    case histogram_range::stick_band: return stick_band_half_width(p);
     case histogram_range::none: break;
   }
   return 1.0;

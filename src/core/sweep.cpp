@@ -254,12 +254,12 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
   block_result out;
-  out.stats = point_statistics(p, s.histograms);
+  out.stats = point_statistics(p, s.histograms, s.family_statistics);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const auto key = stream_key(s, p);
-  realization_observer obs(p.window);
+  realization_observer obs(p, s.family_statistics);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
     poisson_switches sw(p.switch_rate, s.seed, key, r);
@@ -267,7 +267,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
     const auto counts = simulate(p, ic, sw, obs, s.max_events);
     obs.finish();
     obs.record().events = counts;
-    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    out.stats.add(obs.samples(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }
   return out;
@@ -280,19 +280,19 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   family_point fp(p);
   fp.key = stream_key(s, p);  // common random numbers: one key for every point
   block_result out;
-  out.stats = point_statistics(p, s.histograms);
+  out.stats = point_statistics(p, s.histograms, s.family_statistics);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const std::size_t levels = fp.model.belt.level_count();
-  realization_observer obs(p.window);
+  realization_observer obs(p, s.family_statistics);
   for (std::uint64_t r = first; r < last; ++r) {
     const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
     obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));
     const auto counts = simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
     obs.finish();
     obs.record().events = counts;
-    out.stats.add(obs.record(), obs.stick_durations(), obs.slip_durations(), p.window);
+    out.stats.add(obs.samples(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }
   return out;
@@ -321,7 +321,7 @@ ordered_merger::ordered_merger(const sweep_spec& s)
       finished_(point_count(s)) {
   points_.reserve(point_count(s));
   for (std::size_t i = 0; i < point_count(s); ++i)
-    points_.emplace_back(point_parameters(s, i), s.histograms);
+    points_.emplace_back(point_parameters(s, i), s.histograms, s.family_statistics);
 }
 
 bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept {

@@ -92,6 +92,45 @@ TEST_F(writers, NetcdfHasOneDimensionPerAxisWithCoordinatesAndUnits) {
   EXPECT_EQ(text_att(f.getVar("sticks_per_time_mean"), "units"), "1/s");
 }
 
+// The family's statistics (issue 11): names, dimensions, units and long
+// names written from docs/outputs.md, values equal to the result set.
+TEST_F(writers, NetcdfHasTheFamilyStatisticsWithDimensionsAndUnits) {
+  const auto path = dir_ / "results.nc";
+  io::write_netcdf(rs(), small_metadata(), path);
+  nc::NcFile f(path, nc::NcFile::read);
+  const std::size_t points = rs().points.size(), bins = rs().spec.histograms.bins;
+  EXPECT_EQ(f.getDim("belt_level").getSize(), 2u);
+  EXPECT_EQ(f.getDim("bin_y").getSize(), bins);
+  const struct {
+    const char* name;
+    const char* units;
+  } vars[] = {{"stick_onset_position_mean", "m"}, {"stick_onset_position_density", "1/m"},
+              {"friction_power_mean", "W"},       {"damping_power_mean", "W"},
+              {"belt_level_fraction_mean", "1"},  {"belt_level_velocity", "m/s"},
+              {"stick_duration_onset_counts", "1"}};
+  for (const auto& v : vars) {
+    const auto var = f.getVar(v.name);
+    ASSERT_FALSE(var.isNull()) << v.name;
+    EXPECT_EQ(text_att(var, "units"), v.units) << v.name;
+    EXPECT_FALSE(text_att(var, "long_name").empty()) << v.name;
+  }
+  const auto fraction = doubles(f.getVar("belt_level_fraction_mean"));
+  const auto friction = doubles(f.getVar("friction_power_mean"));
+  const auto joint = int64s(f.getVar("stick_duration_onset_counts"));
+  ASSERT_EQ(fraction.size(), points * 2);
+  ASSERT_EQ(joint.size(), points * bins * bins);
+  for (std::size_t i = 0; i < points; ++i) {
+    const auto& st = rs().points[i].stats;
+    EXPECT_EQ(fraction[2 * i], st.level_fraction[0].mean());
+    EXPECT_EQ(fraction[2 * i + 1], st.level_fraction[1].mean());
+    EXPECT_EQ(friction[i], st.friction_power.mean());
+    long long sum = 0;
+    for (std::size_t k = 0; k < bins * bins; ++k) sum += joint[i * bins * bins + k];
+    EXPECT_EQ(static_cast<std::uint64_t>(sum) + st.stick_duration_onset.outside(),
+              st.stick_duration.count());
+  }
+}
+
 TEST_F(writers, NetcdfStatisticsEqualTheResultSetExactly) {
   const auto path = dir_ / "results.nc";
   io::write_netcdf(rs(), small_metadata(), path);
@@ -246,10 +285,13 @@ TEST_F(writers, SummaryJsonCarriesEveryStatisticRoundTripExact) {
     const auto expected = fmt::format(
         "{{\"lambda\": {}, \"mu\": {}, \"realizations\": 200, \"R\": {}, \"sticks_per_time\": {}, "
         "\"slips_per_time\": {}, \"stick_duration\": {}, \"first_stick_duration\": {}, "
-        "\"slip_duration\": {}, \"no_stick\": {}",
+        "\"slip_duration\": {}, \"stick_onset_position\": {}, \"friction_power\": {}, "
+        "\"damping_power\": {}, \"belt_level_fraction\": [{}, {}], \"no_stick\": {}",
         p.parameters.switch_rate, p.parameters.friction_coefficient, stat(s.stick_fraction),
         stat(s.sticks_per_time), stat(s.slips_per_time), stat(s.stick_duration),
-        stat(s.first_stick_duration), stat(s.slip_duration), s.no_stick);
+        stat(s.first_stick_duration), stat(s.slip_duration), stat(s.stick_onset_position),
+        stat(s.friction_power), stat(s.damping_power), stat(s.level_fraction.at(0)),
+        stat(s.level_fraction.at(1)), s.no_stick);
     EXPECT_NE(text.find(expected), std::string::npos) << expected;
   }
   EXPECT_NE(text.find("\"seed\": 7"), std::string::npos);

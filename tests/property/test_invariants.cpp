@@ -82,7 +82,7 @@ class Invariants : public ::testing::Test {
         const initial_conditions ic = draw_initial_conditions(law, seed, 0, r);
         poisson_switches sw(p.switch_rate, seed, 0, r);
         recorded rec;
-        realization_observer stats(p.window);
+        realization_observer stats(p);
         stats.reset(r, ic.position, ic.velocity, ic.belt_direction);
         observer_pair<recorded, realization_observer> both{rec, stats};
         const event_counts counts = simulate(p, ic, sw, both);

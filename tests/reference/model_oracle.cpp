@@ -49,6 +49,7 @@ class model_reference {
     v_ = levels_[ic.level];
     out_.step = h_;
     out_.stick_resolution = stick_resolution_;
+    out_.initial_energy = energy();
   }
 
   model_oracle_result run() {
@@ -68,6 +69,7 @@ class model_reference {
       }
     }
     finish();
+    out_.final_energy = energy();
     return std::move(out_);
   }
 
@@ -75,6 +77,22 @@ class model_reference {
   // m x'' = -k x - c x' + sigma mu_k m g while slipping.
   [[nodiscard]] double acceleration(phase s) const noexcept {
     return (-k_ * s.x - c_ * s.z + sigma_ * kinetic_force_) / m_;
+  }
+  [[nodiscard]] double energy() const noexcept { return 0.5 * m_ * z_ * z_ + 0.5 * k_ * x_ * x_; }
+  // A slip from s0 over tau (ending in s1): Simpson's rule for the
+  // dissipation, the friction force is constant for the belt's work.
+  void account_slip(phase s0, double tau, phase s1) {
+    if (!(tau > 0.0)) return;
+    const phase mid = rk4(s0, 0.5 * tau);
+    auto simpson = [&](auto f) { return tau / 6.0 * (f(s0) + 4.0 * f(mid) + f(s1)); };
+    out_.friction_dissipation += kinetic_force_ * simpson([&](phase s) { return std::abs(v_ - s.z); });
+    out_.damping_dissipation += c_ * simpson([](phase s) { return s.z * s.z; });
+    out_.belt_work += sigma_ * kinetic_force_ * v_ * tau;
+  }
+  // A stick from x0 over tau: f = k x + c v with x = x0 + v t.
+  void account_stick(double x0, double tau) {
+    out_.damping_dissipation += c_ * v_ * v_ * tau;
+    out_.belt_work += v_ * (k_ * (x0 * tau + 0.5 * v_ * tau * tau) + c_ * v_ * tau);
   }
   // The force a stick needs at x on the belt v: k x + c v.
   [[nodiscard]] double stick_force(double x) const noexcept { return k_ * x + c_ * v_; }
@@ -148,6 +166,7 @@ class model_reference {
     auto beyond_band = [&](double dt) { return !inside_band(x_ + v_ * dt); };
     if (v_ != 0.0 && beyond_band(tau)) {
       const double dt = beyond_band(0.0) ? 0.0 : bisect(0.0, tau, beyond_band);
+      account_stick(x_, std::min(t_ + dt, stop) - t_);
       x_ += v_ * dt;
       t_ = std::min(t_ + dt, stop);
       z_ = v_;
@@ -158,6 +177,7 @@ class model_reference {
       return;
     }
     ++out_.rk4_steps;
+    account_stick(x_, (reaches_stop ? stop : t_ + tau) - t_);
     x_ += v_ * tau;
     t_ = reaches_stop ? stop : t_ + tau;
     if (!reaches_stop) return;
@@ -198,6 +218,7 @@ class model_reference {
     }
     if (dt_contact >= 0.0) {
       const phase s = rk4(s0, dt_contact);
+      account_slip(s0, dt_contact, s);
       // A contact where x' barely turns (|x''| tiny) is a near tangency too.
       if (!grazing_ && std::abs(acceleration(s)) * h_ < tangency_gap_)
         out_.near_tangencies.push_back(t_ + dt_contact);
@@ -208,6 +229,7 @@ class model_reference {
       return;
     }
     ++out_.rk4_steps;
+    account_slip(s0, tau, s1);
     x_ = s1.x;
     z_ = s1.z;
     t_ = reaches_stop ? stop : t_ + tau;

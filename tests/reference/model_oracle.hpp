@@ -37,7 +37,18 @@
 
 namespace stickslip::reference {
 
+// Energy bookkeeping, integrated along the RK4 path (Simpson's rule on each
+// accepted step, the midpoint from the same RK4 map): never the closed forms
+// nor the engine's per-piece formulas.
+//   friction_dissipation  int over slips of mu_k m g |v - x'| dt
+//   damping_dissipation   int of c x'^2 dt (a stick: c v^2 dt)
+//   belt_work             int of f v dt, f the friction force on the mass
+//                         (slip: sigma mu_k m g; stick: k x + c v)
+// and the mechanical energy m x'^2 / 2 + k x^2 / 2 at 0 and t_a:
+//   belt_work = friction + damping dissipation + final - initial energy.
 struct model_oracle_result {
+  double friction_dissipation = 0, damping_dissipation = 0, belt_work = 0;
+  double initial_energy = 0, final_energy = 0;
   std::vector<episode> episodes;
   std::vector<oracle_event> events;
   std::vector<double> dropped_stick_durations;

@@ -27,6 +27,7 @@
 
 #include "reference/model_oracle.hpp"
 #include "reference/model_scenario.hpp"
+#include "stickslip/statistics.hpp"
 
 namespace stickslip::reference {
 namespace {
@@ -250,6 +251,76 @@ TEST(ModelOracleAgreement, EdgeStartsAndSwitchesAtZero) {
     }
   }
   EXPECT_EQ(checked, 60);
+}
+
+
+// The parameters of a family scenario (for realization_observer).
+model_parameters parameters_of(const oscillator_model& m) {
+  model_parameters p;
+  p.mass = m.mass;
+  p.stiffness = m.stiffness;
+  p.gravity = m.gravity;
+  p.damping = m.damping;
+  p.static_friction = m.static_friction;
+  p.kinetic_friction = m.kinetic_friction;
+  p.belt_levels = m.belt.levels;
+  p.belt_generator = m.belt.generator;
+  p.window = m.window;
+  return p;
+}
+
+// The dissipation statistics (friction power W_f, damping power W_c, times
+// t_a) of realization_observer on the exact engine, against the oracle's
+// Simpson integrals of mu_k m g |v - x'| and c x'^2 along its RK4 path, on
+// random family scenarios (another seed than the episode test; the same
+// near-degenerate filter). Bound: each of the n_ev events may sit tol_t off,
+// moving |v - x'| <= u = V_max + B (B the largest slip speed) worth of
+// relative travel, and the errors do not add up (the oracle's events are
+// located to rounding, its error is the RK4 path's), so tol_D = tol_t
+// (mu_k m g + c u) u + a relative 1e-12 of the energy turnover. The oracle also closes its own
+// energy balance: belt work = dissipation + change of energy.
+TEST(ModelOracleAgreement, DissipationAgreesWithTheOracle) {
+  std::mt19937_64 rng(0xd155'1fa7eULL);
+  int accepted = 0, damped = 0;
+  double worst = 0, worst_balance = 0;
+  while (accepted < 300) {
+    const model_scenario s = draw_model_scenario(rng);
+    const model_exact_run exact = run_model_exact(s);
+    const model_oracle_result oracle = integrate_model_reference(
+        s.model, s.ic, s.switches, {.steps_per_period = steps_per_period});
+    const tolerance tol = tolerance_for(s, exact, steps_per_period);
+    if (near_degenerate(s, exact, oracle, tol)) continue;
+    ++accepted;
+    realization_observer obs(parameters_of(s.model));
+    obs.reset(0, s.ic.position, s.ic.velocity, 1);
+    given_level_switches sw(s.switches);
+    simulate_model(s.model, s.ic, sw, obs);
+    obs.finish();
+    const double ta = s.model.window;
+    const double friction = obs.record().friction_power * ta;
+    const double damping = obs.record().damping_power * ta;
+    const double u = tol.position / tol.time;  // V_max + B
+    const double force = s.model.kinetic_friction * s.model.mass * s.model.gravity;
+    const double turnover = oracle.friction_dissipation + oracle.damping_dissipation +
+                            oracle.initial_energy + oracle.final_energy + std::abs(oracle.belt_work);
+    const double bound = tol.time * (force + s.model.damping * u) * u + 1e-12 * turnover;
+    EXPECT_NEAR(friction, oracle.friction_dissipation, bound) << describe(s);
+    EXPECT_NEAR(damping, oracle.damping_dissipation, bound) << describe(s);
+    if (s.model.damping == 0.0) {
+      EXPECT_EQ(damping, 0.0);
+    }
+    const double balance = oracle.belt_work - oracle.friction_dissipation -
+                           oracle.damping_dissipation - (oracle.final_energy - oracle.initial_energy);
+    EXPECT_LE(std::abs(balance), bound) << describe(s);
+    worst = std::max({worst, std::abs(friction - oracle.friction_dissipation) / bound,
+                      std::abs(damping - oracle.damping_dissipation) / bound});
+    worst_balance = std::max(worst_balance, std::abs(balance) / bound);
+    damped += s.model.damping > 0.0;
+  }
+  std::printf("dissipation vs oracle: %d scenarios (%d damped), worst error %.3g of the bound, "
+              "oracle's own balance %.3g of it\n",
+              accepted, damped, worst, worst_balance);
+  EXPECT_GT(damped, 150);
 }
 
 }  // namespace

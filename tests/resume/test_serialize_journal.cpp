@@ -86,6 +86,42 @@ TEST(Serialize, BlockResultRoundTripIsExact) {
   EXPECT_NO_THROW(check_block_shape(s, u2, b2));
 }
 
+// The family's statistics (three belt levels, damping, mu_s > mu_k): every
+// accumulator, compared by value (operator==, not by re-encoding), and the
+// records' powers.
+TEST(Serialize, FamilyStatisticsRoundTripByValue) {
+  sweep_spec s;
+  s.base.damping = 0.4;
+  s.base.static_friction = 6.0;
+  s.base.kinetic_friction = 4.0;
+  s.base.belt_levels = {1.0, -0.5, 0.0};
+  s.base.belt_generator = {-2, 1, 1, 0.5, -1, 0.5, 1, 1, -2};
+  s.base.window = 10.0;
+  s.realizations = 40;
+  s.block_size = 20;
+  s.keep_records = true;
+  const work_unit u{0, 1};
+  const auto b = simulate_block(s, u);
+  ASSERT_EQ(b.stats.level_fraction.size(), 3u);
+  ASSERT_GT(b.stats.stick_duration_onset.total(), 0u);
+  ASSERT_GT(b.stats.damping_power.count(), 0u);
+  const auto [u2, b2] = deserialize_unit_result(serialize(u, b));
+  EXPECT_TRUE(b2.stats == b.stats);
+  ASSERT_EQ(b2.records.size(), b.records.size());
+  for (std::size_t i = 0; i < b.records.size(); ++i) {
+    EXPECT_EQ(b2.records[i].friction_power, b.records[i].friction_power);
+    EXPECT_EQ(b2.records[i].damping_power, b.records[i].damping_power);
+  }
+  // A merge of the two blocks equals filling both (exact: counts and Chan's merge).
+  auto merged = simulate_block(s, {0, 0}).stats;
+  merged += b2.stats;
+  auto refilled = simulate_block(s, {0, 0}).stats;
+  refilled += b.stats;
+  EXPECT_TRUE(merged == refilled);
+  EXPECT_EQ(merged.stick_duration_onset.total(),
+            merged.stick_duration.count());  // one (D, X) per stick
+}
+
 TEST(Serialize, ConvergenceTraceAndEmptyAccumulatorsSurvive) {
   const auto s = small_spec(false);
   ordered_merger m(s);

@@ -35,6 +35,12 @@ inline bool same_bits(const point_statistics& a, const point_statistics& b) {
   }
   ok = ok && same_bits(a.expected_switches, b.expected_switches);
   for (const auto& c : counters()) ok = ok && c.value(a) == c.value(b);
+  for (const auto& l : level_quantities()) {
+    ok = ok && (a.*l.moments).size() == (b.*l.moments).size();
+    for (std::size_t i = 0; ok && i < (a.*l.moments).size(); ++i)
+      ok = same_bits((a.*l.moments)[i], (b.*l.moments)[i]);
+  }
+  for (const auto& j : joint_histograms()) ok = ok && a.*j.counts == b.*j.counts;
   for (std::size_t i = 0; ok && i < a.convergence.size(); ++i) {
     const auto &x = a.convergence[i], &y = b.convergence[i];
     ok = x.realizations == y.realizations && same_bits(x.R_mean, y.R_mean) &&
@@ -50,7 +56,9 @@ inline bool same_bits(const realization_record& a, const realization_record& b) 
          same_bits(a.stick_fraction, b.stick_fraction) &&
          same_bits(a.first_stick_start, b.first_stick_start) &&
          same_bits(a.first_stick_duration, b.first_stick_duration) &&
-         a.first_stick_censored == b.first_stick_censored && same_bits(a.events, b.events);
+         a.first_stick_censored == b.first_stick_censored &&
+         same_bits(a.friction_power, b.friction_power) &&
+         same_bits(a.damping_power, b.damping_power) && same_bits(a.events, b.events);
 }
 
 }  // namespace stickslip::testing_support

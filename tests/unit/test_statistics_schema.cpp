@@ -26,6 +26,10 @@ const std::vector<expected_quantity> paper = {
     {"stick_duration", "D", "s", histogram_range::stick_duration},
     {"first_stick_duration", "D_1", "s", histogram_range::stick_duration},
     {"slip_duration", "H", "s", histogram_range::slip_duration},
+    // The model family's (issue 11), after the paper's.
+    {"stick_onset_position", "X", "m", histogram_range::stick_band},
+    {"friction_power", "W_f", "W", histogram_range::none},
+    {"damping_power", "W_c", "W", histogram_range::none},
 };
 
 TEST(StatisticsSchema, ListsThePapersStatisticsInOrder) {
@@ -117,11 +121,17 @@ TEST(StatisticsSchema, AddFollowsTheDefinitions) {
   a.first_stick_duration = 0.5;
   a.first_stick_censored = true;
   a.events = {5, 3, 2, 1};
-  s.add(a, {0.5, 1.0, 2.0}, {0.25, 0.75}, 10.0);
+  a.friction_power = 3.0;
+  a.damping_power = 0.5;
+  const std::vector<double> a_sticks{0.5, 1.0, 2.0}, a_slips{0.25, 0.75},
+      a_onsets{-0.9, 0.1, 0.6}, a_levels{0.75, 0.25};
+  s.add({a, a_sticks, a_slips, a_onsets, a_levels}, 10.0);
   realization_record b;  // no stick at all
   b.stick_fraction = 0.0;
   b.events = {4, 0, 0, 6};
-  s.add(b, {}, {}, 10.0);
+  b.friction_power = 1.0;
+  const std::vector<double> none, b_levels{0.25, 0.75};
+  s.add({b, none, none, none, b_levels}, 10.0);
 
   EXPECT_EQ(s.realizations, 2u);
   EXPECT_EQ(s.stick_fraction.count(), 2u);
@@ -142,6 +152,22 @@ TEST(StatisticsSchema, AddFollowsTheDefinitions) {
   EXPECT_EQ(s.stick_duration_hist.counts(), (std::vector<std::uint64_t>{0, 1, 1, 1}));
   EXPECT_EQ(s.first_stick_duration_hist.counts(), (std::vector<std::uint64_t>{0, 1, 0, 0}));
   EXPECT_EQ(s.slip_duration_hist.counts(), (std::vector<std::uint64_t>{2, 0, 0, 0}));
+  // The family's rows: X pooled over sticks on the band [-a, a] = [-1, 1],
+  // W_f and W_c per realization, P per level, (D, X) jointly per stick.
+  EXPECT_EQ(s.stick_onset_position.count(), 3u);
+  EXPECT_DOUBLE_EQ(s.stick_onset_position.mean(), -0.2 / 3);
+  EXPECT_EQ(s.stick_onset_position_hist.lo(), -unit_band().band_half_width());
+  EXPECT_EQ(s.stick_onset_position_hist.counts(), (std::vector<std::uint64_t>{1, 0, 1, 1}));
+  EXPECT_EQ(s.friction_power.mean(), 2.0);
+  EXPECT_EQ(s.damping_power.mean(), 0.25);
+  ASSERT_EQ(s.level_fraction.size(), 2u);
+  EXPECT_EQ(s.level_fraction[0].mean(), 0.5);
+  EXPECT_EQ(s.level_fraction[1].count(), 2u);
+  EXPECT_EQ(s.stick_duration_onset.total(), 3u);
+  // (D, X) = (0.5, -0.9), (1, 0.1), (2, 0.6): D bins of 0.5 (the last closed), X bins of 0.5
+  EXPECT_EQ(s.stick_duration_onset.count(1, 0), 1u);
+  EXPECT_EQ(s.stick_duration_onset.count(2, 2), 1u);
+  EXPECT_EQ(s.stick_duration_onset.count(3, 3), 1u);
 }
 
 // A deterministic but irregular realization i.
@@ -154,10 +180,15 @@ void add_realization(point_statistics& s, std::uint64_t i) {
   r.first_stick_duration = 0.1 + static_cast<double>(i % 5) * 0.3;
   r.first_stick_censored = i % 6 == 1;
   r.events = {i % 11, i % 4, i % 3, i % 2};
-  std::vector<double> sticks, slips;
+  r.friction_power = 0.5 + static_cast<double>(i % 9);
+  r.damping_power = 0.1 * static_cast<double>(i % 5);
+  std::vector<double> sticks, slips, onsets;
   for (std::uint32_t k = 0; k < r.sticks; ++k) sticks.push_back(0.05 + 0.4 * k + 0.01 * i);
+  for (std::uint32_t k = 0; k < r.sticks; ++k) onsets.push_back(-1.2 + 0.3 * k + 0.007 * i);
   for (std::uint32_t k = 0; k < r.slips; ++k) slips.push_back(0.3 * k + 0.02 * i);
-  s.add(r, sticks, slips, 10.0);
+  const double f = static_cast<double>(i % 13) / 13.0;
+  const std::vector<double> levels{f, 1.0 - f};
+  s.add({r, sticks, slips, onsets, levels}, 10.0);
 }
 
 TEST(StatisticsSchema, EveryRowMergesLikeFillingEverything) {

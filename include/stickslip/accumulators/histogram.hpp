@@ -32,6 +32,16 @@ class histogram {
     const auto n = counts_.size();
     ++counts_[f < static_cast<double>(n) ? static_cast<std::size_t>(f) : n - 1];
   }
+  // Where add(x) counts x: 0 below lo (or NaN), 1 + i for bin i, bins() + 1
+  // above hi. The same arithmetic as add (histogram2d bins with it, so its
+  // marginals equal the 1-D counts exactly).
+  [[nodiscard]] std::size_t slot(double x) const noexcept {
+    if (!(x >= lo_)) return 0;
+    const auto n = counts_.size();
+    if (x > hi_) return n + 1;
+    const double f = (x - lo_) * scale_;
+    return 1 + (f < static_cast<double>(n) ? static_cast<std::size_t>(f) : n - 1);
+  }
   // Precondition: same binning.
   histogram& operator+=(const histogram& o) noexcept {
     for (std::size_t i = 0; i < counts_.size(); ++i) counts_[i] += o.counts_[i];

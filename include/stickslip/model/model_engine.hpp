@@ -62,7 +62,8 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
 
   event_counts counts;
   double t = 0.0, x = ic.position, z = ic.velocity;
-  double v = levels[ic.level];
+  std::size_t level = ic.level;
+  double v = levels[level];
   double b = -c_over_k * v;  // centre of the stick band
   level_switch next_switch = switches.next();
 
@@ -121,8 +122,15 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     if (ep.end > ep.start) obs.on_episode(ep);
     ep = episode{next_mode, when, 0.0, x, v, false};
   };
+  // A piece of motion from the current state (observer.hpp).
+  auto piece = [&](mode kind, double dt, double x1, double z1) {
+    if constexpr (takes_pieces<Observer>)
+      obs.on_piece(motion_piece{kind, level, dt, x, x1, z, z1, v,
+                                kind == mode::slip ? sigma : 0.0});
+  };
   auto take_switch = [&] {
-    v = levels[next_switch.level];
+    level = next_switch.level;
+    v = levels[level];
     b = -c_over_k * v;
     ++counts.belt_switches;
     obs.on_event(event{event_kind::belt_switch, t, x, z, v});
@@ -140,12 +148,15 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       const double t_next = std::min(t_edge, t_switch);
       obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w, gamma});
       if (t_next >= ta) {
+        piece(mode::stick, ta - t, x + v * (ta - t), v);
         x += v * (ta - t);
         t = ta;
         break;
       }
       if (t_switch <= t_edge) {  // a belt switch ends the stick: x' = old v
-        x = std::clamp(x + v * (t_switch - t), b - as, b + as);
+        const double x_end = std::clamp(x + v * (t_switch - t), b - as, b + as);
+        piece(mode::stick, t_switch - t, x_end, v);
+        x = x_end;
         z = v;
         t = t_switch;
         const double old_v = v;
@@ -157,6 +168,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         acceleration = generic_acceleration();
         close_episode(t, mode::slip);
       } else {  // the stick breaks at the band edge; exact state
+        piece(mode::stick, t_edge - t, b + s * as, v);
         x = b + s * as;
         z = v;
         t = t_edge;
@@ -201,15 +213,19 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     obs.on_segment(segment{mode::slip, t, std::min(t_next, ta), x, z, v, center, w, gamma});
     auto advance_to = [&](double when) {
       const double dt = when - t;
+      double x_end, z_end;
       if (!damped) {
         const double cs = detail::fm::cos(w * dt), sn = detail::fm::sin(w * dt);
-        x = center + y * cs + z / w * sn;
-        z = z * cs - w * y * sn;
+        x_end = center + y * cs + z / w * sn;
+        z_end = z * cs - w * y * sn;
       } else {
         const detail::damped_state s = oscillator.advance(y, z, dt);
-        x = center + s.y;
-        z = s.velocity;
+        x_end = center + s.y;
+        z_end = s.velocity;
       }
+      piece(mode::slip, dt, x_end, z_end);
+      x = x_end;
+      z = z_end;
       t = when;
     };
     if (t_next >= ta) {
@@ -236,6 +252,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       continue;
     }
     // Relative rest x' = v.
+    piece(mode::slip, t_root - t, x_root, v);
     x = x_root;
     z = v;
     t = t_root;

@@ -25,6 +25,12 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   for (const auto& q : quantities())
     if (pooled(q)) out.print(",{}_count", q.name);
   for (const auto& c : counters()) out.print(",{}", c.summary_name);
+  // Level quantities: the four columns per level j = 1..n. Joint histograms
+  // are not in the CSV (results.nc and summary.json hold them).
+  const std::size_t levels = rs.spec.base.levels().size();
+  for (const auto& q : level_quantities())
+    for (std::size_t i = 1; i <= levels; ++i)
+      out.print(",{0}_{1}_mean,{0}_{1}_std,{0}_{1}_ci95_low,{0}_{1}_ci95_high", q.summary_name, i);
   out.put('\n');
   for (const auto& p : rs.points) {
     const auto& s = p.stats;
@@ -38,6 +44,11 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
     for (const auto& q : quantities())
       if (pooled(q)) out.print(",{}", (s.*q.moments).count());
     for (const auto& c : counters()) out.print(",{}", c.value(s));
+    for (const auto& q : level_quantities())
+      for (const auto& mv : s.*q.moments) {
+        const double half = mv.ci95_half_width();
+        out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
+      }
     out.put('\n');
   }
 }
@@ -49,8 +60,8 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
   for (const auto& sym : symbols) out.print("{},", sym);
   out.write(
       "realization,x0,xdot0,belt_start,sticks,slips,stick_fraction,first_stick_start,"
-      "first_stick_duration,first_stick_censored,belt_switches,stick_onsets,stick_breaks,"
-      "slip_reversals\n");
+      "first_stick_duration,first_stick_censored,friction_power,damping_power,belt_switches,"
+      "stick_onsets,stick_breaks,slip_reversals\n");
   for (std::size_t i = 0; i < rs.records.size(); ++i) {
     // The point's coordinates once, reused for every one of its records.
     std::string prefix = fmt::format("{},", i);
@@ -59,9 +70,10 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
     for (const auto& r : rs.records[i]) {
       out.write(prefix);
       // -1 marks "no stick" for first_stick_start/duration, as in realization_record.
-      out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
+      out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
                 r.belt_start, r.sticks, r.slips, r.stick_fraction, r.first_stick_start,
-                r.first_stick_duration, r.first_stick_censored ? 1 : 0, r.events.belt_switches,
+                r.first_stick_duration, r.first_stick_censored ? 1 : 0, r.friction_power,
+                r.damping_power, r.events.belt_switches,
                 r.events.stick_onsets, r.events.stick_breaks, r.events.slip_reversals);
     }
   }

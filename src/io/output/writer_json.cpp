@@ -95,6 +95,12 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
     j.key(q.summary_name);
     emit_statistic(j, s.*q.moments);
   }
+  for (const auto& q : level_quantities()) {  // one object per belt level
+    j.key(q.summary_name);
+    j.begin_array();
+    for (const auto& m : s.*q.moments) emit_statistic(j, m);
+    j.end_array();
+  }
   // Extras after the required keys.
   for (const auto& c : counters())
     if (!c.group) j.member(c.summary_name, c.value(s));
@@ -115,6 +121,20 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
     j.end_object();
   }
   emit_score_estimates(j, p);
+  // Joint histograms: counts[i][k] of x bin i and y bin k (in range), and
+  // the samples outside either range.
+  for (const auto& jh : joint_histograms()) {
+    const auto& h = s.*jh.counts;
+    j.key(jh.summary_name);
+    j.begin_array();
+    for (std::size_t a = 0; a < h.x_binning().bins(); ++a) {
+      j.begin_array();
+      for (std::size_t b = 0; b < h.y_binning().bins(); ++b) j.value(h.count(a, b));
+      j.end_array();
+    }
+    j.end_array();
+    j.member(std::string(jh.name) + "_outside", h.outside());
+  }
   j.end_object();
 }
 

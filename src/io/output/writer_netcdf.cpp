@@ -30,8 +30,8 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 struct layout_info {
   std::vector<nc::NcDim> grid;  // grid dims
-  nc::NcDim bin, bounds, trace;
-  std::size_t bins = 0, trace_length = 0;
+  nc::NcDim bin, bin_y, bounds, trace, level;
+  std::size_t bins = 0, trace_length = 0, levels = 0;
 };
 
 void describe(const nc::NcVar& v, const std::string& units, const std::string& long_name,
@@ -148,6 +148,17 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
   for (const auto& p : rs.points) l.trace_length = std::max(l.trace_length, p.stats.convergence.size());
   l.trace_length = std::max<std::size_t>(1, l.trace_length);
   l.trace = f.addDim("trace", l.trace_length);
+  // The belt levels: their number cannot be swept, so one dimension fits all
+  // points; the level values (which can) are belt_level_velocity over the grid.
+  l.levels = rs.spec.base.levels().size();
+  l.level = f.addDim("belt_level", l.levels);
+  auto level_index = f.addVar("belt_level", nc::ncInt, l.level);
+  describe(level_index, "1", "belt level number", "number j = 1..n of the belt level v_j");
+  std::vector<int> numbers(l.levels);
+  for (std::size_t i = 0; i < l.levels; ++i) numbers[i] = static_cast<int>(i + 1);
+  level_index.putVar(numbers.data());
+  // The second bin dimension of the joint histograms (the same length as bin).
+  if (!joint_histograms().empty()) l.bin_y = f.addDim("bin_y", l.bins);
   return l;
 }
 
@@ -367,6 +378,83 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
   }
 }
 
+// Per level quantity P (schema level_table): P_mean, P_std, P_ci95_low,
+// P_ci95_high, P_count over (grid, belt_level), and the level values
+// belt_level_velocity over (grid, belt_level).
+void write_level_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto dims = with(l.grid, l.level);
+  auto vel = add_double(f, "belt_level_velocity", dims, "m/s", "belt level v_j",
+                        "velocity v_j of each belt level at each grid point", false);
+  put_rows<double>(vel, rs, l.levels, [&](const point_result& p, std::vector<double>& row) {
+    const auto v = p.parameters.levels();
+    for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < v.size() ? v[i] : nan;
+  });
+  for (const auto& q : level_quantities()) {
+    const std::string n = q.name, sym = q.symbol;
+    const auto at = [&](const point_result& p, std::size_t i) -> const mean_variance& {
+      return (p.stats.*q.moments)[i];
+    };
+    struct column {
+      std::string suffix, long_name, description;
+      double (*value)(const mean_variance&);
+    };
+    const column columns[] = {
+        {"_mean", std::string("mean ") + q.long_name,
+         fmt::format("{} {}: {}", q.long_name, sym, q.description),
+         [](const mean_variance& m) { return m.mean(); }},
+        {"_std", std::string("std ") + q.long_name,
+         "sample standard deviation (n - 1 in the denominator) of " + sym + " at each level",
+         [](const mean_variance& m) { return m.std_dev(); }},
+        {"_ci95_low", "lower 95% CI of " + sym,
+         "lower end of the 95% confidence interval of the mean of " + sym +
+             ": mean - 1.959963984540054 std / sqrt(count) (normal approximation)",
+         [](const mean_variance& m) { return m.mean() - m.ci95_half_width(); }},
+        {"_ci95_high", "upper 95% CI of " + sym,
+         "upper end of the 95% confidence interval of the mean of " + sym +
+             ": mean + 1.959963984540054 std / sqrt(count) (normal approximation)",
+         [](const mean_variance& m) { return m.mean() + m.ci95_half_width(); }},
+    };
+    for (const auto& c : columns) {
+      auto v = add_double(f, n + c.suffix, dims, q.units, c.long_name, c.description);
+      if (c.suffix == "_mean") v.putAtt("symbol", sym);
+      v.putAtt("coordinates", "belt_level_velocity");
+      put_rows<double>(v, rs, l.levels, [&](const point_result& p, std::vector<double>& row) {
+        for (std::size_t i = 0; i < row.size(); ++i) row[i] = c.value(at(p, i));
+      });
+    }
+    auto count = add_count(f, n + "_count", dims, "samples of " + sym, "number of realizations");
+    put_rows<long long>(count, rs, l.levels, [&](const point_result& p, std::vector<long long>& row) {
+      for (std::size_t i = 0; i < row.size(); ++i) row[i] = static_cast<long long>(at(p, i).count());
+    });
+  }
+}
+
+// Per joint histogram J of (X, Y) (schema joint_table): J_counts over (grid,
+// bin, bin_y), the bins of X_bin and Y_bin; J_outside over the grid: samples
+// outside either range (left out of J_counts).
+void write_joint_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto dims = with(with(l.grid, l.bin), l.bin_y);
+  for (const auto& j : joint_histograms()) {
+    const std::string n = j.name, x = quantity_table[j.x].name, y = quantity_table[j.y].name;
+    auto counts = add_count(f, n + "_counts", dims, j.long_name,
+                            fmt::format("{}; bins: {}_bin_low/high (dimension bin), {}_bin_low/high "
+                                        "(dimension bin_y); samples outside either range are in {}_outside",
+                                        j.description, x, y, n));
+    put_rows<long long>(counts, rs, l.bins * l.bins,
+                        [&](const point_result& p, std::vector<long long>& row) {
+                          const auto& h = p.stats.*j.counts;
+                          for (std::size_t a = 0; a < l.bins; ++a)
+                            for (std::size_t b = 0; b < l.bins; ++b)
+                              row[a * l.bins + b] = a < h.x_binning().bins() && b < h.y_binning().bins()
+                                                        ? static_cast<long long>(h.count(a, b))
+                                                        : 0;
+                        });
+    auto outside = add_count(f, n + "_outside", l.grid, "sticks outside D-X bins",
+                             "samples outside the range of either quantity (not in " + n + "_counts)");
+    put_grid<long long>(outside, rs, [&](const point_result& p) { return (p.stats.*j.counts).outside(); });
+  }
+}
+
 void write_convergence(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto dims = with(l.grid, l.trace);
   const std::string when = fmt::format(
@@ -483,6 +571,8 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_counts(f, l, rs);
   write_score_estimates(f, l, rs);
   write_histograms(f, l, rs);
+  write_level_statistics(f, l, rs);
+  write_joint_histograms(f, l, rs);
   write_convergence(f, l, rs);
   f.close();
 }
