@@ -80,7 +80,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     times_ok = false;
   }
   if (times_ok && std::isfinite(ic.position) && std::isfinite(ic.velocity)) {
-    tiling_observer obs(p.window);
+    tiling_observer obs(p, true);
     obs.reset(0, ic.position, ic.velocity, ic.belt_direction);
     given_switches sw(switches);
     try {
