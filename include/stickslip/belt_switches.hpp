@@ -18,6 +18,21 @@
 #include "stickslip/random_stream.hpp"
 
 namespace stickslip {
+namespace detail {
+
+// One refill of a switch source: the 4 * Blocks uniforms of the next Blocks
+// Philox blocks of `rs`, in order, replaced by their logs.
+template <int Blocks, class LogInplace>
+[[gnu::always_inline]] inline void log_uniforms(random_stream& rs, double* w,
+                                                LogInplace& log_inplace) noexcept {
+  for (int b = 0; b < Blocks; ++b) {
+    const auto blk = rs.next_block();
+    for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
+  }
+  log_inplace(w, std::size_t{4 * Blocks});
+}
+
+}  // namespace detail
 
 // The one Poisson switch source of every engine. Inverse-transform
 // exponential: W_j = -log(U_j) / lambda, U_j = u01fixedpt of the j-th 64-bit
@@ -54,11 +69,7 @@ class poisson_switches {
   template <class LogInplace>
   [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
     alignas(64) double w[chunk];
-    for (int b = 0; b < blocks_per_chunk; ++b) {
-      const auto blk = rs_.next_block();
-      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
-    }
-    log_inplace(w, std::size_t{chunk});
+    detail::log_uniforms<blocks_per_chunk>(rs_, w, log_inplace);
     // The running sum in a register (the stores to times_ could alias time_).
     double y = time_;
     for (int j = 0; j < chunk; ++j) times_[j] = y += -w[j] * mean_wait_;
@@ -103,11 +114,7 @@ class two_level_switch_times {
   template <class LogInplace>
   [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
     alignas(64) double w[chunk];
-    for (int b = 0; b < blocks_per_chunk; ++b) {
-      const auto blk = rs_.next_block();
-      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
-    }
-    log_inplace(w, std::size_t{chunk});
+    detail::log_uniforms<blocks_per_chunk>(rs_, w, log_inplace);
     double y = time_;
     const double m0 = mean_wait_[0], m1 = mean_wait_[1];
     for (int j = 0; j < chunk; j += 2) {

@@ -862,10 +862,7 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;
-  if (!p.is_paper_model()) {
-    fp.emplace(p);
-    fp->key = stream_key(s, p);  // common random numbers: one key for every point
-  }
+  if (!p.is_paper_model()) fp.emplace(p, stream_key(s, p));
   // Two instantiations: with the statistics of issue 11, or without their
   // per-stick and per-round work (sweep_spec::family_statistics).
   if (s.family_statistics) {
@@ -885,10 +882,7 @@ std::vector<realization_trace> TraceRealizationsLanes(const sweep_spec& s, std::
   const auto p = point_parameters(s, point);
   std::vector<realization_trace> out(last > first ? last - first : 0);
   std::optional<family_point> fp;
-  if (!p.is_paper_model()) {
-    fp.emplace(p);
-    fp->key = stream_key(s, p);
-  }
+  if (!p.is_paper_model()) fp.emplace(p, stream_key(s, p));
   trace_collector collect(s, p, first, out, fp ? &*fp : nullptr);
   run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   return out;

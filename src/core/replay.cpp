@@ -20,11 +20,27 @@ struct trace_observer : observer_base {
   void on_episode(const episode& e) { out.episodes.push_back(e); }
 };
 
+// Runs `simulate(observer)` into the trace and a realization_observer
+// started from out.initial, and stores the realization's record.
+template <class Simulate>
+void trace_realization(const replay_request& r, const model_parameters& p, realization_trace& out,
+                       Simulate simulate) {
+  trace_observer trace{{}, out, r.keep_events, r.keep_segments};
+  realization_observer stats(p);
+  stats.reset(r.realization, out.initial.position, out.initial.velocity,
+              out.initial.belt_direction);
+  observer_pair<trace_observer, realization_observer> both{trace, stats};
+  const event_counts counts = simulate(both);
+  stats.finish();
+  out.record = stats.record();
+  out.record.events = counts;
+}
+
 // The model family (or given switch levels): simulate_model with the start
 // drawn as the sweep draws it (model_realization.hpp), then the fixed inputs.
-void replay_family(const replay_request& r, const model_parameters& p, realization_trace& out) {
-  family_point fp(p);
-  if (r.common_random_numbers) fp.key = common_stream_key;  // as the sweep draws it
+void replay_family(const replay_request& r, const sweep_spec& spec, realization_trace& out) {
+  const model_parameters& p = spec.base;
+  const family_point fp(p, stream_key(spec, p));  // as the sweep draws it
   const std::size_t levels = fp.model.belt.level_count();
   model_initial_state start = draw_model_initial_state(fp, r.initial, r.seed, r.realization);
   if (r.x0) start.position = *r.x0;
@@ -33,12 +49,9 @@ void replay_family(const replay_request& r, const model_parameters& p, realizati
   validate(start, fp.model.belt);
   out.initial = {start.position, start.velocity, recorded_belt_start(start.level, levels)};
 
-  trace_observer trace{{}, out, r.keep_events, r.keep_segments};
-  realization_observer stats(p);
-  stats.reset(r.realization, start.position, start.velocity, out.initial.belt_direction);
-  observer_pair<trace_observer, realization_observer> both{trace, stats};
-  event_counts counts;
-  if (r.switch_times) {
+  trace_realization(r, p, out, [&](auto& observer) {
+    if (!r.switch_times)
+      return simulate_family_realization(fp, start, r.seed, r.realization, r.max_events, observer);
     std::vector<level_switch> switches;
     if (r.switch_levels) {
       for (std::size_t i = 0; i < r.switch_times->size(); ++i)
@@ -48,13 +61,8 @@ void replay_family(const replay_request& r, const model_parameters& p, realizati
     }
     validate_level_switches(switches, levels, start.level);
     given_level_switches sw(switches);
-    counts = simulate_model(fp.model, start, sw, both, r.max_events);
-  } else {
-    counts = simulate_family_realization(fp, start, r.seed, r.realization, r.max_events, both);
-  }
-  stats.finish();
-  out.record = stats.record();
-  out.record.events = counts;
+    return simulate_model(fp.model, start, sw, observer, r.max_events);
+  });
 }
 
 }  // namespace
@@ -83,7 +91,7 @@ realization_trace replay(const replay_request& r) {
 
   realization_trace out;
   if (!spec.base.is_paper_model() || r.switch_levels) {
-    replay_family(r, spec.base, out);
+    replay_family(r, spec, out);
     return out;
   }
   // The parameters as asked (lambda may be 0 with given switch times): the
@@ -97,21 +105,14 @@ realization_trace replay(const replay_request& r) {
   if (r.belt_start) ic.belt_direction = *r.belt_start;
   validate(ic);
 
-  trace_observer trace{{}, out, r.keep_events, r.keep_segments};
-  realization_observer stats(p);
-  stats.reset(r.realization, ic.position, ic.velocity, ic.belt_direction);
-  observer_pair<trace_observer, realization_observer> both{trace, stats};
-  event_counts counts;
-  if (r.switch_times) {
-    given_switches sw(*r.switch_times);
-    counts = simulate(p, ic, sw, both, r.max_events);
-  } else {
+  trace_realization(r, p, out, [&](auto& observer) {
+    if (r.switch_times) {
+      given_switches sw(*r.switch_times);
+      return simulate(p, ic, sw, observer, r.max_events);
+    }
     poisson_switches sw(p.switch_rate, r.seed, key, r.realization);
-    counts = simulate(p, ic, sw, both, r.max_events);
-  }
-  stats.finish();
-  out.record = stats.record();
-  out.record.events = counts;
+    return simulate(p, ic, sw, observer, r.max_events);
+  });
   return out;
 }
 

@@ -277,8 +277,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
 // belt (model/model_realization.hpp), into the same observer and statistics.
 block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
-  family_point fp(p);
-  fp.key = stream_key(s, p);  // common random numbers: one key for every point
+  const family_point fp(p, stream_key(s, p));
   block_result out;
   out.stats = point_statistics(p, s.histograms, s.family_statistics);
   const std::uint64_t first = u.block * s.block_size;

@@ -13,12 +13,14 @@
 #include "stickslip/random_stream.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/sweep.hpp"
+#include "unit/engine_agreement.hpp"
 #include "unit/same_bits.hpp"
 
 namespace stickslip {
 namespace {
 
 using testing_support::same_bits;
+using testing_support::expect_engines_agree;
 
 sweep_spec small_study(double stiffness) {
   sweep_spec s;
@@ -29,22 +31,6 @@ sweep_spec small_study(double stiffness) {
   s.seed = 12345;
   s.axes = {{"lambda", {0.1, 0.7, 3.8, 12.0, 30.0}}, {"mu", {0.5, 3.0, 7.0}}};
   return s;
-}
-
-void expect_engines_agree(sweep_spec s, unsigned threads) {
-  s.engine = sweep_engine::reference;
-  const auto ref = run_sweep(s, 1);
-  s.engine = sweep_engine::fast;
-  const auto fast = run_sweep(s, threads);
-  ASSERT_EQ(ref.points.size(), fast.points.size());
-  for (std::size_t i = 0; i < ref.points.size(); ++i)
-    EXPECT_TRUE(same_bits(ref.points[i].stats, fast.points[i].stats)) << "point " << i;
-  ASSERT_EQ(ref.records.size(), fast.records.size());
-  for (std::size_t i = 0; i < ref.records.size(); ++i) {
-    ASSERT_EQ(ref.records[i].size(), fast.records[i].size());
-    for (std::size_t j = 0; j < ref.records[i].size(); ++j)
-      EXPECT_TRUE(same_bits(ref.records[i][j], fast.records[i][j])) << i << "/" << j;
-  }
 }
 
 TEST(FastPath, DefaultEngineIsFast) { EXPECT_EQ(sweep_spec{}.engine, sweep_engine::fast); }

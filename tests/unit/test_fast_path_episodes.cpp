@@ -18,35 +18,17 @@
 #include "stickslip/error.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/sweep.hpp"
+#include "unit/engine_agreement.hpp"
 #include "unit/same_bits.hpp"
 
 namespace stickslip {
 namespace {
 
 using testing_support::same_bits;
-
-struct recorder : observer_base {
-  std::vector<episode> episodes;
-  std::vector<event> events;
-  void on_episode(const episode& e) { episodes.push_back(e); }
-  void on_event(const event& e) { events.push_back(e); }
-};
-
-std::string describe(const episode& e) {
-  return std::string(to_string(e.kind)) + " [" + std::to_string(e.start) + ", " +
-         std::to_string(e.end) + "] x=" + std::to_string(e.position_at_start) +
-         " v=" + std::to_string(e.belt_velocity) + (e.censored ? " censored" : "");
-}
-
-bool same_episode(const episode& a, const episode& b) {
-  return a.kind == b.kind && same_bits(a.start, b.start) && same_bits(a.end, b.end) &&
-         same_bits(a.position_at_start, b.position_at_start) &&
-         same_bits(a.belt_velocity, b.belt_velocity) && a.censored == b.censored;
-}
-bool same_event(const event& a, const event& b) {
-  return a.kind == b.kind && same_bits(a.time, b.time) && same_bits(a.position, b.position) &&
-         same_bits(a.velocity, b.velocity) && same_bits(a.belt_velocity, b.belt_velocity);
-}
+using testing_support::recorder;
+using testing_support::describe;
+using testing_support::same_episode;
+using testing_support::same_event;
 
 // Realizations [first, last) of every point: the lane engine's trace against
 // simulate's, field by field; `compared` counts the episodes compared.

@@ -18,34 +18,18 @@
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/sweep.hpp"
+#include "unit/engine_agreement.hpp"
 #include "unit/same_bits.hpp"
 
 namespace stickslip {
 namespace {
 
 using testing_support::same_bits;
-
-struct recorder : observer_base {
-  std::vector<episode> episodes;
-  std::vector<event> events;
-  void on_episode(const episode& e) { episodes.push_back(e); }
-  void on_event(const event& e) { events.push_back(e); }
-};
-
-std::string describe(const episode& e) {
-  return std::string(to_string(e.kind)) + " [" + std::to_string(e.start) + ", " +
-         std::to_string(e.end) + "] x=" + std::to_string(e.position_at_start) +
-         " v=" + std::to_string(e.belt_velocity) + (e.censored ? " censored" : "");
-}
-bool same_episode(const episode& a, const episode& b) {
-  return a.kind == b.kind && same_bits(a.start, b.start) && same_bits(a.end, b.end) &&
-         same_bits(a.position_at_start, b.position_at_start) &&
-         same_bits(a.belt_velocity, b.belt_velocity) && a.censored == b.censored;
-}
-bool same_event(const event& a, const event& b) {
-  return a.kind == b.kind && same_bits(a.time, b.time) && same_bits(a.position, b.position) &&
-         same_bits(a.velocity, b.velocity) && same_bits(a.belt_velocity, b.belt_velocity);
-}
+using testing_support::recorder;
+using testing_support::describe;
+using testing_support::same_episode;
+using testing_support::same_event;
+using testing_support::expect_engines_agree;
 
 // Realizations [first, last) of point 0 of s: lanes against simulate_model.
 // Returns the episodes compared; `kinds` adds up the events by kind.
@@ -227,22 +211,6 @@ TEST(FastPathFamily, EveryFieldEqualsSimulateModelOnEveryTarget) {
 // (lanes) equals the reference's (simulate_model), for any threads and block
 // sizes; a grid that mixes points the lanes run with points they do not
 // (damped, three levels) and the paper's model, levels 0 included.
-void expect_engines_agree(sweep_spec s, unsigned threads) {
-  s.engine = sweep_engine::reference;
-  const auto ref = run_sweep(s, 1);
-  s.engine = sweep_engine::fast;
-  const auto fast = run_sweep(s, threads);
-  ASSERT_EQ(ref.points.size(), fast.points.size());
-  for (std::size_t i = 0; i < ref.points.size(); ++i)
-    EXPECT_TRUE(same_bits(ref.points[i].stats, fast.points[i].stats)) << "point " << i;
-  ASSERT_EQ(ref.records.size(), fast.records.size());
-  for (std::size_t i = 0; i < ref.records.size(); ++i) {
-    ASSERT_EQ(ref.records[i].size(), fast.records[i].size());
-    for (std::size_t j = 0; j < ref.records[i].size(); ++j)
-      EXPECT_TRUE(same_bits(ref.records[i][j], fast.records[i][j])) << i << "/" << j;
-  }
-}
-
 TEST(FastPathFamily, SweepStatisticsEqualTheReference) {
   sweep_spec s;
   s.base.stiffness = 40.0;

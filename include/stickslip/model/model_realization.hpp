@@ -30,13 +30,16 @@ struct family_point {
   std::uint64_t key;
   bool even_two_level;  // two levels left at equal rates: pi = (1/2, 1/2)
 
-  // Precondition: validate(p) passed.
-  explicit family_point(const model_parameters& p)
+  // Precondition: validate(p) passed. `key` is the point's stream key:
+  // point_key(p), or common_stream_key with common random numbers
+  // (stream_key in sweep.hpp).
+  family_point(const model_parameters& p, std::uint64_t stream)
       : model(model_of(p)),
         chain(model.belt),
-        key(point_key(p)),
+        key(stream),
         even_two_level(model.belt.level_count() == 2 &&
                        model.belt.leaving_rate(0) == model.belt.leaving_rate(1)) {}
+  explicit family_point(const model_parameters& p) : family_point(p, point_key(p)) {}
 };
 
 // The starting level index of initial_condition_law::belt_start: 0 = the

@@ -55,4 +55,8 @@ struct peak_result {
 // independent streams (never seed + stage).
 [[nodiscard]] std::uint64_t stage_seed(std::uint64_t seed, std::uint64_t stage) noexcept;
 
+// n >= 2 points from lo to hi, both ends exact: geometrically or evenly
+// spaced (the scans and stage windows of both finders).
+[[nodiscard]] std::vector<double> spaced_points(double lo, double hi, std::size_t n, bool geometric);
+
 }  // namespace stickslip::precision

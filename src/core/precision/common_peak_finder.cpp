@@ -21,17 +21,6 @@ double student_t95(std::size_t dof) noexcept {
 
 namespace {
 
-std::vector<double> spaced(double lo, double hi, std::size_t n, bool geometric) {
-  std::vector<double> xs(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double f = static_cast<double>(i) / static_cast<double>(n - 1);
-    xs[i] = geometric ? lo * std::pow(hi / lo, f) : lo + (hi - lo) * f;
-  }
-  xs.front() = lo;
-  xs.back() = hi;
-  return xs;
-}
-
 // The least-squares polynomial of the stage's mean curve, with the
 // covariance of its coefficients from the spread of the groups' fits (the
 // fit is linear in the data, so the mean of the groups' coefficients is the
@@ -90,7 +79,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
   };
 
   // 1. The scan over the range (one common-random-number curve).
-  const auto scan_x = spaced(o.lo, o.hi, o.scan_points, o.log_scan);
+  const auto scan_x = spaced_points(o.lo, o.hi, o.scan_points, o.log_scan);
   const auto scan =
       mean_curve(run(scan_x, per_group_of(o.initial_realizations), groups, 0));
   const auto best = static_cast<std::size_t>(std::max_element(scan.begin(), scan.end()) - scan.begin());
@@ -118,7 +107,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
   for (std::size_t stage = 1; stage <= o.max_stages; ++stage) {
     const double wlo = std::max(o.lo, c - w), whi = std::min(o.hi, c + w);
     if (!frozen) {
-      xs = spaced(wlo, whi, co.window_points, false);
+      xs = spaced_points(wlo, whi, co.window_points, false);
       per_group = per_group_of(n);
       add = groups;
       means.clear();

@@ -25,17 +25,7 @@ void validate(const peak_options& o) {
     throw invalid_parameter("initial realizations", double(o.initial_realizations), ">= 2");
 }
 
-std::uint64_t stage_seed(std::uint64_t seed, std::uint64_t stage) noexcept {
-  // splitmix64 of the pair: distinct stages give unrelated seeds.
-  std::uint64_t z = seed ^ (0x9e3779b97f4a7c15ULL * (stage + 1));
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-namespace {
-
-std::vector<double> spaced(double lo, double hi, std::size_t n, bool geometric) {
+std::vector<double> spaced_points(double lo, double hi, std::size_t n, bool geometric) {
   std::vector<double> xs(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double f = static_cast<double>(i) / static_cast<double>(n - 1);
@@ -45,6 +35,16 @@ std::vector<double> spaced(double lo, double hi, std::size_t n, bool geometric) 
   xs.back() = hi;
   return xs;
 }
+
+std::uint64_t stage_seed(std::uint64_t seed, std::uint64_t stage) noexcept {
+  // splitmix64 of the pair: distinct stages give unrelated seeds.
+  std::uint64_t z = seed ^ (0x9e3779b97f4a7c15ULL * (stage + 1));
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+namespace {
 
 // The goodness-of-fit level below which the local cubic is rejected as a
 // model of the curve in its window (the window then shrinks).
@@ -68,7 +68,7 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
   };
 
   // 1. The scan over the range.
-  const auto scan = run(spaced(o.lo, o.hi, o.scan_points, o.log_scan), o.initial_realizations, 0);
+  const auto scan = run(spaced_points(o.lo, o.hi, o.scan_points, o.log_scan), o.initial_realizations, 0);
   const auto best = static_cast<std::size_t>(
       std::max_element(scan.begin(), scan.end(),
                        [](const auto& a, const auto& b) { return a.mean < b.mean; }) -
@@ -88,7 +88,7 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
   for (std::size_t stage = 1; stage <= o.max_stages; ++stage) {
     const double wlo = std::max(o.lo, c - w), whi = std::min(o.hi, c + w);
     if (total + n * o.window_points > o.max_total_realizations) break;
-    run(spaced(wlo, whi, o.window_points, false), n, stage);
+    run(spaced_points(wlo, whi, o.window_points, false), n, stage);
     r.stages = stage;
 
     std::vector<evaluation> in;
