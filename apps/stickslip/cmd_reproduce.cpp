@@ -20,6 +20,7 @@
 
 #include "commands.hpp"
 #include "execution.hpp"
+#include "reproduce_peaks.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/study/figures.hpp"
@@ -37,6 +38,7 @@ struct reproduce_flags {
   std::string out_dir = "reproduction";
   std::string realizations;         // empty: 2000 (200 with --quick)
   std::string refine_realizations;  // empty: 10000 (400 with --quick)
+  std::string peak_halfwidth;       // empty: 0.05 (0.25 with --quick)
   std::string seed;                 // empty: the study's documented seed
   std::string threads = "0";
   bool quick = false, no_candidates = false, no_figures = false;
@@ -52,6 +54,11 @@ study::study_options resolve(const reproduce_flags& f) {
   if (!f.refine_realizations.empty())
     o.refine_realizations =
         io::parse_unsigned("--refine-realizations", f.refine_realizations, 2, max_realizations);
+  if (!f.peak_halfwidth.empty()) {
+    o.peak_halfwidth = io::parse_number("--peak-halfwidth", f.peak_halfwidth);
+    if (!(o.peak_halfwidth >= 1e-4 && o.peak_halfwidth <= 10))
+      throw invalid_parameter("--peak-halfwidth", o.peak_halfwidth, "1e-4 .. 10 (1/s)");
+  }
   if (!f.seed.empty()) o.seed = io::parse_unsigned("--seed", f.seed);
   o.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   o.candidates = !f.no_candidates;
@@ -138,6 +145,7 @@ void run(const reproduce_flags& f, const invocation& inv) {
                       out.computed_units));
     return std::move(*out.results);
   };
+  options.locate = kept_peak_locator(runs, exec.runner(), stop, log);
   const bool render = !f.no_figures && study::gnuplot_available();
   if (!f.no_figures && !render)
     log("gnuplot (with pngcairo and svg) not found: writing data and scripts only");
@@ -173,6 +181,11 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
                   "realizations per lambda when refining the maximum of mean R (default "
                   "10000; 400 with --quick)")
       ->type_name("N");
+  cmd->add_option("--peak-halfwidth", flags->peak_halfwidth,
+                  "target 95 % half-width in lambda [1/s] of the located maximum of mean R "
+                  "for the printed and concluded sets (default 0.05; 0.25 with --quick; "
+                  "the other candidates use 0.1); see docs/precision.md for the cost")
+      ->type_name("H");
   cmd->add_option("--seed", flags->seed, "master seed (default 20200101)")->type_name("S");
   cmd->add_option("--threads", flags->threads, "threads, 0 = all cores (default 0)")
       ->type_name("T");

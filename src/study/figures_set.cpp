@@ -220,16 +220,12 @@ const mu_refinement* refinement_for(const set_study& s, double mu) {
   return nullptr;
 }
 
-// "lambda R lambda_lo lambda_hi R_lo R_hi" of the refined maximum, or of the
-// grid maximum (with its CI) when the fit has no maximum.
+// "lambda R lambda_lo lambda_hi R_lo R_hi" of the located maximum, or of the
+// grid maximum (with its CI) when there is none.
 std::string peak_row(const mu_refinement& r) {
-  if (r.peak.valid)
-    return fmt::format("{} {} {} {} {} {}", num(r.peak.lambda_star), num(r.peak.R_star),
-                       num(r.peak.lambda_lo), num(r.peak.lambda_hi), num(r.peak.R_lo),
-                       num(r.peak.R_hi));
-  return fmt::format("{} {} {} {} {} {}", num(r.grid_max_lambda), num(r.grid_max),
-                     num(r.grid_max_lambda), num(r.grid_max_lambda),
-                     num(r.grid_max - r.grid_max_ci95), num(r.grid_max + r.grid_max_ci95));
+  const auto p = best_maximum(r);
+  return fmt::format("{} {} {} {} {} {}", num(p.lambda), num(p.R), num(p.lambda_lo),
+                     num(p.lambda_hi), num(p.R_lo), num(p.R_hi));
 }
 
 figure fig6b(const set_study& s, const std::string& dir, bool render) {
@@ -375,8 +371,9 @@ figure refinement(const set_study& s, const std::string& dir, bool render) {
   auto f = make(dir, "refinement", "refinement_peak", "Fig. S2: refinement of the maximum of mean R",
                 fmt::format("For each mu: mean R on the refinement grid ({} lambda values, "
                             "geometric, around the grid maximum; {} realizations each) with "
-                            "95 % error bars, the weighted quadratic fit in ln(lambda) and the "
-                            "located maximum lambda* with its 95 % bootstrap interval; {}.",
+                            "95 % error bars, the weighted quadratic fit in ln(lambda) that "
+                            "stickslip 0.1.0 used, and the maximum lambda* located by `peak` "
+                            "with its 95 % interval (sampling + local-model bias); {}.",
                             s.refinements.empty() ? 0 : s.refinements[0].fine.points.size(),
                             s.refinements.empty() ? 0 : s.refinements[0].fine.spec.realizations,
                             set_note(s)));
@@ -392,23 +389,24 @@ figure refinement(const set_study& s, const std::string& dir, bool render) {
     dat += fmt::format("# mu = {}: lambda[1/s] mean(R) ci95_lo ci95_hi fit\n", num(r.mu));
     for (const auto& q : r.fine.points) {
       const auto& mv = q.stats.stick_fraction;
-      const double u = std::log(q.parameters.switch_rate / r.peak.center);
+      const double u = std::log(q.parameters.switch_rate / r.quadratic.center);
       dat += fmt::format("{} {} {} {} {}\n", num(q.parameters.switch_rate), num(mv.mean()),
                          num(mv.mean() - mv.ci95_half_width()),
                          num(mv.mean() + mv.ci95_half_width()),
-                         num(r.peak.b0 + r.peak.b1 * u + r.peak.b2 * u * u));
+                         num(r.quadratic.b0 + r.quadratic.b1 * u + r.quadratic.b2 * u * u));
     }
     dat += fmt::format("\n\n# peak: lambda* R* lambda_lo lambda_hi R_lo R_hi\n{}\n\n\n",
                        peak_row(r));
+    const auto p = best_maximum(r);
+    const auto& q = r.quadratic;
     body += fmt::format(
         "  set title \"μ = {}: λ* = {:.3f} [{:.3f}, {:.3f}]\"\n"
         "  plot \"refinement_peak.dat\" index {} u 1:2:3:4 w yerrorbars lt 1 pt 7 ps 0.5 "
         "title \"mean R\", {} + {}*log(x/{}) + {}*log(x/{})**2 w l lt 2 title "
-        "\"quadratic fit\", \"\" index {} u 1:2:3:4 w xerrorbars lt 7 pt 5 ps 1 title "
-        "\"λ* (95 % CI)\"\n",
-        r.mu, r.peak.lambda_star, r.peak.lambda_lo, r.peak.lambda_hi, 2 * block,
-        num(r.peak.b0), num(r.peak.b1), num(r.peak.center), num(r.peak.b2), num(r.peak.center),
-        2 * block + 1);
+        "\"0.1.0 quadratic fit\", \"\" index {} u 1:2:3:4 w xerrorbars lt 7 pt 5 ps 1 title "
+        "\"λ* of peak (95 % CI)\"\n",
+        r.mu, p.lambda, p.lambda_lo, p.lambda_hi, 2 * block, num(q.b0), num(q.b1),
+        num(q.center), num(q.b2), num(q.center), 2 * block + 1);
     ++block;
   }
   body += "  unset multiplot\n";

@@ -118,6 +118,9 @@ study_options quick_options() {
   o.refine_points = 7;
   o.candidate_realizations = 100;
   o.candidate_refine_realizations = 200;
+  o.peak_halfwidth = 0.25;
+  o.candidate_peak_halfwidth = 0.25;
+  o.peak_max_realizations = 5'000'000;
   return o;
 }
 
@@ -154,8 +157,37 @@ result_set execute(const study_options& o, const sweep_spec& s, const std::strin
   return o.execute ? o.execute(s, id) : run_sweep(s, o.threads);
 }
 
+// The peak search for one mu over the main grid's lambda range: R over
+// lambda with common random numbers (`stickslip peak`'s default method).
+located_peak locate_peak(const sweep_spec& base, const std::vector<double>& lambda,
+                         double halfwidth, const study_options& o, const std::string& id) {
+  located_peak l;
+  auto& q = l.request;
+  q.spec = base;
+  q.spec.axes.clear();
+  q.over = "lambda";
+  q.statistic = &precision::peak_statistic("statistic", "R");
+  q.options.lo = *std::min_element(lambda.begin(), lambda.end());
+  q.options.hi = *std::max_element(lambda.begin(), lambda.end());
+  q.options.log_scan = q.options.hi >= 4 * q.options.lo;
+  q.options.target_halfwidth = halfwidth;
+  q.options.max_total_realizations = o.peak_max_realizations;
+  q.common_random_numbers = true;
+  q.threads = o.threads;
+  try {
+    l.result = o.locate ? o.locate(q, id) : precision::find_peak_by_sweeps(q);
+    l.valid = true;
+  } catch (const error& e) {
+    // The first scan peaked at an end of the range: no interior maximum to
+    // locate; the report quotes the grid maximum and says why.
+    if (e.code() != exit_code::invalid_input) throw;
+    l.note = e.what();
+  }
+  return l;
+}
+
 mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, double mu,
-                        const study_options& o, std::uint64_t realizations) {
+                        const study_options& o, std::uint64_t realizations, double halfwidth) {
   mu_refinement r;
   r.mu = mu;
   const auto pts = points_at_mu(sweep, mu);
@@ -170,6 +202,9 @@ mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, doubl
 
   sweep_spec s = base_spec(set, o);
   s.base.friction_coefficient = mu;
+  std::vector<double> lambda;
+  for (const auto* q : pts) lambda.push_back(q->parameters.switch_rate);
+  r.located = locate_peak(s, lambda, halfwidth, o, fmt::format("{}-peak-mu-{}", set.id, mu));
   s.realizations = realizations;
   s.axes = {axis{"lambda", refinement_grid(r.grid_max_lambda, o.refine_log_half_width,
                                            o.refine_points)}};
@@ -182,7 +217,7 @@ mu_refinement refine_mu(const parameter_set& set, const result_set& sweep, doubl
   }
   // Bootstrap seed: the study seed, tagged by set and mu so every fit has its own stream.
   const std::uint64_t tag = point_key(s.base);
-  r.peak = fit_peak(lam, mean, se, r.grid_max_lambda, o.seed, tag);
+  r.quadratic = fit_peak(lam, mean, se, r.grid_max_lambda, o.seed, tag);
   return r;
 }
 
@@ -192,6 +227,7 @@ struct design {
   parameter_set set;
   std::vector<double> lambda, mu, refine;
   std::uint64_t realizations = 0, refine_realizations = 0;
+  double peak_halfwidth = 0;
   bool candidate = false;  // one of the other candidate sets (reduced design)
 };
 
@@ -202,7 +238,8 @@ std::vector<design> study_designs(const study_options& o) {
   const auto refine = !o.refine_mu.empty() ? o.refine_mu : mu;
   std::vector<design> out;
   for (const auto& set : {printed_parameters(), concluded_parameters()})
-    out.push_back({set, lambda, mu, refine, o.realizations, o.refine_realizations, false});
+    out.push_back({set, lambda, mu, refine, o.realizations, o.refine_realizations,
+                   o.peak_halfwidth, false});
   if (o.candidates) {
     // The other candidates on a reduced design: the three mu the paper
     // quotes, the same lambda grid, fewer realizations.
@@ -210,7 +247,7 @@ std::vector<design> study_designs(const study_options& o) {
     for (const auto& c : candidate_parameter_sets()) {
       if (c.id == "printed" || c.id == "concluded") continue;
       out.push_back({c, lambda, mu3, mu3, o.candidate_realizations,
-                     o.candidate_refine_realizations, true});
+                     o.candidate_refine_realizations, o.candidate_peak_halfwidth, true});
     }
   }
   return out;
@@ -235,9 +272,11 @@ set_study run_design(const design& d, const study_options& o, const study_log& l
   st.sweep_seconds = st.sweep.elapsed_seconds;
   for (double m : d.refine) {
     if (log)
-      log(fmt::format("[{}] refining the maximum of mean R for mu = {} ({} lambda x {})",
-                      d.set.id, m, o.refine_points, d.refine_realizations));
-    st.refinements.push_back(refine_mu(d.set, st.sweep, m, o, d.refine_realizations));
+      log(fmt::format("[{}] locating the maximum of mean R for mu = {} (peak to +-{} in "
+                      "lambda; the 0.1.0 quadratic on {} lambda x {})",
+                      d.set.id, m, d.peak_halfwidth, o.refine_points, d.refine_realizations));
+    st.refinements.push_back(
+        refine_mu(d.set, st.sweep, m, o, d.refine_realizations, d.peak_halfwidth));
   }
   st.seconds = seconds_since(t0);
   if (log) log(fmt::format("[{}] done in {:.1f} s", d.set.id, st.seconds));

@@ -43,21 +43,6 @@ const mu_refinement* refinement_at(const set_study& s, double mu) {
   return nullptr;
 }
 
-// Peak value and interval of one mu: the refined fit when valid, else the
-// grid maximum with its normal CI.
-struct peak_view {
-  double R, R_lo, R_hi, lambda, lambda_lo, lambda_hi;
-  bool refined;
-};
-peak_view view(const mu_refinement& r) {
-  if (r.peak.valid)
-    return {r.peak.R_star, r.peak.R_lo, r.peak.R_hi, r.peak.lambda_star, r.peak.lambda_lo,
-            r.peak.lambda_hi, true};
-  return {r.grid_max,        r.grid_max - r.grid_max_ci95, r.grid_max + r.grid_max_ci95,
-          r.grid_max_lambda, r.grid_max_lambda,            r.grid_max_lambda,
-          false};
-}
-
 // Standard deviation of R at the grid maximum: the paper's own sampling error
 // of a 2000-realization mean is this / sqrt(2000).
 double paper_standard_error(const set_study& s, const mu_refinement& r) {
@@ -72,7 +57,7 @@ claim_value peak_value_claim(const set_study& s, double mu, double paper, double
     v.note = fmt::format("mu = {} not refined", mu);
     return v;
   }
-  const auto p = view(*r);
+  const auto p = best_maximum(*r);
   v.value = fmt::format("{} (grid max {} at λ={:.3g})", pct(p.R), pct(r->grid_max),
                         r->grid_max_lambda);
   v.ci95 = pct_ci(p.R_lo, p.R_hi);
@@ -121,7 +106,7 @@ claim_value almost_80_claim(const set_study& s) {
   claim_value v;
   const auto* r = refinement_at(s, 5.0);
   if (!r) return v;
-  const auto p = view(*r);
+  const auto p = best_maximum(*r);
   v.value = fmt::format("{} (grid max {})", pct(p.R), pct(r->grid_max));
   v.ci95 = pct_ci(p.R_lo, p.R_hi);
   // "almost 80 %" read as [75, 80] %.
@@ -139,7 +124,7 @@ claim_value location_claim(const set_study& s) {
   claim_value v;
   const auto* r = refinement_at(s, 5.0);
   if (!r) return v;
-  const auto p = view(*r);
+  const auto p = best_maximum(*r);
   v.value = fmt::format("λ* = {:.3f} 1/s (grid argmax {:.3g})", p.lambda, r->grid_max_lambda);
   v.ci95 = fmt::format("[{:.3f}, {:.3f}]", p.lambda_lo, p.lambda_hi);
   if (p.lambda_lo <= 3.8 && 3.8 <= p.lambda_hi)
@@ -159,7 +144,7 @@ claim_value range_claim(const set_study& s) {
   bool all_overlap = true, all_near = true;
   std::string per;
   for (const auto& r : s.refinements) {
-    const auto p = view(r);
+    const auto p = best_maximum(r);
     lo = std::min(lo, p.lambda);
     hi = std::max(hi, p.lambda);
     all_overlap = all_overlap && p.lambda_hi >= 3.5 && p.lambda_lo <= 3.8;
@@ -183,12 +168,12 @@ claim_value grows_with_mu_claim(const set_study& s) {
   std::sort(rs.begin(), rs.end(), [](auto* a, auto* b) { return a->mu < b->mu; });
   bool increasing = true, significant = true;
   for (std::size_t i = 1; i < rs.size(); ++i) {
-    const auto a = view(*rs[i - 1]), b = view(*rs[i]);
+    const auto a = best_maximum(*rs[i - 1]), b = best_maximum(*rs[i]);
     increasing = increasing && b.R > a.R;
     significant = significant && b.R_lo > a.R_hi;
   }
-  v.value = fmt::format("R* from {} (μ={}) to {} (μ={})", pct(view(*rs.front()).R),
-                        rs.front()->mu, pct(view(*rs.back()).R), rs.back()->mu);
+  v.value = fmt::format("R* from {} (μ={}) to {} (μ={})", pct(best_maximum(*rs.front()).R),
+                        rs.front()->mu, pct(best_maximum(*rs.back()).R), rs.back()->mu);
   v.ci95 = significant ? "every step significant" : "";
   v.result = increasing ? verdict::agrees : verdict::disagrees;
   v.note = "agrees when R* increases at every step in μ";

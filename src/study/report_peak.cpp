@@ -186,4 +186,14 @@ peak_estimate fit_peak(const std::vector<double>& lambda, const std::vector<doub
   return e;
 }
 
+maximum_view best_maximum(const mu_refinement& r) {
+  if (r.located.valid) {
+    const auto& p = r.located.result;
+    return {p.max, p.max_lo, p.max_hi, p.argmax, p.argmax_lo, p.argmax_hi, true};
+  }
+  return {r.grid_max,        r.grid_max - r.grid_max_ci95, r.grid_max + r.grid_max_ci95,
+          r.grid_max_lambda, r.grid_max_lambda,            r.grid_max_lambda,
+          false};
+}
+
 }  // namespace stickslip::study

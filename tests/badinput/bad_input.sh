@@ -50,6 +50,8 @@ expect 2 "--bins.*'0'" o -- sweep --bins 0 -o o
 expect 2 "--seed.*'-1'" o -- sweep --seed -1 -o o
 expect 2 "checkpoint-interval.*-1" o -- sweep --checkpoint-interval=-1 -o o
 expect 2 "--shard \(i\)" o -- sweep --shard 3/2 -o o
+expect 2 "--peak-halfwidth.*0.*1e-4 \.\. 10" rp -- reproduce --quick --peak-halfwidth 0 -o rp
+expect 2 "--peak-halfwidth.*nan" rp -- reproduce --quick --peak-halfwidth nan -o rp
 expect 2 "--shard \(n\)" o -- sweep --shard 0/0 -o o
 expect 2 "--shard.*i/n" o -- sweep --shard 1 -o o
 

@@ -79,6 +79,8 @@ class ReproduceReport : public ::testing::Test {
     o.candidate_realizations = 30;
     o.candidate_refine_realizations = 40;
     o.lambda = {0.1, 1.0, 3.5, 3.8, 10.0};
+    o.peak_halfwidth = o.candidate_peak_halfwidth = 0.4;
+    o.peak_max_realizations = 2'000'000;
     o.threads = 2;
     study_ = new study::study_result(study::run_paper_study(o));
     dir_ = new fs::path(fs::temp_directory_path() /
@@ -202,7 +204,7 @@ TEST_F(ReproduceReport, ClaimsTableHoldsTheRefinedMaxima) {
       ASSERT_TRUE(std::regex_search(cell, m, percent)) << cell;
       for (const auto& r : study_->sets[k].refinements)
         if (r.mu == 5.0) {
-          const double expected = r.peak.valid ? r.peak.R_star : r.grid_max;
+          const double expected = study::best_maximum(r).R;
           EXPECT_NEAR(std::stod(m[1]) / 100, expected, 5.1e-5) << cell;
         }
       const auto& verdict = row[4 + 3 * k];
@@ -240,8 +242,9 @@ TEST_F(ReproduceReport, PeaksCsvMatchesTheRefinement) {
     std::getline(cells, lstar, ',');
     EXPECT_DOUBLE_EQ(std::stod(mu), r.mu);
     EXPECT_DOUBLE_EQ(std::stod(gmax), r.grid_max);  // shortest round-trip text
-    if (r.peak.valid) {
-      EXPECT_DOUBLE_EQ(std::stod(lstar), r.peak.lambda_star);
+    EXPECT_EQ(valid, r.located.valid ? "1" : "0");
+    if (r.located.valid) {
+      EXPECT_DOUBLE_EQ(std::stod(lstar), r.located.result.argmax);
     }
   }
 }
@@ -381,16 +384,80 @@ TEST(Chi2PoorFit, NinetyFivePercentPointsMatchTheTable) {
   EXPECT_FALSE(study::poor_fit(p));
 }
 
+// Issue 13: reproduce quotes `peak` for every lambda* and R*. The study's
+// located maximum must be what find_peak_by_sweeps (the code behind `stickslip
+// peak`) returns for the same request, bit for bit, and the report must quote
+// it.
+TEST_F(ReproduceReport, EveryMaximumIsThePeakFindersResult) {
+  const auto md = slurp(files_->markdown);
+  std::size_t located = 0;
+  for (const auto& s : study_->sets)
+    for (const auto& r : s.refinements) {
+      if (!r.located.valid) {
+        EXPECT_FALSE(r.located.note.empty()) << s.set.id << " mu " << r.mu;
+        continue;
+      }
+      ++located;
+      const auto& q = r.located.request;
+      EXPECT_EQ(q.over, "lambda");
+      EXPECT_EQ(q.statistic->summary_name, "R");
+      EXPECT_TRUE(q.common_random_numbers);
+      EXPECT_EQ(q.spec.base.friction_coefficient, r.mu);
+      EXPECT_EQ(q.options.target_halfwidth, study_->options.peak_halfwidth);
+      const auto p = precision::find_peak_by_sweeps(q);
+      EXPECT_EQ(p.argmax, r.located.result.argmax) << s.set.id << " mu " << r.mu;
+      EXPECT_EQ(p.max, r.located.result.max) << s.set.id << " mu " << r.mu;
+      EXPECT_EQ(p.argmax_lo, r.located.result.argmax_lo);
+      const auto v = study::best_maximum(r);
+      EXPECT_TRUE(v.refined);
+      EXPECT_EQ(v.lambda, p.argmax);
+      EXPECT_EQ(v.R_hi, p.max_hi);
+      const auto cell = fmt::format("{:.3f} [{:.3f}, {:.3f}]", p.argmax, p.argmax_lo, p.argmax_hi);
+      EXPECT_NE(md.find(cell), std::string::npos) << cell;
+    }
+  EXPECT_GE(located, 3u);  // the quick design locates most maxima
+}
+
+// The report says what changed: each mu's 0.1.0 quadratic estimate beside the
+// located one, the shift, and whether the old interval holds the new lambda*.
+TEST_F(ReproduceReport, ComparisonWithTheQuadraticFitOfVersion010) {
+  const auto md = slurp(files_->markdown);
+  EXPECT_NE(md.find("What changed from stickslip 0.1.0, and why"), std::string::npos);
+  EXPECT_NE(md.find("**Why λ* changed.**"), std::string::npos);
+  std::size_t checked = 0;
+  for (const auto& s : study_->sets)
+    for (const auto& r : s.refinements) {
+      const auto rows = table_after(md, "0.1.0 against now (" + s.set.id + ")");
+      if (!r.quadratic.valid || !r.located.valid) continue;
+      const auto& q = r.quadratic;
+      const auto& p = r.located.result;
+      const auto old_cell =
+          fmt::format("{:.3f} [{:.3f}, {:.3f}]", q.lambda_star, q.lambda_lo, q.lambda_hi);
+      const auto new_cell = fmt::format("{:.3f} [{:.3f}, {:.3f}]", p.argmax, p.argmax_lo, p.argmax_hi);
+      bool found = false;
+      for (const auto& row : rows)
+        if (row.size() >= 6 && row[1] == old_cell && row[3] == new_cell) {
+          found = true;
+          EXPECT_EQ(row[4], fmt::format("{:+.3f}", p.argmax - q.lambda_star));
+          const bool holds = q.lambda_lo <= p.argmax && p.argmax <= q.lambda_hi;
+          EXPECT_EQ(row[5], holds ? "yes" : "**no**");
+        }
+      EXPECT_TRUE(found) << s.set.id << " mu " << r.mu << ": " << old_cell << " / " << new_cell;
+      ++checked;
+    }
+  EXPECT_GE(checked, 2u);
+}
+
 TEST_F(ReproduceReport, PoorFitsAreFlaggedInTheRefinementTable) {
   const auto md = slurp(files_->markdown);
   for (const auto& s : study_->sets)
     for (const auto& r : s.refinements) {
-      const auto cell = fmt::format("{:.2f} / {}", r.peak.chi2, r.peak.dof);
+      const auto cell = fmt::format("{:.2f} / {}", r.quadratic.chi2, r.quadratic.dof);
       const auto at = md.find(cell);
       ASSERT_NE(at, std::string::npos) << cell;
       const std::string flag = " **poor fit**";
       const bool flagged = md.compare(at + cell.size(), flag.size(), flag) == 0;
-      EXPECT_EQ(flagged, study::poor_fit(r.peak)) << s.set.id << " mu " << r.mu;
+      EXPECT_EQ(flagged, study::poor_fit(r.quadratic)) << s.set.id << " mu " << r.mu;
     }
 }
 

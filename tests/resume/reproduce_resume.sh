@@ -62,4 +62,19 @@ grep -q "concluded-sweep: [0-9]* units from the journal, 0 computed" "$work/shar
   || { cat "$work/sharded.log"; fail "--resume recomputed the sharded main sweep"; }
 $compare "$work/ref" "$sh" >/dev/null || { $compare "$work/ref" "$sh"; fail "sharded reproduction differs"; }
 echo "reproduce_resume: 3 shards of the main sweeps + --resume: identical reproduction"
+
+# Finished peak searches are kept in .runs: a resume uses them instead of
+# searching again, and a kept file that is damaged or from another request is
+# searched again; the reproduction is the same either way.
+kept=$work/kept
+"$bin" "${args[@]}" -o "$kept" --keep-journal 2>/dev/null || fail "--keep-journal run"
+ls "$kept"/.runs/concluded-peak-mu-5.peak >/dev/null || fail "no kept peak search in .runs"
+head -c 100 "$kept/.runs/concluded-peak-mu-0.5.peak" > "$work/cut" && mv "$work/cut" "$kept/.runs/concluded-peak-mu-0.5.peak"
+"$bin" "${args[@]}" -o "$kept" --resume --overwrite 2>"$work/kept.log" || fail "--resume onto kept searches"
+grep -q "concluded-peak-mu-5: the search kept in .* (not run again)" "$work/kept.log" \
+  || { cat "$work/kept.log"; fail "the kept peak search was run again"; }
+grep -q "concluded-peak-mu-0.5: .* is not this search's result; searching again" "$work/kept.log" \
+  || { cat "$work/kept.log"; fail "a damaged kept peak search was used"; }
+$compare "$work/ref" "$kept" >/dev/null || { $compare "$work/ref" "$kept"; fail "reproduction from kept peak searches differs"; }
+echo "reproduce_resume: kept peak searches are reused on --resume, a damaged one searched again: identical reproduction"
 rm -rf "$work"

@@ -4,6 +4,7 @@
 // (spec.seed, stage[, group]), so the result is the same for any number of
 // threads. No I/O.
 #pragma once
+#include <functional>
 #include <string>
 
 #include "stickslip/precision/common_peak_finder.hpp"
@@ -20,6 +21,9 @@ struct sweep_peak_request {
   peak_options options;     // range, target, budget
   bool common_random_numbers = true;  // find_peak_common, else find_peak
   unsigned threads = 0;     // per sweep, 0 = all cores
+  // Runs one sweep; default (empty): run_sweep(spec, threads). `reproduce`
+  // passes its runner, so that under mpirun the sweeps use every rank.
+  std::function<result_set(const sweep_spec&)> run;
 };
 
 // The per-realization statistic named `name` (summary name, name or symbol);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/precision/peak_sweep.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::study {
@@ -53,6 +54,13 @@ struct parameter_set {
 
 // ------------------------------------------------- refinement of the peak ---
 
+// The maximum of mean R over lambda for one mu is located by `stickslip
+// peak` (precision/peak_sweep.hpp: common random numbers, local cubic and
+// quartic fits in a shrinking window, an interval that counts sampling error
+// and local-model bias; docs/precision.md). The quadratic fit below is the
+// method of stickslip 0.1.0; the study still runs it, on its own sweep, so
+// that the report can show what changed and why.
+//
 // Weighted least-squares fit of R = b0 + b1 u + b2 u^2, u = ln(lambda/center),
 // weights 1/se_i^2, to the mean R of independent points. With b2 < 0:
 //   u* = -b1/(2 b2),  lambda* = center e^u*,  R* = b0 - b1^2/(4 b2).
@@ -95,6 +103,12 @@ struct peak_estimate {
 // Default (empty): run_sweep on `threads` threads. The command line passes a
 // journaled run from the run layer (resume, MPI).
 using sweep_executor = std::function<result_set(const sweep_spec&, const std::string& id)>;
+// How the study runs one peak search; `id` names it uniquely within the
+// study ("concluded-peak-mu-5"). Default (empty): find_peak_by_sweeps. The
+// command line passes one that runs the sweeps on its runner (MPI) and keeps
+// each finished search in OUT/.runs, so a resumed reproduce does not redo it.
+using peak_locator = std::function<precision::peak_result(const precision::sweep_peak_request&,
+                                                          const std::string& id)>;
 
 struct study_options {
   std::uint64_t realizations = 2000;         // per grid point of the main sweep
@@ -103,6 +117,12 @@ struct study_options {
   double refine_log_half_width = 0.4;        // window: lambda_c e^(+-0.4)
   std::uint64_t candidate_realizations = 1000;
   std::uint64_t candidate_refine_realizations = 4000;
+  // The peak search's target 95 % half-width in lambda [1/s], for the
+  // printed and concluded sets and for the other candidates, and its budget
+  // of realizations per search (over all stages).
+  double peak_halfwidth = 0.05;
+  double candidate_peak_halfwidth = 0.1;
+  std::uint64_t peak_max_realizations = 200'000'000;
   std::uint64_t seed = 20200101;
   unsigned threads = 0;  // 0 = all cores
   bool quick = false;
@@ -110,20 +130,40 @@ struct study_options {
   std::vector<double> lambda, mu;  // empty: paper (or quick) grids
   std::vector<double> refine_mu;   // empty: every mu of the grid
   sweep_executor execute;          // empty: run_sweep
+  peak_locator locate;             // empty: precision::find_peak_by_sweeps
 };
 
 // The --quick settings: 8 lambda x 3 mu x 200 realizations, refinement with
-// 7 lambda values x 400, candidates at 100/200 realizations.
+// 7 lambda values x 400, candidates at 100/200 realizations, peak searches
+// to a half-width of 0.25.
 [[nodiscard]] study_options quick_options();
+
+// The peak search for one mu: its request and result, or why it has none
+// (the first scan peaked at an end of the range).
+struct located_peak {
+  bool valid = false;
+  std::string note;  // why not valid
+  precision::sweep_peak_request request;
+  precision::peak_result result;
+};
 
 // Refinement of the maximum of mean R for one mu.
 struct mu_refinement {
   double mu = 0;
   std::size_t grid_argmax = 0;  // index into the lambda axis of the main sweep
   double grid_max = 0, grid_max_ci95 = 0, grid_max_lambda = 0;
+  located_peak located;         // the estimate the report uses (peak)
   result_set fine;              // mu fixed, lambda on refinement_grid
-  peak_estimate peak;
+  peak_estimate quadratic;      // 0.1.0's estimate, for comparison
 };
+
+// The maximum the report quotes for one mu: the peak search's when it has
+// one, else the grid maximum with its normal interval (refined = false).
+struct maximum_view {
+  double R, R_lo, R_hi, lambda, lambda_lo, lambda_hi;
+  bool refined;
+};
+[[nodiscard]] maximum_view best_maximum(const mu_refinement& r);
 
 struct set_study {
   parameter_set set;

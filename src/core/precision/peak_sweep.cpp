@@ -38,7 +38,7 @@ peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
     s.common_random_numbers = crn;
     s.target_statistic.clear();
     validate(s);
-    return run_sweep(s, q.threads);
+    return q.run ? q.run(s) : run_sweep(s, q.threads);
   };
   if (q.common_random_numbers) {
     // Each stage: `groups` sweeps with common random numbers across the
