@@ -18,6 +18,7 @@
 // (statistics_schema.hpp), which says how it is sampled, binned, merged,
 // serialized and written.
 #pragma once
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -88,7 +89,10 @@ class point_statistics {
   point_statistics() = default;
   // `family`: whether add() fills the statistics of issue 11
   // (sweep_spec::family_statistics).
-  point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true);
+  // `stationary_start`: the belt's start level is drawn from the stationary
+  // law (initial_condition_law::belt_start = 0), which depends on the rates.
+  point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true,
+                   bool stationary_start = true);
 
   // Add one finished realization. Precondition: one level fraction per level.
   void add(const realization_samples& r, double window);
@@ -112,6 +116,13 @@ class point_statistics {
   // control-variate means of R, S_T/t_a, S_L/t_a (score_moments.hpp).
   score_moments stick_fraction_score, sticks_per_time_score, slips_per_time_score;
   double expected_switches = 0.0;  // lambda t_a of the point (not merged: the same)
+  // A two-level belt with its own rates (--belt-rates r1,r2): the same
+  // moments against K_j = r_j x (score of r_j), j = 1, 2, for d mean/dr_j
+  // (belt_rate_scores below; filled with the family statistics).
+  std::array<score_moments, 2> stick_fraction_rate_score, sticks_per_time_rate_score,
+      slips_per_time_rate_score;
+  std::array<double, 2> belt_rates{0.0, 0.0};  // r1, r2; 0: no rate scores (not merged)
+  bool stationary_start = true;  // the start level drawn from the stationary law
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
   bool family_statistics = true;               // add() fills the five above
@@ -123,6 +134,21 @@ class point_statistics {
 
   friend bool operator==(const point_statistics&, const point_statistics&) = default;
 };
+
+// The centred scores of the rates of a two-level belt (docs/precision.md,
+// "Markov belt rates"): with N_j the jumps out of level j and T_j the time at
+// level j on [0, t_a], the log-likelihood of the belt path has the score
+//   d/dr_j = N_j / r_j - T_j  (+ d log pi(s0) / dr_j for a stationary start),
+// so K_j = N_j - r_j T_j + r_j d log pi(s0)/dr_j has mean 0 and
+// d E[X]/dr_j = Cov(X, K_j) / r_j. With pi = (r2, r1)/(r1 + r2):
+//   r1 d log pi(first)/dr1 = -r1/(r1 + r2),  r1 d log pi(second)/dr1 = r2/(r1 + r2),
+//   r2 d log pi(first)/dr2 = r1/(r1 + r2),   r2 d log pi(second)/dr2 = -r2/(r1 + r2).
+// `start_level` 0 or 1, `switches` N = N_1 + N_2 (the levels alternate), `time` T_1, T_2.
+[[nodiscard]] std::array<double, 2> belt_rate_scores(const std::array<double, 2>& rates,
+                                                     std::size_t start_level,
+                                                     std::uint64_t switches,
+                                                     const std::array<double, 2>& time,
+                                                     bool stationary_start) noexcept;
 
 // Observer that turns the episode stream of one realization into a
 // realization_record plus the lists of stick and slip durations.

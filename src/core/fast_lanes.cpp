@@ -858,7 +858,7 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   const std::uint64_t first = first_block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, (first_block + count) * s.block_size);
   for (std::uint64_t b = 0; b < count; ++b) {
-    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics);
+    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;

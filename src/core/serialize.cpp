@@ -126,6 +126,15 @@ void put(writer& w, const point_statistics& s) {
       for (int i = 0; i < 5; ++i) w.f64((s.*q.score).sum(i));
     }
   w.f64(s.expected_switches);
+  for (const auto& q : quantities())
+    if (q.rate_score)
+      for (const auto& m : s.*q.rate_score) {
+        w.u64(m.count());
+        for (int i = 0; i < 5; ++i) w.f64(m.sum(i));
+      }
+  w.f64(s.belt_rates[0]);
+  w.f64(s.belt_rates[1]);
+  w.u8(s.stationary_start ? 1 : 0);
   for (const auto& l : level_quantities()) {
     w.u64((s.*l.moments).size());
     for (const auto& m : s.*l.moments) put(w, m);
@@ -170,6 +179,17 @@ point_statistics get_statistics(reader& r) {
       s.*q.score = score_moments::from_raw(count, sums);
     }
   s.expected_switches = r.f64("expected switches");
+  for (const auto& q : quantities())
+    if (q.rate_score)
+      for (auto& m : s.*q.rate_score) {
+        const auto count = r.u64("rate score moments");
+        double sums[5];
+        for (double& x : sums) x = r.f64("rate score moments");
+        m = score_moments::from_raw(count, sums);
+      }
+  s.belt_rates[0] = r.f64("belt rate r1");
+  s.belt_rates[1] = r.f64("belt rate r2");
+  s.stationary_start = r.boolean("stationary start flag");
   for (const auto& l : level_quantities()) {
     auto& moments = s.*l.moments;
     moments.resize(r.count(l.name, 24));

@@ -1,5 +1,6 @@
 #include "stickslip/statistics.hpp"
 
+#include "stickslip/initial_conditions.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 #include <algorithm>
@@ -9,8 +10,11 @@ namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
 point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
-                                   bool family)
-    : expected_switches(p.switch_rate * p.window), family_statistics(family) {
+                                   bool family, bool stationary_start_)
+    : expected_switches(p.switch_rate * p.window),
+      stationary_start(stationary_start_),
+      family_statistics(family) {
+  if (p.belt_rates.size() == 2) belt_rates = {p.belt_rates[0], p.belt_rates[1]};
   for (const auto& q : quantities())
     if (q.density)
       this->*q.density =
@@ -19,6 +23,24 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
   for (const auto& j : joint_histograms())
     this->*j.counts = histogram2d(this->*quantity_table[j.x].density,
                                   this->*quantity_table[j.y].density);
+}
+
+std::array<double, 2> belt_rate_scores(const std::array<double, 2>& rates,
+                                       std::size_t start_level, std::uint64_t switches,
+                                       const std::array<double, 2>& time,
+                                       bool stationary_start) noexcept {
+  // The levels alternate: from the first level, jumps out of it are
+  // ceil(N/2); from the second, floor(N/2).
+  const std::uint64_t out_first = start_level == 0 ? (switches + 1) / 2 : switches / 2;
+  const std::uint64_t out[2] = {out_first, switches - out_first};
+  std::array<double, 2> k{};
+  const double total = rates[0] + rates[1];
+  for (std::size_t j = 0; j < 2; ++j) {
+    k[j] = static_cast<double>(out[j]) - rates[j] * time[j];
+    if (stationary_start)
+      k[j] += start_level == j ? -rates[j] / total : rates[1 - j] / total;
+  }
+  return k;
 }
 
 namespace {
@@ -71,6 +93,14 @@ void point_statistics::add(const realization_samples& in, double window) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
   }(std::make_index_sequence<counter_table.size()>{});
   if (!family_statistics) return;
+  if (belt_rates[0] > 0.0 && in.level_fractions.size() == 2) {
+    const auto k = belt_rate_scores(
+        belt_rates, level_of_belt_start(r.belt_start), r.events.belt_switches,
+        {in.level_fractions[0] * window, in.level_fractions[1] * window}, stationary_start);
+    for (const auto& q : quantities())
+      if (q.rate_score)
+        for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j].add(q.value(r, window), k[j]);
+  }
   for (const auto& l : level_quantities()) {
     auto& moments = this->*l.moments;
     for (std::size_t i = 0; i < moments.size(); ++i) moments[i].add(in.level_fractions[i]);
@@ -87,6 +117,8 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
   for (const auto& q : quantities()) {
     this->*q.moments += o.*q.moments;
     if (q.score) this->*q.score += o.*q.score;
+    if (q.rate_score)
+      for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j] += (o.*q.rate_score)[j];
     if (q.density) this->*q.density += o.*q.density;
   }
   for (const auto& l : level_quantities())

@@ -30,6 +30,7 @@ std::uint64_t statistics_schema_id() noexcept {
     for (const auto& q : quantity_table) {
       f.add("quantity");
       f.add(q.name);
+      if (q.rate_score) f.add("rate scores");
       f.byte(static_cast<unsigned char>(q.sampled));
       f.byte(static_cast<unsigned char>(q.range));
     }
@@ -50,6 +51,12 @@ std::uint64_t statistics_schema_id() noexcept {
     return f.h;
   }();
   return id;
+}
+
+estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
+                              std::size_t j) noexcept {
+  if (!q.rate_score || !(s.belt_rates[j] > 0.0)) return {};
+  return score_derivative((s.*q.rate_score)[j], s.*q.moments, s.belt_rates[j]);
 }
 
 namespace {

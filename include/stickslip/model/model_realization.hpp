@@ -53,18 +53,6 @@ struct family_point {
   return draw_stationary_level(fp.chain, seed, fp.key, realization);
 }
 
-// How records and outputs write a starting level: +1 / -1 on a two-level
-// belt (first / second level, the paper's direction), the level number
-// 1..n on a belt of more levels.
-[[nodiscard]] inline int recorded_belt_start(std::size_t level, std::size_t level_count) noexcept {
-  if (level_count == 2) return level == 0 ? 1 : -1;
-  return static_cast<int>(level) + 1;
-}
-// The inverse: a recorded or requested belt start as a level index.
-[[nodiscard]] inline std::size_t level_of_belt_start(int belt_start) noexcept {
-  return belt_start == -1 ? 1 : static_cast<std::size_t>(belt_start - 1);
-}
-
 // The initial state of realization r: x0, x'0 and the starting level.
 [[nodiscard]] inline model_initial_state draw_model_initial_state(
     const family_point& fp, const initial_condition_law& law, std::uint64_t seed,

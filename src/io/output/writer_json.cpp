@@ -64,6 +64,28 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
     j.end_object();
   }
   j.end_object();
+  // "dmean_drates": the same derivative over the rates r1, r2 of a
+  // two-level belt given its own rates (only at such points).
+  if (s.belt_rates[0] > 0.0) {
+    j.key("dmean_drates");
+    j.begin_object();
+    for (const auto& q : quantities()) {
+      if (!q.rate_score) continue;
+      j.key(q.summary_name);
+      j.begin_object();
+      for (std::size_t r = 0; r < 2; ++r) {
+        const auto d = belt_rate_derivative(s, q, r);
+        j.key(r == 0 ? "r1" : "r2");
+        j.begin_object();
+        j.member("value", d.value);
+        j.member("std_error", d.std_error);
+        emit_interval(j, d);
+        j.end_object();
+      }
+      j.end_object();
+    }
+    j.end_object();
+  }
   j.key("control_variate");
   j.begin_object();
   for (const auto& q : quantities()) {

@@ -288,6 +288,33 @@ void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set
     put_grid<double>(mhi, rs, [&](const point_result& p) {
       return cv(p).mean.value + cv(p).mean.ci95_half_width();
     });
+    for (std::size_t r = 0; r < 2; ++r) {
+      const std::string rn = r == 0 ? "r1" : "r2";
+      const std::string lrr = "likelihood-ratio (score) estimate of d E[" + sym + "]/d " + rn +
+                              " for a two-level belt given its own rates: mean of (X - mean "
+                              "X) K/" + rn + ", K = N_j - " + rn + " T_j (+ the stationary "
+                              "start's term), N_j the jumps out of level j and T_j the time "
+                              "there; NaN at points without belt rates";
+      const auto rate_deriv = [&, r](const point_result& p) {
+        return belt_rate_derivative(p.stats, q, r);
+      };
+      const std::string& ru = units;  // per unit of rate, like lambda
+      auto v = add_double(f, n + "_dmean_d" + rn, l.grid, ru, "slope " + sym + " " + rn,
+                          "d mean/d " + rn + ": " + lrr);
+      put_grid<double>(v, rs, [&](const point_result& p) { return rate_deriv(p).value; });
+      auto lo = add_double(f, n + "_dmean_d" + rn + "_ci95_low", l.grid, ru,
+                           "slope low " + sym + " " + rn,
+                           "value - 1.96 x its delta-method standard error; " + lrr);
+      put_grid<double>(lo, rs, [&](const point_result& p) {
+        return rate_deriv(p).value - rate_deriv(p).ci95_half_width();
+      });
+      auto hi = add_double(f, n + "_dmean_d" + rn + "_ci95_high", l.grid, ru,
+                           "slope high " + sym + " " + rn,
+                           "value + 1.96 x its delta-method standard error; " + lrr);
+      put_grid<double>(hi, rs, [&](const point_result& p) {
+        return rate_deriv(p).value + rate_deriv(p).ci95_half_width();
+      });
+    }
     auto vr = add_double(f, n + "_cv_variance_reduction", l.grid, "1",
                          "CV gain " + sym,
                          "Var(X) / residual variance = 1/(1 - rho^2), rho = corr(X, N): how "
