@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stickslip/error.hpp"
+#include "stickslip/precision/crn_slopes.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
@@ -379,6 +380,67 @@ TEST(BeltRateScore, ScoresHaveMeanZero) {
       EXPECT_GT(var, 0.0);
     }
   }
+}
+
+// Issue 13: common-random-number finite differences for every parameter
+// (precision/crn_slopes.hpp). Independent oracle: the likelihood-ratio
+// derivatives (over lambda, and over a Markov belt's rate r1), which use
+// one point and no differencing; a narrow central difference must agree
+// within 3.5 combined standard errors.
+TEST(CrnSlopes, AgreeWithTheLikelihoodRatioDerivatives) {
+  const std::uint64_t n = 12000;
+  int strong = 0;
+  for (double lambda : {0.8, 3.0, 8.0}) {
+    const double h = 0.04 * lambda;
+    auto s = figure_spec({lambda + h, lambda, lambda - h}, n, true, 53);  // not sorted
+    s.keep_records = true;
+    const auto rs = run_sweep(s, 2);
+    const auto slopes = precision::crn_slopes(rs);
+    ASSERT_EQ(slopes.size(), 3u);
+    const auto& c = slopes[1].front();  // the middle point; R is the first row
+    EXPECT_EQ(c.quantity->summary_name, std::string("R"));
+    EXPECT_EQ(c.from, 2u);
+    EXPECT_EQ(c.to, 0u);
+    EXPECT_EQ(c.pairs, n);
+    const auto& mid = rs.points[1].stats;
+    const auto lr = score_derivative(mid.stick_fraction_score, mid.stick_fraction, lambda);
+    std::printf("lambda %.2f: CRN slope %.5f +- %.5f, LR %.5f +- %.5f\n", lambda, c.slope.value,
+                c.slope.std_error, lr.value, lr.std_error);
+    EXPECT_LT(std::abs(c.slope.value - lr.value), 3.5 * std::hypot(c.slope.std_error, lr.std_error));
+    if (std::abs(lr.value) > 6 * std::hypot(c.slope.std_error, lr.std_error)) ++strong;
+    // The end points difference one-sidedly with their only neighbour.
+    EXPECT_EQ(slopes[0].front().from, 1u);
+    EXPECT_EQ(slopes[0].front().to, 0u);
+    EXPECT_EQ(slopes[2].front().from, 2u);
+    EXPECT_EQ(slopes[2].front().to, 1u);
+  }
+  EXPECT_GE(strong, 2);
+  // Over a belt rate, on a two-axis grid (the rate axis first).
+  sweep_spec s = figure_spec({1.0}, n, true, 59);
+  s.base.belt_levels = {1.0, -0.5};
+  s.base.belt_rates = {1.0, 2.0};
+  s.axes = {{"r1", {0.95, 1.0, 1.05}}, {"mu", {3.0, 5.0}}};
+  s.keep_records = true;
+  const auto rs = run_sweep(s, 2);
+  const auto slopes = precision::crn_slopes(rs);
+  for (std::size_t p : {2u, 3u}) {  // r1 = 1.0, mu = 3 and 5
+    const auto& c = slopes[p].front();
+    EXPECT_EQ(c.axis, 0u);
+    const auto lr = belt_rate_derivative(rs.points[p].stats, quantities()[0], 0);
+    EXPECT_LT(std::abs(c.slope.value - lr.value), 3.5 * std::hypot(c.slope.std_error, lr.std_error))
+        << "point " << p << ": CRN " << c.slope.value << " LR " << lr.value;
+  }
+}
+
+TEST(CrnSlopes, OnlyWithCommonRandomNumbersAndRecords) {
+  auto s = figure_spec({1.0, 2.0}, 50, false);
+  s.keep_records = true;
+  EXPECT_TRUE(precision::crn_slopes(run_sweep(s, 1)).empty());  // independent points
+  s.common_random_numbers = true;
+  s.keep_records = false;
+  EXPECT_TRUE(precision::crn_slopes(run_sweep(s, 1)).empty());  // no records
+  s.keep_records = true;
+  EXPECT_EQ(precision::crn_slopes(run_sweep(s, 1)).size(), 2u);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "json_emitter.hpp"
+#include "stickslip/precision/crn_slopes.hpp"
 #include "stickslip/io/writers.hpp"
 #include "writers_detail.hpp"
 
@@ -107,7 +108,34 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
 // the counters that belong to no group, the sample counts of the quantities
 // not sampled once per realization ("samples"), then each group of counters
 // ("events") as an object.
-void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) {
+// "crn_slopes": per axis, the common-random-number slope of each
+// per-realization mean (precision/crn_slopes.hpp), with the two points'
+// values of the axis it differences and the realizations paired.
+void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
+                     const std::vector<precision::crn_slope>& slopes) {
+  j.key("crn_slopes");
+  j.begin_object();
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].values.size() < 2) continue;
+    j.key(spec.axes[k].name);
+    j.begin_object();
+    for (const auto& c : slopes) {
+      if (c.axis != k) continue;
+      j.key(c.quantity->summary_name);
+      j.begin_object();
+      j.member("value", c.slope.value);
+      j.member("std_error", c.slope.std_error);
+      emit_interval(j, c.slope);
+      j.member("pairs", c.pairs);
+      j.end_object();
+    }
+    j.end_object();
+  }
+  j.end_object();
+}
+
+void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p,
+                const std::vector<precision::crn_slope>* slopes) {
   const auto& s = p.stats;
   j.begin_object();
   for (const auto& sym : point_parameter_symbols(spec))
@@ -143,6 +171,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
     j.end_object();
   }
   emit_score_estimates(j, p);
+  if (slopes) emit_crn_slopes(j, spec, *slopes);
   // Joint histograms: counts[i][k] of x bin i and y bin k (in range), and
   // the samples outside either range.
   for (const auto& jh : joint_histograms()) {
@@ -162,7 +191,9 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p) 
 
 void emit_points(json_emitter& j, const result_set& rs) {
   j.begin_array(layout::multi_line);
-  for (const auto& p : rs.points) emit_point(j, rs.spec, p);
+  const auto slopes = precision::crn_slopes(rs);  // empty without CRN and records
+  for (std::size_t i = 0; i < rs.points.size(); ++i)
+    emit_point(j, rs.spec, rs.points[i], slopes.empty() ? nullptr : &slopes[i]);
   j.end_array();
 }
 

@@ -19,6 +19,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/precision/crn_slopes.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -323,6 +324,48 @@ void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set
   }
 }
 
+// The units of d(quantity)/d(parameter): "1" over "1/s" is "s", the same
+// units cancel, else "(q) / (p)".
+std::string per_unit_of(const std::string& q, const std::string& p) {
+  if (q == p) return "1";
+  if (p == "1") return q;
+  if (q == "1" && p == "1/s") return "s";
+  return "(" + q + ") / (" + p + ")";
+}
+
+// With common random numbers and records: per axis and per-realization
+// quantity, the slope of the mean from the point's neighbours on the axis,
+// paired per realization (precision/crn_slopes.hpp), with its 95 % CI.
+void write_crn_slopes(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto slopes = precision::crn_slopes(rs);
+  if (slopes.empty()) return;
+  const auto at = [&](const point_result& p, std::size_t i) -> const precision::crn_slope& {
+    return slopes[static_cast<std::size_t>(&p - rs.points.data())][i];
+  };
+  for (std::size_t i = 0; i < slopes.front().size(); ++i) {
+    const auto& c = slopes.front()[i];
+    const std::string ax = rs.spec.axes[c.axis].name, sym = c.quantity->symbol;
+    const std::string n = std::string(c.quantity->name) + "_dmean_d" + ax + "_crn";
+    const std::string units = per_unit_of(c.quantity->units, info_for(ax).units);
+    const std::string how =
+        "common-random-number difference of the point's neighbours on the " + ax +
+        " axis, paired per realization: mean (X_r(b) - X_r(a)) / (" + ax + "_b - " + ax +
+        "_a); one-sided at the axis ends; the interval holds the sampling error only";
+    auto v = add_double(f, n, l.grid, units, "slope " + sym + " " + ax, "d mean/d " + ax + ": " + how);
+    put_grid<double>(v, rs, [&](const point_result& p) { return at(p, i).slope.value; });
+    auto lo = add_double(f, n + "_ci95_low", l.grid, units, "slope low " + sym + " " + ax,
+                         "value - 1.96 x its standard error; " + how);
+    put_grid<double>(lo, rs, [&](const point_result& p) {
+      return at(p, i).slope.value - at(p, i).slope.ci95_half_width();
+    });
+    auto hi = add_double(f, n + "_ci95_high", l.grid, units, "slope high " + sym + " " + ax,
+                         "value + 1.96 x its standard error; " + how);
+    put_grid<double>(hi, rs, [&](const point_result& p) {
+      return at(p, i).slope.value + at(p, i).slope.ci95_half_width();
+    });
+  }
+}
+
 // Bin i of histogram h: [edge(h, i), edge(h, i + 1)], the last edge exactly hi.
 double bin_edge(const histogram& h, std::size_t i) {
   return i == h.bins() ? h.hi()
@@ -597,6 +640,7 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_statistics(f, l, rs);
   write_counts(f, l, rs);
   write_score_estimates(f, l, rs);
+  write_crn_slopes(f, l, rs);
   write_histograms(f, l, rs);
   write_level_statistics(f, l, rs);
   write_joint_histograms(f, l, rs);
