@@ -45,6 +45,13 @@ void emit_interval(json_emitter& j, const estimate& e) {
   j.end_array();
 }
 
+// "value", "std_error", "ci95" of an estimate, inside the caller's object.
+void emit_estimate_members(json_emitter& j, const estimate& e) {
+  j.member("value", e.value);
+  j.member("std_error", e.std_error);
+  emit_interval(j, e);
+}
+
 // "dmean_dlambda": the likelihood-ratio derivative of each mean over lambda,
 // "control_variate": each mean with the belt switch count as control
 // (accumulators/score_moments.hpp).
@@ -59,9 +66,7 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
                        : estimate{};
     j.key(q.summary_name);
     j.begin_object();
-    j.member("value", d.value);
-    j.member("std_error", d.std_error);
-    emit_interval(j, d);
+    emit_estimate_members(j, d);
     j.end_object();
   }
   j.end_object();
@@ -78,9 +83,7 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
         const auto d = belt_rate_derivative(s, q, r);
         j.key(r == 0 ? "r1" : "r2");
         j.begin_object();
-        j.member("value", d.value);
-        j.member("std_error", d.std_error);
-        emit_interval(j, d);
+        emit_estimate_members(j, d);
         j.end_object();
       }
       j.end_object();
@@ -104,13 +107,8 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
   j.end_object();
 }
 
-// The point's parameters and realizations, every quantity of the schema,
-// the counters that belong to no group, the sample counts of the quantities
-// not sampled once per realization ("samples"), then each group of counters
-// ("events") as an object.
 // "crn_slopes": per axis, the common-random-number slope of each
-// per-realization mean (precision/crn_slopes.hpp), with the two points'
-// values of the axis it differences and the realizations paired.
+// per-realization mean (precision/crn_slopes.hpp) and the realizations paired.
 void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
                      const std::vector<precision::crn_slope>& slopes) {
   j.key("crn_slopes");
@@ -123,9 +121,7 @@ void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
       if (c.axis != k) continue;
       j.key(c.quantity->summary_name);
       j.begin_object();
-      j.member("value", c.slope.value);
-      j.member("std_error", c.slope.std_error);
-      emit_interval(j, c.slope);
+      emit_estimate_members(j, c.slope);
       j.member("pairs", c.pairs);
       j.end_object();
     }
@@ -134,6 +130,10 @@ void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
   j.end_object();
 }
 
+// The point's parameters and realizations, every quantity of the schema,
+// the counters that belong to no group, the sample counts of the quantities
+// not sampled once per realization ("samples"), then each group of counters
+// ("events") as an object, the derivative estimates and the joint histograms.
 void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p,
                 const std::vector<precision::crn_slope>* slopes) {
   const auto& s = p.stats;
