@@ -37,6 +37,11 @@ peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
     s.seed = seed;
     s.common_random_numbers = crn;
     s.target_statistic.clear();
+    // The finder reads one mean per point; the family's statistics would
+    // cost ~15 % (docs/performance.md) and are not among its statistics
+    // unless asked for.
+    if (q.statistic - quantities().data() < static_cast<std::ptrdiff_t>(paper_quantity_count))
+      s.family_statistics = false;
     validate(s);
     return q.run ? q.run(s) : run_sweep(s, q.threads);
   };
