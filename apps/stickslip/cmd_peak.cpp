@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include <unistd.h>
 
 #include "commands.hpp"
 #include "model_flags.hpp"
@@ -30,7 +31,36 @@ struct peak_flags {
   std::string statistic = "R", over = "lambda", range, target = "0.01";
   std::string initial = "1000", budget = "400000000", threads = "0", format = "text";
   std::string method = "common";
+  bool progress = false;  // one line per stage on stderr (default: when it is a terminal)
 };
+
+// One line per stage on stderr: the window, the realizations, the estimate
+// and, once there is one, about how many more realizations the target needs
+// if the window holds (the half-width's sampling part falls like 1/sqrt(n)),
+// at the throughput so far.
+void print_stage(const precision::peak_stage& p, const std::string& over, double target,
+                 double seconds) {
+  std::string line = fmt::format("peak: stage {}: {} in [{:.5g}, {:.5g}] at {} points, +{:.3g} "
+                                 "realizations ({:.3g} in all, {:.1f} s)",
+                                 p.stage, over, p.window_lo, p.window_hi, p.points,
+                                 static_cast<double>(p.realizations_added),
+                                 static_cast<double>(p.realizations), seconds);
+  if (!p.estimate) {
+    line += "; no interior maximum yet: the window moves";
+  } else {
+    line += fmt::format(": {}* = {:.6g} +- {:.3g} (sampling {:.3g}, bias {:.3g}), target {}",
+                        over, p.argmax, p.sampling_halfwidth + p.model_bias,
+                        p.sampling_halfwidth, p.model_bias, target);
+    const double room = target - p.model_bias;
+    if (p.sampling_halfwidth + p.model_bias > target && room > 0 && seconds > 0) {
+      const double more = static_cast<double>(p.realizations_added) *
+                          ((p.sampling_halfwidth / room) * (p.sampling_halfwidth / room) - 1.0);
+      line += fmt::format("; about {:.2g} more realizations (~{:.0f} s) if the window holds", more,
+                          more * seconds / static_cast<double>(p.realizations));
+    }
+  }
+  fmt::print(stderr, "{}\n", line);
+}
 
 const quantity_info& find_statistic(const std::string& name) {
   return precision::peak_statistic("--statistic", name);
@@ -85,6 +115,12 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   o.initial_realizations = io::parse_unsigned("--initial-realizations", f.initial, 2, 1u << 24);
   o.max_total_realizations =
       io::parse_unsigned("--max-realizations", f.budget, 2, max_realizations);
+  const auto start = std::chrono::steady_clock::now();
+  if (f.progress || ::isatty(STDERR_FILENO) == 1)
+    o.on_stage = [&](const precision::peak_stage& p) {
+      print_stage(p, over, o.target_halfwidth,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    };
   precision::sweep_peak_request q;
   q.spec = spec;
   q.over = over;
@@ -92,7 +128,6 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   q.options = o;
   q.common_random_numbers = f.method == "common";
   q.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
-  const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   const auto r = precision::find_peak_by_sweeps(q);
   const double elapsed =
@@ -160,6 +195,10 @@ void add_peak_command(CLI::App& app, const invocation&) {
       ->type_name("common|independent")
       ->check(CLI::IsMember({"common", "independent"}));
   cmd->add_option("--threads", f->threads, "worker threads, 0 = all cores (default 0)");
+  cmd->add_flag("--progress", f->progress,
+                "print one line per stage on stderr (window, realizations, estimate, about how "
+                "many more realizations the target needs); on by default when stderr is a "
+                "terminal");
   cmd->add_option("--format", f->format, "output: text or json (default text)")
       ->type_name("text|json")
       ->check(CLI::IsMember({"text", "json"}));

@@ -29,6 +29,21 @@ for key in a:
 PY
 pass
 
+# --progress: one line per stage on stderr with the window, the realizations
+# and the estimate; stdout (the JSON) is the same as without it.
+"$BIN" "${args[@]}" --threads 2 --progress >prog.json 2>prog.err || fail "peak --progress"
+grep -qE "^peak: stage 1: lambda in \[[0-9.]+, [0-9.]+\] at 5 points, \+[0-9.e+]+ realizations" prog.err \
+  || fail "peak --progress stage line: $(head -c 300 prog.err)"
+grep -qE "lambda\* = [0-9.]+ \+- [0-9.e-]+ \(sampling" prog.err || fail "peak --progress estimate: $(cat prog.err)"
+"$PY" - one.json prog.json <<'PY' || fail "peak --progress changed the result"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert all(a[k] == b[k] for k in a if k not in ("elapsed_seconds", "cpu_seconds")), (a, b)
+PY
+"$BIN" "${args[@]}" --threads 2 >/dev/null 2>quiet.err
+[[ ! -s quiet.err ]] || fail "peak without --progress and no terminal wrote to stderr: $(cat quiet.err)"
+pass
+
 # The earlier method (independent streams per point) is still there.
 run_ok "${args[@]}" --method independent --threads 2 && cp "$WORK/stdout" ind.json
 "$PY" - ind.json <<'PY' || fail "peak --method independent"

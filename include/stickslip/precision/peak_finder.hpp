@@ -18,6 +18,19 @@ namespace stickslip::precision {
 using evaluator = std::function<std::vector<evaluation>(
     const std::vector<double>& xs, std::uint64_t realizations, std::uint64_t stage)>;
 
+// What a finder reports after each refinement stage (progress of a long
+// search): the stage's window and design, the estimate so far when the
+// local fits have an interior maximum, and the realizations spent.
+struct peak_stage {
+  std::size_t stage = 0;
+  double window_lo = 0.0, window_hi = 0.0;
+  std::size_t points = 0;                 // points in the window
+  std::uint64_t realizations_added = 0;   // by this stage
+  std::uint64_t realizations = 0;         // so far, the scan included
+  bool estimate = false;                  // false: the window moves on
+  double argmax = 0.0, sampling_halfwidth = 0.0, model_bias = 0.0;
+};
+
 struct peak_options {
   double lo = 0.0, hi = 0.0;       // the search range (lo < hi)
   bool log_scan = false;           // space the first scan geometrically (lo > 0)
@@ -27,6 +40,7 @@ struct peak_options {
   std::uint64_t initial_realizations = 1000;  // per point, first scan and first stage
   std::uint64_t max_total_realizations = std::uint64_t{1} << 32;  // budget over all stages
   std::size_t max_stages = 40;
+  std::function<void(const peak_stage&)> on_stage;  // optional progress report
 };
 
 // Throws stickslip::error naming the first invalid option.

@@ -117,6 +117,10 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
     means.insert(means.end(), std::make_move_iterator(fresh.begin()),
                  std::make_move_iterator(fresh.end()));
     r.stages = stage;
+    peak_stage progress{stage, wlo, whi, xs.size(), per_group * add * xs.size(), total};
+    const auto report = [&] {
+      if (o.on_stage) o.on_stage(progress);
+    };
     const double t_quantile = student_t95(means.size() - 1);
     const double tlo = (wlo - c) / w, thi = (whi - c) / w;
     const auto quad = fit_groups(xs, means, 2, c, w);
@@ -126,6 +130,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
     const auto mc = maximize(cubic, tlo, thi);
     const auto m4 = maximize(quartic, tlo, thi);
     if (!mq.interior) {  // not concave here, or the peak beyond the window
+      report();
       c = std::clamp(c + w * mq.t, o.lo, o.hi);
       w *= 1.5;
       frozen = false;
@@ -133,6 +138,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
     }
     const double xq = c + w * mq.t;
     if (!mc.interior) {
+      report();
       c = std::clamp(xq, o.lo, o.hi);
       w *= 0.7;
       frozen = false;
@@ -154,6 +160,11 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
     r.window_lo = wlo;
     r.window_hi = whi;
     r.points_in_fit = xs.size();
+    progress.estimate = true;
+    progress.argmax = r.argmax;
+    progress.sampling_halfwidth = r.sampling_halfwidth;
+    progress.model_bias = r.model_bias;
+    report();
     const bool centred = std::abs(mc.t) <= 0.6;
     // Stop only with enough groups for a stable error estimate: with 20 the
     // estimated standard error has a relative sd of ~16 %, and a stop rule

@@ -90,6 +90,10 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
     if (total + n * o.window_points > o.max_total_realizations) break;
     run(spaced_points(wlo, whi, o.window_points, false), n, stage);
     r.stages = stage;
+    peak_stage progress{stage, wlo, whi, o.window_points, n * o.window_points, total};
+    const auto report = [&] {
+      if (o.on_stage) o.on_stage(progress);
+    };
 
     std::vector<evaluation> in;
     std::uint64_t n_in = 0;
@@ -110,12 +114,14 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
     if (!mq.interior) {
       // Not concave here, or the peak lies beyond the window: move to the
       // highest fitted point and look wider.
+      report();
       c = std::clamp(c + w * mq.t, o.lo, o.hi);
       w *= 1.5;
       continue;
     }
     const double xq = c + w * mq.t;
     if (!mc.interior) {  // the cubic has no interior maximum: look closer
+      report();
       c = std::clamp(xq, o.lo, o.hi);
       w *= 0.7;
       continue;
@@ -140,6 +146,11 @@ peak_result find_peak(const evaluator& eval, const peak_options& o) {
     r.window_lo = wlo;
     r.window_hi = whi;
     r.points_in_fit = in.size();
+    progress.estimate = true;
+    progress.argmax = r.argmax;
+    progress.sampling_halfwidth = r.sampling_halfwidth;
+    progress.model_bias = r.model_bias;
+    report();
     const bool centred = std::abs(mc.t) <= 0.6;
     const bool model_ok = p_fit >= min_fit_p_value;
     if (hw <= o.target_halfwidth && centred && model_ok) {
