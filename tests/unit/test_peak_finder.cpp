@@ -255,10 +255,13 @@ TEST(StudentT, QuantilesMatchTables) {
 
 // find_peak_common (common random numbers, batch-means intervals) on the
 // same 240 problems as find_peak, with the common-random-number noise model.
+// Four seed sets of the 240 problems (960 runs): one set alone gives between
+// 92.5 % and 95.8 %, so the 93 % floor is checked on all of them together.
 TEST(CommonPeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
   int covered = 0, met = 0, total = 0, max_covered = 0;
   double work = 0;
-  for (int i = 0; i < 240; ++i) {
+  for (int problem = 0; problem < 960; ++problem) {
+    const int i = problem % 240, seeds = 5000 + 4000 * (problem / 240);
     const double x0 = 0.5 * std::pow(16.0, (i % 40) / 39.0);
     curve c = i % 3 == 0   ? gamma_shape(x0, 1.5 + (i % 7) * 0.5, 0.4, 0.2)
               : i % 3 == 1 ? lognormal_shape(x0, 0.6 + (i % 5) * 0.2, 0.3, 0.25)
@@ -272,7 +275,7 @@ TEST(CommonPeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
     o.base.max_total_realizations = std::uint64_t{1} << 40;
     o.base.max_stages = 60;
     const double kappa = 0.3 + 0.4 * (i % 5);  // 0.3 .. 1.9
-    const auto r = sp::find_peak_common(crn_noisy(c, kappa, 5000 + i), o);
+    const auto r = sp::find_peak_common(crn_noisy(c, kappa, static_cast<std::uint64_t>(seeds + i)), o);
     ++total;
     met += r.target_met;
     work += std::log(static_cast<double>(r.realizations));
