@@ -184,6 +184,9 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
       const double have = static_cast<double>(means.size());
       add = static_cast<std::size_t>(
           std::clamp(std::ceil(have * (ratio * ratio - 1.0)), std::ceil(0.5 * have), 3.0 * have));
+      // The next look must be able to stop: at least min_groups_to_stop groups.
+      if (have + static_cast<double>(add) < static_cast<double>(co.min_groups_to_stop))
+        add = co.min_groups_to_stop - means.size();
       continue;
     }
     // Moving on. The bias term falls like w^2 (the quadratic-vs-cubic
