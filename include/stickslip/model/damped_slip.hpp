@@ -108,32 +108,61 @@ class damped_oscillator {
   // for a slip that starts strictly on its sigma side or exactly at x' = v
   // moving into it (g(0) >= 0, leaving). a0 = x''(0) is passed in so that a
   // start at a band edge can give its exact value (0 when mu_s = mu_k).
-  // On return `at_root` holds the state there.
+  // On return `at_root` holds the state there; when there is no root, the
+  // state at the horizon goes to `*horizon_state` (if given), so that the
+  // engine does not compute it again.
   [[nodiscard]] double first_rest(double y0, double z0, double a0, double v, double sigma,
-                                  double horizon, damped_state& at_root) const noexcept {
+                                  double horizon, damped_state& at_root,
+                                  damped_state* horizon_state = nullptr) const noexcept {
     constexpr double inf = std::numeric_limits<double>::infinity();
     const double w1 = -w2_ * z0 - 2.0 * gamma_ * a0;
     double lo = 0.0;
     double g_lo = sigma * (v - z0);
+    // The state at the horizon, computed at most once.
+    damped_state s_horizon{};
+    bool have_s_horizon = false;
+    const auto state_at_horizon = [&] {
+      if (!have_s_horizon) s_horizon = advance(y0, z0, horizon);
+      have_s_horizon = true;
+      return s_horizon;
+    };
+    if (regime_ == damping_regime::under && rate_ * horizon < std::numbers::pi && a0 != 0.0) {
+      // A horizon shorter than half a period holds at most one zero of
+      // x'' = e^{-gamma t} R sin(omega_d t + phi); none when x'' has the
+      // same strict sign at both ends. Then sigma (v - x') is monotone on
+      // the whole piece, and the first extremum (an atan2) is not needed:
+      // this is the piece [0, horizon] the loop below would solve.
+      const damped_state s_hi = state_at_horizon();
+      if ((a0 > 0.0 && s_hi.acceleration > 0.0) || (a0 < 0.0 && s_hi.acceleration < 0.0)) {
+        if (sigma * (v - s_hi.velocity) <= 0.0)
+          return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, false, at_root);
+        if (horizon_state) *horizon_state = s_hi;
+        return inf;
+      }
+    }
     if (regime_ == damping_regime::under) {
       // Extrema every pi / omega_d from the first, theta_1 = omega_d t_1. At
       // theta_n cos and sin are known without a call: +-(cos theta_1,
       // sin theta_1), alternating; only e^{-gamma t} is computed there.
       const under_extremum first = first_under_extremum(a0, w1);
-      if (!(first.theta < inf)) return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root);
+      if (!(first.theta < inf))
+        return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root, horizon_state);
       double sign = 1.0;
       for (double n = 0.0;; n += 1.0) {
         const double t_n = (first.theta + n * std::numbers::pi) / rate_;
         const bool at_horizon = !(t_n < horizon);
         const double hi = at_horizon ? horizon : t_n;
         const damped_state s_hi =
-            at_horizon ? advance(y0, z0, hi)
+            at_horizon ? state_at_horizon()
                        : state_from(y0, z0, std::exp(-gamma_ * hi), sign * first.cos,
                                     sign * first.sin / rate_);
         const double g_hi = sigma * (v - s_hi.velocity);
         if (g_hi <= 0.0)
           return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, !at_horizon, at_root);
-        if (at_horizon) return inf;
+        if (at_horizon) {
+          if (horizon_state) *horizon_state = s_hi;
+          return inf;
+        }
         lo = hi;
         g_lo = g_hi;
         sign = -sign;
@@ -149,7 +178,7 @@ class damped_oscillator {
       lo = extremum;
       g_lo = g_hi;
     }
-    return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root, lo);
+    return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root, horizon_state, lo);
   }
 
  private:
@@ -192,11 +221,12 @@ class damped_oscillator {
   // The last piece, from lo to the horizon, has no extremum inside.
   [[nodiscard]] double horizon_only(double y0, double z0, double v, double sigma, double g_lo,
                                     double horizon, damped_state& at_root,
-                                    double lo = 0.0) const noexcept {
+                                    damped_state* horizon_state, double lo = 0.0) const noexcept {
     if (!(lo < horizon)) return std::numeric_limits<double>::infinity();
     const damped_state s_hi = advance(y0, z0, horizon);
     if (sigma * (v - s_hi.velocity) <= 0.0)
       return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, false, at_root);
+    if (horizon_state) *horizon_state = s_hi;
     return std::numeric_limits<double>::infinity();
   }
 

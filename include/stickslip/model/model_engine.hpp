@@ -200,13 +200,21 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         t_root = t + dtheta / w;
         x_root = mirror ? x : center - sigma * std::sqrt(disc) / w;
       }
-    } else if (!grazing) {
+    }
+    // Damped: the state at the horizon when first_rest computed it (no root
+    // before it), for advance_to (the same dt, so the same bits).
+    detail::damped_state at_horizon{};
+    bool have_horizon_state = false;
+    if (damped && !grazing) {
       detail::damped_state at_root{};
+      at_horizon.velocity = std::numeric_limits<double>::quiet_NaN();
       const double tau = oscillator.first_rest(y, z, acceleration, v, sigma,
-                                               std::min(t_switch, ta) - t, at_root);
+                                               std::min(t_switch, ta) - t, at_root, &at_horizon);
       if (tau < inf) {
         t_root = t + tau;
         x_root = center + at_root.y;
+      } else {
+        have_horizon_state = !std::isnan(at_horizon.velocity);
       }
     }
     const double t_next = std::min(t_root, t_switch);
@@ -219,7 +227,9 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         x_end = center + y * cs + z / w * sn;
         z_end = z * cs - w * y * sn;
       } else {
-        const detail::damped_state s = oscillator.advance(y, z, dt);
+        const detail::damped_state s =
+            have_horizon_state && dt == std::min(t_switch, ta) - t ? at_horizon
+                                                                 : oscillator.advance(y, z, dt);
         x_end = center + s.y;
         z_end = s.velocity;
       }
