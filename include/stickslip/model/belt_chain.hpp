@@ -75,8 +75,7 @@ class markov_level_switches {
         jumps_(seed, point, realization, belt_level_substream) {}
 
   [[nodiscard]] level_switch next() noexcept {
-    const double u = random_stream::open_uniform(draw(waits_, wait_block_, wait_left_));
-    time_ += -detail::fm::log(u) * chain_->mean_wait(level_);  // W ~ Exp(q_i)
+    time_ += -next_log_uniform() * chain_->mean_wait(level_);  // W ~ Exp(q_i)
     if (chain_->level_count() == 2) {
       level_ = 1 - level_;
     } else {
@@ -96,11 +95,24 @@ class markov_level_switches {
     return block.v[4 - left--];
   }
 
+  // log(U) of the next wait uniform: the logs of a whole block of four at
+  // once (log_inplace: the same bits as detail::fm::log, one call).
+  [[nodiscard]] double next_log_uniform() noexcept {
+    if (wait_left_ == 0) {
+      const random_stream::philox::ctr_type block = waits_.next_block();
+      for (int i = 0; i < 4; ++i) wait_logs_[i] = random_stream::open_uniform(block.v[i]);
+      detail::fm::log_inplace(wait_logs_, 4);
+      wait_left_ = 4;
+    }
+    return wait_logs_[4 - wait_left_--];
+  }
+
   const belt_chain* chain_;
   std::size_t level_;
   double time_ = 0.0;
   random_stream waits_, jumps_;
-  random_stream::philox::ctr_type wait_block_{}, jump_block_{};
+  random_stream::philox::ctr_type jump_block_{};
+  double wait_logs_[4]{};
   int wait_left_ = 0, jump_left_ = 0;
 };
 
