@@ -234,10 +234,15 @@ class damped_oscillator {
     double e_s, e_c;  // e^{-gamma t} S and e^{-gamma t} C
     switch (regime_) {
       case damping_regime::under: {
+        // libm, like exp: the damped model runs on the scalar engine only, so
+        // it needs no kernel shared with the lane engine, and glibc's sincos
+        // (one range reduction for both, any phase) is faster than two
+        // one-lane Highway calls (bench/family_vs_paper.sh).
         const double e = std::exp(-gamma_ * t);
-        const double ph = fm::reduce_phase(rate_ * t);
-        e_s = e * fm::sin(ph) / rate_;
-        e_c = e * fm::cos(ph);
+        double sn, cs;
+        ::sincos(rate_ * t, &sn, &cs);
+        e_s = e * sn / rate_;
+        e_c = e * cs;
         break;
       }
       case damping_regime::critical: {
