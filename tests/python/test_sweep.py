@@ -218,3 +218,42 @@ def test_simulate_replays_a_common_random_number_realization():
     # Common random numbers: every point starts from the same state.
     assert (one.x0, one.xdot0, one.belt_start) == (other.x0, other.xdot0, other.belt_start)
     assert own.x0 != one.x0
+
+
+
+def _halfwidth(ds, name):
+    """The 95 % half-width of derivative variable `name` of `ds`."""
+    return (ds[name + "_ci95_high"] - ds[name + "_ci95_low"]) / 2
+
+
+def test_derivatives_reach_the_dataset_and_agree():
+    """Issue 13's derivatives in Python: the likelihood-ratio d E[R]/d lambda
+    and the common-random-number slope over lambda are Dataset variables with
+    units and intervals, and the two independent estimators agree within
+    their combined 95 % half-widths at every interior point; so do the score
+    over a belt's own rate r1 and the CRN slope over an r1 axis."""
+    lam = [1.0, 1.5, 2.0, 2.5, 3.0]
+    ds = stickslip.sweep(lam=lam, mu=5.0, k=40.0, realizations=4000, seed=11,
+                         common_random_numbers=True, records=True, threads=2)
+    lr_name, crn_name = "stick_fraction_dmean_dlambda", "stick_fraction_dmean_dlambda_crn"
+    lr, crn = ds[lr_name], ds[crn_name]
+    assert lr.attrs["units"] == crn.attrs["units"] == "s"
+    assert "likelihood-ratio" in lr.attrs["description"]
+    assert "common-random-number" in crn.attrs["description"]
+    inner = {"lambda": slice(1, len(lam) - 1)}  # central differences only
+    gap = abs(lr - crn).isel(inner)
+    both = (_halfwidth(ds, lr_name) + _halfwidth(ds, crn_name)).isel(inner)
+    assert bool((gap <= both).all()), (gap.values, both.values)
+    # The slope is clearly resolved (not a test of two zeros).
+    assert bool((abs(crn).isel(inner) > 3 * _halfwidth(ds, crn_name).isel(inner)).all())
+
+    # The belt's own rates: the score over r1 against the CRN slope over an r1 axis.
+    rates = stickslip.sweep(belt_levels=[1.0, -0.5], r1=[1.8, 2.0, 2.2], r2=3.0, mu=5.0, k=40.0,
+                            realizations=4000, seed=11, common_random_numbers=True, records=True,
+                            threads=2)
+    lr_name, crn_name = "stick_fraction_dmean_dr1", "stick_fraction_dmean_dr1_crn"
+    at = {"r1": 2.0}
+    gap = abs(rates[lr_name] - rates[crn_name]).sel(at).item()
+    both = (_halfwidth(rates, lr_name) + _halfwidth(rates, crn_name)).sel(at).item()
+    assert gap <= both, (gap, both)
+    assert abs(rates[crn_name].sel(at).item()) > 3 * _halfwidth(rates, crn_name).sel(at).item()
