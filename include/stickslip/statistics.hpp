@@ -66,6 +66,10 @@ struct realization_samples {
   const std::vector<double>& slips;
   const std::vector<double>& onsets;
   const std::vector<double>& level_fractions;
+  // N_ij, the belt's jumps from level i to level j in [0, t_a] (row-major,
+  // n x n), for belts of more than two levels with the family statistics;
+  // else empty (two levels alternate: N and the start level give them).
+  const std::vector<std::uint32_t>& jumps;
 };
 
 struct convergence_point {
@@ -122,6 +126,14 @@ class point_statistics {
   std::array<score_moments, 2> stick_fraction_rate_score, sticks_per_time_rate_score,
       slips_per_time_rate_score;
   std::array<double, 2> belt_rates{0.0, 0.0};  // r1, r2; 0: no rate scores (not merged)
+  // The same against the scores of the generator's entries q_ij (i != j,
+  // q_ij > 0; row-major n x n, the rest unused) of a belt given by its
+  // generator (belt_generator_scores below; filled with the family
+  // statistics). `generator`: that Q, empty for other belts (not merged).
+  std::vector<score_moments> stick_fraction_generator_score, sticks_per_time_generator_score,
+      slips_per_time_generator_score;
+  std::vector<double> generator;
+  std::vector<double> generator_start_terms;  // stationary_score_terms(generator), derived
   bool stationary_start = true;  // the start level drawn from the stationary law
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
@@ -149,6 +161,20 @@ class point_statistics {
                                                      std::uint64_t switches,
                                                      const std::array<double, 2>& time,
                                                      bool stationary_start) noexcept;
+
+// The centred scores K_ij = N_ij - q_ij T_i + q_ij d log pi(s0)/dq_ij of the
+// off-diagonal entries of a generator Q (n x n, row-major; the last term for
+// a start drawn from the stationary law pi): the log-likelihood of the belt
+// path on [0, t_a] is sum_{i != j} N_ij log q_ij - sum_i q_i T_i + log pi(s0),
+// so d E[X]/dq_ij = Cov(X, K_ij) / q_ij. `stationary_terms[i n + j]` =
+// q_ij d log pi(s0)/dq_ij for each start level s0 is precomputed by
+// stationary_score_terms. K is 0 on the diagonal and where q_ij = 0.
+[[nodiscard]] std::vector<double> stationary_score_terms(const std::vector<double>& generator);
+void belt_generator_scores(const std::vector<double>& generator, std::size_t start_level,
+                           const std::vector<std::uint32_t>& jumps,
+                           const std::vector<double>& level_time,
+                           const std::vector<double>* stationary_terms,
+                           std::vector<double>& k) noexcept;
 
 // Observer that turns the episode stream of one realization into a
 // realization_record plus the lists of stick and slip durations.
@@ -197,6 +223,11 @@ class realization_observer : public observer_base {
   // c int x'^2 = sigma mu_k m g dx - d(m x'^2 / 2 + k x^2 / 2)).
   void on_piece(const motion_piece& p) noexcept {
     level_time_[p.level] += p.duration;
+    if (!jumps_.empty()) {  // every piece is emitted, so a level change is a jump
+      if (p.level != last_level_ && last_level_ < level_time_.size())
+        ++jumps_[last_level_ * level_time_.size() + p.level];
+      last_level_ = p.level;
+    }
     if (p.kind == mode::slip)
       slip_travel_ += std::abs(p.belt_velocity * p.duration - (p.end_position - p.start_position));
     if (damping_ > 0.0) {
@@ -220,7 +251,7 @@ class realization_observer : public observer_base {
   }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
   [[nodiscard]] realization_samples samples() const noexcept {
-    return {rec_, sticks_, slips_, onsets_, level_fraction_};
+    return {rec_, sticks_, slips_, onsets_, level_fraction_, jumps_};
   }
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }
@@ -233,6 +264,8 @@ class realization_observer : public observer_base {
   realization_record rec_;
   std::vector<double> sticks_, slips_, onsets_;
   std::vector<double> level_time_, level_fraction_;
+  std::vector<std::uint32_t> jumps_;  // N_ij (realization_samples::jumps)
+  std::size_t last_level_ = static_cast<std::size_t>(-1);
 };
 
 // realization_observer without the statistics of issue 11

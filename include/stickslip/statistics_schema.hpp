@@ -67,6 +67,8 @@ struct quantity_info {
   score_moments point_statistics::*score = nullptr;
   // The same against the scores of a two-level belt's rates r1, r2.
   std::array<score_moments, 2> point_statistics::*rate_score = nullptr;
+  // The same against the scores of a generator's entries q_ij (n x n).
+  std::vector<score_moments> point_statistics::*generator_score = nullptr;
 };
 
 struct counter_info {
@@ -115,19 +117,22 @@ inline constexpr std::array<quantity_info, 9> quantity_table{{
      "total stick time in [0, t_a] divided by t_a, one value per realization", "realizations",
      sampling::per_realization, [](rec r, double) noexcept { return r.stick_fraction; },
      &ps::stick_fraction, &ps::stick_fraction_hist, histogram_range::unit_interval,
-     &ps::stick_fraction_score, &ps::stick_fraction_rate_score},
+     &ps::stick_fraction_score, &ps::stick_fraction_rate_score,
+     &ps::stick_fraction_generator_score},
     {"sticks_per_time", "sticks_per_time", "S_T/t_a", "1/s", "stick rate",
      "number of sticks of positive length beginning in [0, t_a) (a stick cut off by t_a "
      "counts), divided by t_a, one value per realization",
      "realizations", sampling::per_realization,
      [](rec r, double window) noexcept { return r.sticks / window; }, &ps::sticks_per_time,
-     nullptr, histogram_range::none, &ps::sticks_per_time_score, &ps::sticks_per_time_rate_score},
+     nullptr, histogram_range::none, &ps::sticks_per_time_score, &ps::sticks_per_time_rate_score,
+     &ps::sticks_per_time_generator_score},
     {"slips_per_time", "slips_per_time", "S_L/t_a", "1/s", "slip rate",
      "number of slips beginning after the first stick (the slip before the first stick is "
      "not counted), divided by t_a, one value per realization",
      "realizations", sampling::per_realization,
      [](rec r, double window) noexcept { return r.slips / window; }, &ps::slips_per_time,
-     nullptr, histogram_range::none, &ps::slips_per_time_score, &ps::slips_per_time_rate_score},
+     nullptr, histogram_range::none, &ps::slips_per_time_score, &ps::slips_per_time_rate_score,
+     &ps::slips_per_time_generator_score},
     {"stick_duration", "stick_duration", "D", "s", "stick duration",
      "duration D_i of every stick, pooled over all sticks of all realizations (a stick cut "
      "off by t_a enters clipped)",
@@ -240,6 +245,13 @@ static_assert(quantity_table[3].sampled == sampling::per_stick &&
 // statistics were off.
 [[nodiscard]] estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
                                             std::size_t j) noexcept;
+// d mean/dq_ij (i != j, 0-based levels) of a quantity with generator scores,
+// by the likelihood ratio of the belt's generator (belt_generator_scores,
+// docs/precision.md); NaN where the point's belt has no generator of its
+// own, q_ij = 0, i = j, or the family statistics were off.
+[[nodiscard]] estimate belt_generator_derivative(const point_statistics& s,
+                                                 const quantity_info& q, std::size_t i,
+                                                 std::size_t j) noexcept;
 
 // The ends of a quantity's histogram interval at a grid point (the lower end
 // is 0 but for stick_band). Precondition: range != none.

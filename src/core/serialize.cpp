@@ -134,6 +134,16 @@ void put(writer& w, const point_statistics& s) {
       }
   w.f64(s.belt_rates[0]);
   w.f64(s.belt_rates[1]);
+  for (const auto& q : quantities())
+    if (q.generator_score) {
+      w.u64((s.*q.generator_score).size());
+      for (const auto& m : s.*q.generator_score) {
+        w.u64(m.count());
+        for (int i = 0; i < 5; ++i) w.f64(m.sum(i));
+      }
+    }
+  w.u64(s.generator.size());
+  for (double q : s.generator) w.f64(q);
   w.u8(s.stationary_start ? 1 : 0);
   for (const auto& l : level_quantities()) {
     w.u64((s.*l.moments).size());
@@ -189,7 +199,22 @@ point_statistics get_statistics(reader& r) {
       }
   s.belt_rates[0] = r.f64("belt rate r1");
   s.belt_rates[1] = r.f64("belt rate r2");
+  for (const auto& q : quantities())
+    if (q.generator_score) {
+      auto& moments = s.*q.generator_score;
+      moments.resize(r.count("generator score moments", 48));
+      for (auto& m : moments) {
+        const auto count = r.u64("generator score moments");
+        double sums[5];
+        for (double& x : sums) x = r.f64("generator score moments");
+        m = score_moments::from_raw(count, sums);
+      }
+    }
+  s.generator.resize(r.count("belt generator", 8));
+  for (double& q : s.generator) q = r.f64("belt generator");
   s.stationary_start = r.boolean("stationary start flag");
+  if (!s.generator.empty() && s.stationary_start)
+    s.generator_start_terms = stationary_score_terms(s.generator);
   for (const auto& l : level_quantities()) {
     auto& moments = s.*l.moments;
     moments.resize(r.count(l.name, 24));

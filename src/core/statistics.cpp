@@ -1,9 +1,11 @@
 #include "stickslip/statistics.hpp"
 
 #include "stickslip/initial_conditions.hpp"
+#include "stickslip/model/oscillator_model.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace stickslip {
@@ -15,6 +17,12 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
       stationary_start(stationary_start_),
       family_statistics(family) {
   if (p.belt_rates.size() == 2) belt_rates = {p.belt_rates[0], p.belt_rates[1]};
+  if (!p.belt_generator.empty()) {
+    generator = p.belt_generator;
+    if (stationary_start) generator_start_terms = stationary_score_terms(generator);
+    for (const auto& q : quantities())
+      if (q.generator_score) (this->*q.generator_score).assign(generator.size(), {});
+  }
   for (const auto& q : quantities())
     if (q.density)
       this->*q.density =
@@ -41,6 +49,41 @@ std::array<double, 2> belt_rate_scores(const std::array<double, 2>& rates,
       k[j] += start_level == j ? -rates[j] / total : rates[1 - j] / total;
   }
   return k;
+}
+
+std::vector<double> stationary_score_terms(const std::vector<double>& generator) {
+  const auto n = static_cast<std::size_t>(std::lround(std::sqrt(static_cast<double>(generator.size()))));
+  markov_belt belt{std::vector<double>(n, 0.0), generator};
+  for (std::size_t i = 0; i < n; ++i) belt.levels[i] = static_cast<double>(i);  // only Q counts
+  const std::vector<double> pi = stationary_law(belt);
+  std::vector<double> terms(n * n * n, 0.0);  // [s0 n^2 + i n + j]
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      const double q = generator[i * n + j];
+      if (i == j || !(q > 0.0)) continue;
+      const std::vector<double> dpi = stationary_law_derivative(belt, i, j);
+      for (std::size_t s0 = 0; s0 < n; ++s0) terms[s0 * n * n + i * n + j] = q * dpi[s0] / pi[s0];
+    }
+  return terms;
+}
+
+void belt_generator_scores(const std::vector<double>& generator, std::size_t start_level,
+                           const std::vector<std::uint32_t>& jumps,
+                           const std::vector<double>& level_time,
+                           const std::vector<double>* stationary_terms,
+                           std::vector<double>& k) noexcept {
+  const std::size_t n = level_time.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      const double q = generator[i * n + j];
+      double& kij = k[i * n + j];
+      if (i == j || !(q > 0.0)) {
+        kij = 0.0;
+        continue;
+      }
+      kij = static_cast<double>(jumps[i * n + j]) - q * level_time[i];
+      if (stationary_terms) kij += (*stationary_terms)[start_level * n * n + i * n + j];
+    }
 }
 
 namespace {
@@ -101,6 +144,30 @@ void point_statistics::add(const realization_samples& in, double window) {
       if (q.rate_score)
         for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j].add(q.value(r, window), k[j]);
   }
+  if (!generator.empty() && generator.size() == in.level_fractions.size() * in.level_fractions.size()) {
+    const std::size_t n = in.level_fractions.size();
+    thread_local std::vector<double> k, time;
+    thread_local std::vector<std::uint32_t> alternating(4);
+    if (n == 2) {  // the levels alternate (the lanes do not count jumps)
+      const std::uint64_t sw = r.events.belt_switches;
+      const std::uint64_t out_first = level_of_belt_start(r.belt_start) == 0 ? (sw + 1) / 2 : sw / 2;
+      alternating = {0, static_cast<std::uint32_t>(out_first),
+                     static_cast<std::uint32_t>(sw - out_first), 0};
+    }
+    const auto& jumps = n == 2 ? alternating : in.jumps;
+    k.resize(n * n);
+    time.resize(n);
+    for (std::size_t i = 0; i < n; ++i) time[i] = in.level_fractions[i] * window;
+    belt_generator_scores(generator, level_of_belt_start(r.belt_start), jumps, time,
+                          stationary_start ? &generator_start_terms : nullptr, k);
+    for (const auto& q : quantities())
+      if (q.generator_score) {
+        auto& m = this->*q.generator_score;
+        const double x = q.value(r, window);
+        for (std::size_t ij = 0; ij < m.size(); ++ij)
+          if (ij / n != ij % n && generator[ij] > 0.0) m[ij].add(x, k[ij]);
+      }
+  }
   for (const auto& l : level_quantities()) {
     auto& moments = this->*l.moments;
     for (std::size_t i = 0; i < moments.size(); ++i) moments[i].add(in.level_fractions[i]);
@@ -119,6 +186,9 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
     if (q.score) this->*q.score += o.*q.score;
     if (q.rate_score)
       for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j] += (o.*q.rate_score)[j];
+    if (q.generator_score && (this->*q.generator_score).size() == (o.*q.generator_score).size())
+      for (std::size_t j = 0; j < (this->*q.generator_score).size(); ++j)
+        (this->*q.generator_score)[j] += (o.*q.generator_score)[j];
     if (q.density) this->*q.density += o.*q.density;
   }
   for (const auto& l : level_quantities())
@@ -143,11 +213,17 @@ realization_observer::realization_observer(const model_parameters& p, bool famil
       stiffness_(p.stiffness),
       family_(family),
       level_time_(p.levels().size(), 0.0),
-      level_fraction_(p.levels().size(), 0.0) {}
+      level_fraction_(p.levels().size(), 0.0),
+      jumps_(family && p.levels().size() > 2 && !p.belt_generator.empty()
+                 ? p.levels().size() * p.levels().size()
+                 : 0,
+             0) {}
 
 void realization_observer::reset(std::uint64_t realization, double x0, double xdot0, int belt) {
   total_stick_ = slip_travel_ = damping_work_ = 0;
   std::fill(level_time_.begin(), level_time_.end(), 0.0);
+  std::fill(jumps_.begin(), jumps_.end(), 0u);
+  last_level_ = static_cast<std::size_t>(-1);
   onsets_.clear();
   rec_ = realization_record{};
   rec_.realization = realization;

@@ -31,6 +31,7 @@ std::uint64_t statistics_schema_id() noexcept {
       f.add("quantity");
       f.add(q.name);
       if (q.rate_score) f.add("rate scores");
+      if (q.generator_score) f.add("generator scores");
       f.byte(static_cast<unsigned char>(q.sampled));
       f.byte(static_cast<unsigned char>(q.range));
     }
@@ -57,6 +58,17 @@ estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
                               std::size_t j) noexcept {
   if (!q.rate_score || !(s.belt_rates[j] > 0.0)) return {};
   return score_derivative((s.*q.rate_score)[j], s.*q.moments, s.belt_rates[j]);
+}
+
+estimate belt_generator_derivative(const point_statistics& s, const quantity_info& q,
+                                   std::size_t i, std::size_t j) noexcept {
+  if (!q.generator_score) return {};
+  const auto& m = s.*q.generator_score;
+  const std::size_t n = s.level_fraction.size();
+  if (i == j || i >= n || j >= n || m.size() != n * n || s.generator.size() != n * n) return {};
+  const double rate = s.generator[i * n + j];
+  if (!(rate > 0.0)) return {};
+  return score_derivative(m[i * n + j], s.*q.moments, rate);
 }
 
 namespace {

@@ -257,3 +257,28 @@ def test_derivatives_reach_the_dataset_and_agree():
     both = (_halfwidth(rates, lr_name) + _halfwidth(rates, crn_name)).sel(at).item()
     assert gap <= both, (gap, both)
     assert abs(rates[crn_name].sel(at).item()) > 3 * _halfwidth(rates, crn_name).sel(at).item()
+
+
+def test_generator_derivatives_in_the_dataset_equal_summary_json(tmp_path):
+    """A belt given by its generator: d mean/d q_ij over (belt_level,
+    belt_level_to) in the Dataset (= results.nc) equals summary.json's
+    dmean_dgenerator list, entry by entry; NaN on the diagonal and where
+    q_ij = 0 (those are not listed)."""
+    q = [[-2.0, 1.2, 0.8], [1.0, -1.0, 0.0], [0.4, 0.6, -1.0]]
+    ds = stickslip.sweep(belt_levels=[1.0, 0.0, -0.5], belt_generator=q, mu=5.0, k=40.0,
+                         realizations=3000, seed=5, threads=2, output=tmp_path / "g")
+    d = ds.stick_fraction_dmean_dgenerator
+    assert d.dims[-2:] == ("belt_level", "belt_level_to") and d.attrs["units"] == "s"
+    listed = json.loads((tmp_path / "g" / "summary.json").read_text())["points"][0]
+    listed = {(e["from"], e["to"]): e for e in listed["dmean_dgenerator"]["R"]}
+    assert sorted(listed) == [(1, 2), (1, 3), (2, 1), (3, 1), (3, 2)]  # q_23 = 0
+    for i in range(3):
+        for j in range(3):
+            value = float(d.values.reshape(3, 3)[i, j])
+            if (i + 1, j + 1) not in listed:
+                assert np.isnan(value)
+                continue
+            e = listed[(i + 1, j + 1)]
+            assert value == e["value"]
+            low = float(ds.stick_fraction_dmean_dgenerator_ci95_low.values.reshape(3, 3)[i, j])
+            assert low == pytest.approx(e["ci95"][0], rel=1e-12)

@@ -87,7 +87,7 @@ TEST(Serialize, BlockResultRoundTripIsExact) {
 }
 
 // The family's statistics (three belt levels, damping, mu_s > mu_k): every
-// accumulator, compared by value (operator==, not by re-encoding), and the
+// accumulator (the generator's scores too), compared by value (operator==, not by re-encoding), and the
 // records' powers.
 TEST(Serialize, FamilyStatisticsRoundTripByValue) {
   sweep_spec s;
@@ -105,6 +105,9 @@ TEST(Serialize, FamilyStatisticsRoundTripByValue) {
   ASSERT_EQ(b.stats.level_fraction.size(), 3u);
   ASSERT_GT(b.stats.stick_duration_onset.total(), 0u);
   ASSERT_GT(b.stats.damping_power.count(), 0u);
+  ASSERT_EQ(b.stats.stick_fraction_generator_score.size(), 9u);  // the generator's scores
+  ASSERT_EQ(b.stats.stick_fraction_generator_score[1].count(), 20u);
+  ASSERT_EQ(b.stats.generator, s.base.belt_generator);
   const auto [u2, b2] = deserialize_unit_result(serialize(u, b));
   EXPECT_TRUE(b2.stats == b.stats);
   ASSERT_EQ(b2.records.size(), b.records.size());

@@ -14,6 +14,8 @@
 namespace stickslip {
 namespace {
 
+const std::vector<std::uint32_t> no_jumps;  // two-level belts: not counted
+
 // Written from the paper (Sec. 4) and docs/outputs.md, not from the table.
 struct expected_quantity {
   std::string name, symbol, units;
@@ -125,13 +127,13 @@ TEST(StatisticsSchema, AddFollowsTheDefinitions) {
   a.damping_power = 0.5;
   const std::vector<double> a_sticks{0.5, 1.0, 2.0}, a_slips{0.25, 0.75},
       a_onsets{-0.9, 0.1, 0.6}, a_levels{0.75, 0.25};
-  s.add({a, a_sticks, a_slips, a_onsets, a_levels}, 10.0);
+  s.add({a, a_sticks, a_slips, a_onsets, a_levels, no_jumps}, 10.0);
   realization_record b;  // no stick at all
   b.stick_fraction = 0.0;
   b.events = {4, 0, 0, 6};
   b.friction_power = 1.0;
   const std::vector<double> none, b_levels{0.25, 0.75};
-  s.add({b, none, none, none, b_levels}, 10.0);
+  s.add({b, none, none, none, b_levels, no_jumps}, 10.0);
 
   EXPECT_EQ(s.realizations, 2u);
   EXPECT_EQ(s.stick_fraction.count(), 2u);
@@ -188,7 +190,7 @@ void add_realization(point_statistics& s, std::uint64_t i) {
   for (std::uint32_t k = 0; k < r.slips; ++k) slips.push_back(0.3 * k + 0.02 * i);
   const double f = static_cast<double>(i % 13) / 13.0;
   const std::vector<double> levels{f, 1.0 - f};
-  s.add({r, sticks, slips, onsets, levels}, 10.0);
+  s.add({r, sticks, slips, onsets, levels, no_jumps}, 10.0);
 }
 
 TEST(StatisticsSchema, EveryRowMergesLikeFillingEverything) {

@@ -43,6 +43,10 @@ struct markov_belt {
 // normalisation. Precondition: validate(belt) passed (irreducibility is not
 // checked; a reducible chain gives one of its stationary laws).
 [[nodiscard]] std::vector<double> stationary_law(const markov_belt& belt);
+// d pi / d q_ij (i != j; q_ii = -q_i moves with it): the solution of
+// dpi Q = -pi_i (e_j - e_i)^T with sum dpi = 0. Same precondition.
+[[nodiscard]] std::vector<double> stationary_law_derivative(const markov_belt& belt, std::size_t i,
+                                                            std::size_t j);
 
 struct oscillator_model {
   double mass = 1.0;               // m     [kg]

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "stickslip/error.hpp"
 
@@ -96,13 +97,17 @@ void validate(const oscillator_model& m) {
   }
 }
 
-std::vector<double> stationary_law(const markov_belt& belt) {
+namespace {
+
+// Solves x A = b^T for the row vector x, with A = Q whose last column is
+// replaced by (1, ..., 1): the system of pi Q = 0 (or its derivative) with
+// the normalisation sum x = b[n-1] in place of the last equation. Gaussian
+// elimination with partial pivoting on A^T.
+std::vector<double> solve_with_normalisation(const markov_belt& belt, std::vector<double> b) {
   const std::size_t n = belt.levels.size();
-  // Solve A pi = b with A = Q^T, its last row replaced by (1, ..., 1), b = e_n.
-  std::vector<double> a(n * n), b(n, 0.0);
+  std::vector<double> a(n * n);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) a[i * n + j] = i + 1 == n ? 1.0 : belt.rate(j, i);
-  b[n - 1] = 1.0;
   for (std::size_t col = 0; col < n; ++col) {
     std::size_t pivot = col;
     for (std::size_t r = col + 1; r < n; ++r)
@@ -117,13 +122,32 @@ std::vector<double> stationary_law(const markov_belt& belt) {
       b[r] -= f * b[col];
     }
   }
-  std::vector<double> pi(n);
+  std::vector<double> x(n);
   for (std::size_t i = n; i-- > 0;) {
     double s = b[i];
-    for (std::size_t j = i + 1; j < n; ++j) s -= a[i * n + j] * pi[j];
-    pi[i] = s / a[i * n + i];
+    for (std::size_t j = i + 1; j < n; ++j) s -= a[i * n + j] * x[j];
+    x[i] = s / a[i * n + i];
   }
-  return pi;
+  return x;
+}
+
+}  // namespace
+
+std::vector<double> stationary_law(const markov_belt& belt) {
+  std::vector<double> b(belt.levels.size(), 0.0);
+  b.back() = 1.0;
+  return solve_with_normalisation(belt, std::move(b));
+}
+
+std::vector<double> stationary_law_derivative(const markov_belt& belt, std::size_t i,
+                                              std::size_t j) {
+  // d(pi Q) = dpi Q + pi dQ = 0 with dQ = e_i (e_j - e_i)^T, and sum dpi = 0.
+  const std::vector<double> pi = stationary_law(belt);
+  std::vector<double> b(belt.levels.size(), 0.0);
+  b[j] -= pi[i];
+  b[i] += pi[i];
+  b.back() = 0.0;  // the normalisation's row: sum dpi = 0
+  return solve_with_normalisation(belt, std::move(b));
 }
 
 void validate(const model_initial_state& state, const markov_belt& belt) {

@@ -90,6 +90,30 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
     }
     j.end_object();
   }
+  // "dmean_dgenerator": the same over each positive off-diagonal entry q_ij
+  // of a belt given by its generator (levels numbered from 1, as in
+  // --belt-start), only at such points.
+  if (!s.generator.empty()) {
+    const std::size_t n = s.level_fraction.size();
+    j.key("dmean_dgenerator");
+    j.begin_object();
+    for (const auto& q : quantities()) {
+      if (!q.generator_score) continue;
+      j.key(q.summary_name);
+      j.begin_array();
+      for (std::size_t from = 0; from < n; ++from)
+        for (std::size_t to = 0; to < n; ++to) {
+          if (from == to || !(s.generator[from * n + to] > 0.0)) continue;
+          j.begin_object();
+          j.member("from", static_cast<std::uint64_t>(from + 1));
+          j.member("to", static_cast<std::uint64_t>(to + 1));
+          emit_estimate_members(j, belt_generator_derivative(s, q, from, to));
+          j.end_object();
+        }
+      j.end_array();
+    }
+    j.end_object();
+  }
   j.key("control_variate");
   j.begin_object();
   for (const auto& q : quantities()) {

@@ -448,6 +448,51 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
   }
 }
 
+// For a belt given by its generator Q (--belt-generator; not sweepable, so
+// one for all points): per quantity with generator scores,
+// <name>_dmean_dgenerator[_ci95_low|_high] over (grid, belt_level,
+// belt_level_to), the likelihood-ratio d mean/dq_ij from level i to level j;
+// NaN on the diagonal and where q_ij = 0.
+void write_generator_derivatives(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  if (rs.spec.base.belt_generator.empty()) return;
+  const std::size_t n = l.levels;
+  const auto to = f.addDim("belt_level_to", n);
+  auto to_index = f.addVar("belt_level_to", nc::ncInt, to);
+  describe(to_index, "1", "belt level number (to)",
+           "number j = 1..n of the level a jump of the belt goes to");
+  std::vector<int> numbers(n);
+  for (std::size_t i = 0; i < n; ++i) numbers[i] = static_cast<int>(i + 1);
+  to_index.putVar(numbers.data());
+  const auto dims = with(with(l.grid, l.level), to);
+  for (const auto& q : quantities()) {
+    if (!q.generator_score) continue;
+    const std::string n_ = std::string(q.name) + "_dmean_dgenerator", sym = q.symbol;
+    const std::string units = per_unit_of(q.units, "1/s");
+    const std::string how =
+        "likelihood-ratio (score) estimate of d E[" + sym + "]/d q_ij, q_ij the belt's rate of "
+        "jumping from level i (belt_level) to level j (belt_level_to): mean of (X - mean X) "
+        "K_ij/q_ij, K_ij = N_ij - q_ij T_i (+ the stationary start's term), N_ij the jumps "
+        "from i to j and T_i the time at level i; NaN for i = j and where q_ij = 0";
+    const auto fill = [&](int side) {
+      return [&, side](const point_result& p, std::vector<double>& row) {
+        for (std::size_t i = 0; i < n; ++i)
+          for (std::size_t j = 0; j < n; ++j) {
+            const auto d = belt_generator_derivative(p.stats, q, i, j);
+            row[i * n + j] = d.value + side * d.ci95_half_width();
+          }
+      };
+    };
+    auto v = add_double(f, n_, dims, units, "slope " + sym + " q_ij", "d mean/d q_ij: " + how);
+    put_rows<double>(v, rs, n * n, fill(0));
+    auto lo = add_double(f, n_ + "_ci95_low", dims, units, "slope low " + sym + " q_ij",
+                         "value - 1.96 x its delta-method standard error; " + how);
+    put_rows<double>(lo, rs, n * n, fill(-1));
+    auto hi = add_double(f, n_ + "_ci95_high", dims, units, "slope high " + sym + " q_ij",
+                         "value + 1.96 x its delta-method standard error; " + how);
+    put_rows<double>(hi, rs, n * n, fill(1));
+  }
+}
+
 // Per level quantity P (schema level_table): P_mean, P_std, P_ci95_low,
 // P_ci95_high, P_count over (grid, belt_level), and the level values
 // belt_level_velocity over (grid, belt_level).
@@ -641,6 +686,7 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_counts(f, l, rs);
   write_score_estimates(f, l, rs);
   write_crn_slopes(f, l, rs);
+  write_generator_derivatives(f, l, rs);
   write_histograms(f, l, rs);
   write_level_statistics(f, l, rs);
   write_joint_histograms(f, l, rs);
