@@ -95,8 +95,10 @@ class point_statistics {
   // (sweep_spec::family_statistics).
   // `stationary_start`: the belt's start level is drawn from the stationary
   // law (initial_condition_law::belt_start = 0), which depends on the rates.
+  // `means_only`: add() fills only the moments of the per-realization
+  // quantities (sweep_spec::means_only).
   point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true,
-                   bool stationary_start = true);
+                   bool stationary_start = true, bool means_only = false);
 
   // Add one finished realization. Precondition: one level fraction per level.
   void add(const realization_samples& r, double window);
@@ -138,6 +140,7 @@ class point_statistics {
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
   bool family_statistics = true;               // add() fills the five above
+  bool means_only = false;                     // add() fills per-realization moments only
   std::uint64_t realizations = 0;
   std::uint64_t no_stick = 0;              // realizations without any stick
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
@@ -196,7 +199,7 @@ class realization_observer : public observer_base {
   }
   // The onset positions only when `Onsets` (and the observer's flag): the
   // lane engine's paper_statistics_observer compiles them out.
-  template <bool Onsets>
+  template <bool Onsets, bool Durations = true>
   [[gnu::always_inline, gnu::flatten]] void collect_episode(const episode& e) {
     const double d = e.duration();
     if (e.kind == mode::stick) {
@@ -208,13 +211,13 @@ class realization_observer : public observer_base {
       }
       ++rec_.sticks;
       total_stick_ += d;
-      sticks_.push_back(d);
+      if constexpr (Durations) sticks_.push_back(d);
       if constexpr (Onsets) {
         if (family_) onsets_.push_back(e.position_at_start);
       }
     } else if (rec_.sticks > 0) {  // slips after the first stick
       ++rec_.slips;
-      slips_.push_back(d);
+      if constexpr (Durations) slips_.push_back(d);
     }
   }
   // The sums over pieces of motion (motion_piece, docs/model.md): the time at
@@ -278,6 +281,17 @@ class paper_statistics_observer : public realization_observer {
   using observer_base::on_piece;
   [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
     collect_episode<false>(e);
+  }
+};
+
+// paper_statistics_observer without the lists of stick and slip durations
+// (sweep_spec::means_only: the pooled statistics are not filled).
+class mean_statistics_observer : public realization_observer {
+ public:
+  using realization_observer::realization_observer;
+  using observer_base::on_piece;
+  [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
+    collect_episode<false, false>(e);
   }
 };
 

@@ -85,6 +85,12 @@ struct sweep_spec {
   // Off, their accumulators stay empty (NaN means, zero counts); the other
   // statistics are the same bits either way.
   bool family_statistics = true;
+  // Only the means of the per-realization statistics (R, S_T/t_a, S_L/t_a,
+  // D_1, the powers): no pooled per-stick or per-slip statistics, no
+  // histograms, and the lane engine keeps no list of durations. What the
+  // peak finder reads (precision/peak_sweep.cpp); those means are the same
+  // bits either way, everything else is empty.
+  bool means_only = false;
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
 

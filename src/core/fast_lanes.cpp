@@ -858,20 +858,26 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   const std::uint64_t first = first_block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, (first_block + count) * s.block_size);
   for (std::uint64_t b = 0; b < count; ++b) {
-    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0);
+    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics,
+                                     s.initial.belt_start == 0, s.means_only);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;
   if (!p.is_paper_model()) fp.emplace(p, stream_key(s, p));
-  // Two instantiations: with the statistics of issue 11, or without their
-  // per-stick and per-round work (sweep_spec::family_statistics).
+  // Three instantiations: with the statistics of issue 11, without their
+  // per-stick and per-round work (sweep_spec::family_statistics), or
+  // without the duration lists too (sweep_spec::means_only).
   if (s.family_statistics) {
     statistics_collector<realization_observer> collect(s, p, outs, point, first_block,
                                                        fp.has_value());
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
-  } else {
+  } else if (!s.means_only) {
     statistics_collector<paper_statistics_observer> collect(s, p, outs, point, first_block,
                                                             fp.has_value());
+    run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
+  } else {  // the peak finder's sweeps: no duration lists either
+    statistics_collector<mean_statistics_observer> collect(s, p, outs, point, first_block,
+                                                           fp.has_value());
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   }
   return outs;

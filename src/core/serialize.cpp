@@ -119,6 +119,7 @@ void put(writer& w, const point_statistics& s) {
     if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
   w.u8(s.family_statistics ? 1 : 0);
+  w.u8(s.means_only ? 1 : 0);
   for (const auto& c : counters()) w.u64(c.value(s));
   for (const auto& q : quantities())
     if (q.score) {
@@ -180,6 +181,7 @@ point_statistics get_statistics(reader& r) {
     if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
   s.family_statistics = r.boolean("family statistics flag");
+  s.means_only = r.boolean("means-only flag");
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
   for (const auto& q : quantities())
     if (q.score) {
@@ -212,6 +214,10 @@ point_statistics get_statistics(reader& r) {
     }
   s.generator.resize(r.count("belt generator", 8));
   for (double& q : s.generator) q = r.f64("belt generator");
+  if (const auto n = static_cast<std::size_t>(std::lround(std::sqrt(double(s.generator.size()))));
+      n * n != s.generator.size() || (!s.generator.empty() && n < 2))
+    throw corrupt(fmt::format("a belt generator of {} entries is not an n x n matrix, n >= 2",
+                              s.generator.size()));
   s.stationary_start = r.boolean("stationary start flag");
   if (!s.generator.empty() && s.stationary_start)
     s.generator_start_terms = stationary_score_terms(s.generator);
@@ -354,6 +360,7 @@ bytes serialize(const sweep_spec& s) {
   w.f64(s.target_halfwidth);
   w.u64(s.min_realizations);
   w.u8(s.family_statistics ? 1 : 0);
+  w.u8(s.means_only ? 1 : 0);
   return w.take();
 }
 
@@ -392,6 +399,7 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   s.target_halfwidth = r.f64("target half-width");
   s.min_realizations = r.u64("min realizations");
   s.family_statistics = r.boolean("family_statistics");
+  s.means_only = r.boolean("means_only");
   r.finish("sweep spec");
   return s;
 }
@@ -548,6 +556,8 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
                        b.target_halfwidth, b.min_realizations);
   if (a.family_statistics != b.family_statistics)
     return fmt::format("family statistics: {} vs {}", a.family_statistics, b.family_statistics);
+  if (a.means_only != b.means_only)
+    return fmt::format("means only: {} vs {}", a.means_only, b.means_only);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

@@ -12,10 +12,11 @@ namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
 point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
-                                   bool family, bool stationary_start_)
+                                   bool family, bool stationary_start_, bool means_only_)
     : expected_switches(p.switch_rate * p.window),
       stationary_start(stationary_start_),
-      family_statistics(family) {
+      family_statistics(family),
+      means_only(means_only_) {
   if (p.belt_rates.size() == 2) belt_rates = {p.belt_rates[0], p.belt_rates[1]};
   if (!p.belt_generator.empty()) {
     generator = p.belt_generator;
@@ -98,6 +99,11 @@ void add_quantity(point_statistics& s, const realization_samples& in, double win
   }
   const realization_record& r = in.record;
   mean_variance& moments = s.*q.moments;
+  constexpr bool pooled = q.sampled != sampling::per_realization &&
+                          q.sampled != sampling::per_realization_with_stick;
+  if constexpr (pooled) {
+    if (s.means_only) return;
+  }
   if constexpr (q.sampled == sampling::per_realization ||
                 q.sampled == sampling::per_realization_with_stick) {
     if constexpr (q.sampled == sampling::per_realization_with_stick) {
@@ -107,7 +113,9 @@ void add_quantity(point_statistics& s, const realization_samples& in, double win
     moments.add(x);
     if constexpr (q.score != nullptr)
       (s.*q.score).add(x, static_cast<double>(r.events.belt_switches) - s.expected_switches);
-    if constexpr (q.density != nullptr) (s.*q.density).add(x);
+    if constexpr (q.density != nullptr) {
+      if (!s.means_only) (s.*q.density).add(x);
+    }
   } else {
     const auto& xs = q.sampled == sampling::per_stick         ? in.sticks
                      : q.sampled == sampling::per_stick_onset ? in.onsets
@@ -116,6 +124,39 @@ void add_quantity(point_statistics& s, const realization_samples& in, double win
     if constexpr (q.density != nullptr)
       for (double x : xs) (s.*q.density).add(x);
   }
+}
+
+// The generator scores K_ij of one realization against its per-realization
+// values (belt_generator_scores). Two levels alternate, so their jumps
+// follow from N and the start; on more, the observer counts them (none
+// without the family statistics: then nothing is added).
+void add_generator_scores(point_statistics& s, const realization_samples& in, double window) {
+  const std::size_t n = in.level_fractions.size();
+  if (s.generator.empty() || s.generator.size() != n * n) return;
+  const realization_record& r = in.record;
+  const std::size_t start = level_of_belt_start(r.belt_start);
+  thread_local std::vector<double> k, time;
+  thread_local std::vector<std::uint32_t> alternating(4);
+  if (n == 2) {
+    const std::uint64_t sw = r.events.belt_switches;
+    const std::uint64_t out_first = start == 0 ? (sw + 1) / 2 : sw / 2;
+    alternating = {0, static_cast<std::uint32_t>(out_first),
+                   static_cast<std::uint32_t>(sw - out_first), 0};
+  }
+  const auto& jumps = n == 2 ? alternating : in.jumps;
+  if (jumps.size() != n * n) return;
+  k.resize(n * n);
+  time.resize(n);
+  for (std::size_t i = 0; i < n; ++i) time[i] = in.level_fractions[i] * window;
+  belt_generator_scores(s.generator, start, jumps, time,
+                        s.stationary_start ? &s.generator_start_terms : nullptr, k);
+  for (const auto& q : quantities())
+    if (q.generator_score) {
+      auto& m = s.*q.generator_score;
+      const double x = q.value(r, window);
+      for (std::size_t ij = 0; ij < m.size(); ++ij)
+        if (ij / n != ij % n && s.generator[ij] > 0.0) m[ij].add(x, k[ij]);
+    }
 }
 
 }  // namespace
@@ -144,34 +185,12 @@ void point_statistics::add(const realization_samples& in, double window) {
       if (q.rate_score)
         for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j].add(q.value(r, window), k[j]);
   }
-  if (!generator.empty() && generator.size() == in.level_fractions.size() * in.level_fractions.size()) {
-    const std::size_t n = in.level_fractions.size();
-    thread_local std::vector<double> k, time;
-    thread_local std::vector<std::uint32_t> alternating(4);
-    if (n == 2) {  // the levels alternate (the lanes do not count jumps)
-      const std::uint64_t sw = r.events.belt_switches;
-      const std::uint64_t out_first = level_of_belt_start(r.belt_start) == 0 ? (sw + 1) / 2 : sw / 2;
-      alternating = {0, static_cast<std::uint32_t>(out_first),
-                     static_cast<std::uint32_t>(sw - out_first), 0};
-    }
-    const auto& jumps = n == 2 ? alternating : in.jumps;
-    k.resize(n * n);
-    time.resize(n);
-    for (std::size_t i = 0; i < n; ++i) time[i] = in.level_fractions[i] * window;
-    belt_generator_scores(generator, level_of_belt_start(r.belt_start), jumps, time,
-                          stationary_start ? &generator_start_terms : nullptr, k);
-    for (const auto& q : quantities())
-      if (q.generator_score) {
-        auto& m = this->*q.generator_score;
-        const double x = q.value(r, window);
-        for (std::size_t ij = 0; ij < m.size(); ++ij)
-          if (ij / n != ij % n && generator[ij] > 0.0) m[ij].add(x, k[ij]);
-      }
-  }
+  add_generator_scores(*this, in, window);
   for (const auto& l : level_quantities()) {
     auto& moments = this->*l.moments;
     for (std::size_t i = 0; i < moments.size(); ++i) moments[i].add(in.level_fractions[i]);
   }
+  if (means_only) return;
   for (const auto& j : joint_histograms()) {
     const auto& xs = j.x_sampled == sampling::per_stick ? in.sticks : in.onsets;
     const auto& ys = j.y_sampled == sampling::per_stick ? in.sticks : in.onsets;
@@ -186,15 +205,23 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
     if (q.score) this->*q.score += o.*q.score;
     if (q.rate_score)
       for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j] += (o.*q.rate_score)[j];
-    if (q.generator_score && (this->*q.generator_score).size() == (o.*q.generator_score).size())
-      for (std::size_t j = 0; j < (this->*q.generator_score).size(); ++j)
-        (this->*q.generator_score)[j] += (o.*q.generator_score)[j];
+    if (q.generator_score) {
+      auto& mine = this->*q.generator_score;
+      const auto& theirs = o.*q.generator_score;
+      if (mine.empty()) mine.resize(theirs.size());  // a default-constructed merger
+      if (mine.size() == theirs.size())
+        for (std::size_t j = 0; j < mine.size(); ++j) mine[j] += theirs[j];
+    }
     if (q.density) this->*q.density += o.*q.density;
   }
   for (const auto& l : level_quantities())
     for (std::size_t i = 0; i < (this->*l.moments).size(); ++i)
       (this->*l.moments)[i] += (o.*l.moments)[i];
   for (const auto& j : joint_histograms()) this->*j.counts += o.*j.counts;
+  if (generator.empty()) {
+    generator = o.generator;
+    generator_start_terms = o.generator_start_terms;
+  }
   realizations += o.realizations;
   for (const auto& c : counters()) c.of(*this) += c.value(o);
   return *this;

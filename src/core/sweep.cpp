@@ -254,7 +254,8 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
   block_result out;
-  out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0);
+  out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
+                               s.means_only);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
@@ -279,7 +280,8 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const auto p = point_parameters(s, u.point);
   const family_point fp(p, stream_key(s, p));
   block_result out;
-  out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0);
+  out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
+                               s.means_only);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);

@@ -82,8 +82,10 @@ TEST(BeltGeneratorScore, StationaryLawDerivativeMatchesDifferences) {
 }
 
 // Each K_ij has mean 0 over realizations (within 4 SE), from every fixed
-// start level and from the stationary law (the term of the start matters
-// most in a short window).
+// start level and from the stationary law. This guards the jump counting
+// (a transposed N_ij fails it); the stationary start's term has mean 0
+// under pi by itself, so AgreesWithCommonRandomNumberDifferences is what
+// checks that term.
 TEST(BeltGeneratorScore, ScoresHaveMeanZero) {
   for (int start : {0, 1, 2, 3}) {  // 0: stationary; else the level number
     sweep_spec s = generator_spec(three_generator, 20000, 61, 2.0);

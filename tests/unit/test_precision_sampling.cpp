@@ -449,5 +449,48 @@ TEST(CrnSlopes, OnlyWithCommonRandomNumbersAndRecords) {
   EXPECT_EQ(precision::crn_slopes(run_sweep(s, 1)).size(), 2u);
 }
 
+// sweep_spec::means_only (the peak finder's sweeps): the moments of every
+// per-realization quantity keep their bits, on every engine that can run
+// the point (the paper's and a mu_s > mu_k model in the lanes, a damped and
+// a three-level model on the scalar engine, and the reference engine); the
+// pooled statistics and histograms stay empty.
+TEST(MeansOnly, KeepsTheMeansBitsOnEveryEngine) {
+  std::vector<sweep_spec> specs(4, figure_spec({0.7, 3.8}, 300, false, 73));
+  specs[1].base.static_friction = 7.0;
+  specs[2].base.damping = 0.6;
+  specs[3].base.belt_levels = {1.0, 0.0, -0.5};
+  specs[3].base.belt_generator = {-2, 1, 1, 0.5, -1, 0.5, 1, 1, -2};
+  specs[3].axes = {{"mu", {2.0, 5.0}}};
+  for (bool family : {false, true})
+    for (auto engine : {sweep_engine::fast, sweep_engine::reference})
+      for (const auto& base : specs) {
+        sweep_spec full = base;
+        full.family_statistics = family;
+        full.engine = engine;
+        sweep_spec lean = full;
+        lean.means_only = true;
+        const auto a = run_sweep(full, 2), b = run_sweep(lean, 2);
+        for (std::size_t p = 0; p < a.points.size(); ++p) {
+          const auto &x = a.points[p].stats, &y = b.points[p].stats;
+          for (const auto& q : quantities()) {
+            const bool per_realization = q.sampled == sampling::per_realization ||
+                                         q.sampled == sampling::per_realization_with_stick;
+            if (per_realization) {
+              EXPECT_TRUE(same_bits(x.*q.moments, y.*q.moments)) << q.name << " point " << p;
+              if (q.score) {
+                EXPECT_TRUE(same_bits(x.*q.score, y.*q.score)) << q.name;
+              }
+            } else {
+              EXPECT_EQ((y.*q.moments).count(), 0u) << q.name;
+            }
+            if (q.density) {
+              EXPECT_EQ((y.*q.density).total(), 0u) << q.name;
+            }
+          }
+          EXPECT_GT(x.stick_duration.count(), 0u);
+        }
+      }
+}
+
 }  // namespace
 }  // namespace stickslip

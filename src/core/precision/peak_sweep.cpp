@@ -42,6 +42,10 @@ peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
     // unless asked for.
     if (q.statistic - quantities().data() < static_cast<std::ptrdiff_t>(paper_quantity_count))
       s.family_statistics = false;
+    // Nor the pooled statistics, histograms and duration lists (about 15 %
+    // less CPU; the means are the same bits).
+    s.means_only = q.statistic->sampled == sampling::per_realization ||
+                   q.statistic->sampled == sampling::per_realization_with_stick;
     validate(s);
     return q.run ? q.run(s) : run_sweep(s, q.threads);
   };
