@@ -37,6 +37,10 @@ enum class sampling : unsigned char {
   per_counted_slip,            // the duration of every counted slip, pooled
   per_stick_onset,             // the onset position of every stick, pooled
 };
+// One value per realization (a mean over realizations), not pooled.
+[[nodiscard]] constexpr bool per_realization(sampling s) noexcept {
+  return s == sampling::per_realization || s == sampling::per_realization_with_stick;
+}
 
 // The interval a quantity's histogram bins, per grid point.
 enum class histogram_range : unsigned char {

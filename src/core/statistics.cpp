@@ -99,9 +99,7 @@ void add_quantity(point_statistics& s, const realization_samples& in, double win
   }
   const realization_record& r = in.record;
   mean_variance& moments = s.*q.moments;
-  constexpr bool pooled = q.sampled != sampling::per_realization &&
-                          q.sampled != sampling::per_realization_with_stick;
-  if constexpr (pooled) {
+  if constexpr (!per_realization(q.sampled)) {
     if (s.means_only) return;
   }
   if constexpr (q.sampled == sampling::per_realization ||

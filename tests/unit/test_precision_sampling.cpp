@@ -473,9 +473,7 @@ TEST(MeansOnly, KeepsTheMeansBitsOnEveryEngine) {
         for (std::size_t p = 0; p < a.points.size(); ++p) {
           const auto &x = a.points[p].stats, &y = b.points[p].stats;
           for (const auto& q : quantities()) {
-            const bool per_realization = q.sampled == sampling::per_realization ||
-                                         q.sampled == sampling::per_realization_with_stick;
-            if (per_realization) {
+            if (per_realization(q.sampled)) {
               EXPECT_TRUE(same_bits(x.*q.moments, y.*q.moments)) << q.name << " point " << p;
               if (q.score) {
                 EXPECT_TRUE(same_bits(x.*q.score, y.*q.score)) << q.name;

@@ -44,8 +44,7 @@ peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
       s.family_statistics = false;
     // Nor the pooled statistics, histograms and duration lists (about 15 %
     // less CPU; the means are the same bits).
-    s.means_only = q.statistic->sampled == sampling::per_realization ||
-                   q.statistic->sampled == sampling::per_realization_with_stick;
+    s.means_only = per_realization(q.statistic->sampled);
     validate(s);
     return q.run ? q.run(s) : run_sweep(s, q.threads);
   };
