@@ -102,8 +102,7 @@ void add_quantity(point_statistics& s, const realization_samples& in, double win
   if constexpr (!per_realization(q.sampled)) {
     if (s.means_only) return;
   }
-  if constexpr (q.sampled == sampling::per_realization ||
-                q.sampled == sampling::per_realization_with_stick) {
+  if constexpr (per_realization(q.sampled)) {
     if constexpr (q.sampled == sampling::per_realization_with_stick) {
       if (r.sticks == 0) return;
     }

@@ -43,9 +43,7 @@ TEST(StatisticsSchema, ListsThePapersStatisticsInOrder) {
     EXPECT_EQ(q[i].units, paper[i].units) << paper[i].name;
     EXPECT_EQ(q[i].range, paper[i].range) << paper[i].name;
     EXPECT_EQ(q[i].density != nullptr, paper[i].range != histogram_range::none) << paper[i].name;
-    const bool per_realization = q[i].sampled == sampling::per_realization ||
-                                 q[i].sampled == sampling::per_realization_with_stick;
-    EXPECT_EQ(q[i].value != nullptr, per_realization) << paper[i].name;
+    EXPECT_EQ(q[i].value != nullptr, per_realization(q[i].sampled)) << paper[i].name;
   }
   std::vector<std::string> names;
   for (const auto& c : counters()) names.emplace_back(c.name);

@@ -9,9 +9,7 @@ namespace stickslip::precision {
 const quantity_info& peak_statistic(const std::string& key, const std::string& name) {
   std::string names;
   for (const auto& q : quantities()) {
-    const bool per_realization = q.sampled == sampling::per_realization ||
-                                 q.sampled == sampling::per_realization_with_stick;
-    if (!per_realization) continue;
+    if (!per_realization(q.sampled)) continue;
     if (name == q.summary_name || name == q.name || name == q.symbol) return q;
     names += fmt::format("{}{}", names.empty() ? "" : ", ", q.summary_name);
   }
