@@ -34,14 +34,24 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
                                   this->*quantity_table[j.y].density);
 }
 
+namespace {
+
+// A two-level belt alternates: of its N switches, ceil(N/2) leave the start
+// level and floor(N/2) the other. The jumps out of the first and the second
+// level.
+std::array<std::uint64_t, 2> two_level_jumps(std::size_t start_level,
+                                             std::uint64_t switches) noexcept {
+  const std::uint64_t out_first = start_level == 0 ? (switches + 1) / 2 : switches / 2;
+  return {out_first, switches - out_first};
+}
+
+}  // namespace
+
 std::array<double, 2> belt_rate_scores(const std::array<double, 2>& rates,
                                        std::size_t start_level, std::uint64_t switches,
                                        const std::array<double, 2>& time,
                                        bool stationary_start) noexcept {
-  // The levels alternate: from the first level, jumps out of it are
-  // ceil(N/2); from the second, floor(N/2).
-  const std::uint64_t out_first = start_level == 0 ? (switches + 1) / 2 : switches / 2;
-  const std::uint64_t out[2] = {out_first, switches - out_first};
+  const auto out = two_level_jumps(start_level, switches);
   std::array<double, 2> k{};
   const double total = rates[0] + rates[1];
   for (std::size_t j = 0; j < 2; ++j) {
@@ -135,10 +145,8 @@ void add_generator_scores(point_statistics& s, const realization_samples& in, do
   thread_local std::vector<double> k, time;
   thread_local std::vector<std::uint32_t> alternating(4);
   if (n == 2) {
-    const std::uint64_t sw = r.events.belt_switches;
-    const std::uint64_t out_first = start == 0 ? (sw + 1) / 2 : sw / 2;
-    alternating = {0, static_cast<std::uint32_t>(out_first),
-                   static_cast<std::uint32_t>(sw - out_first), 0};
+    const auto out = two_level_jumps(start, r.events.belt_switches);
+    alternating = {0, static_cast<std::uint32_t>(out[0]), static_cast<std::uint32_t>(out[1]), 0};
   }
   const auto& jumps = n == 2 ? alternating : in.jumps;
   if (jumps.size() != n * n) return;

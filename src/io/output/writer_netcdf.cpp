@@ -42,6 +42,13 @@ void describe(const nc::NcVar& v, const std::string& units, const std::string& l
   if (!description.empty()) v.putAtt("description", description);
 }
 
+// The level numbers 1..n (the coordinate of belt_level and belt_level_to).
+std::vector<int> level_numbers(std::size_t n) {
+  std::vector<int> numbers(n);
+  for (std::size_t i = 0; i < n; ++i) numbers[i] = static_cast<int>(i + 1);
+  return numbers;
+}
+
 std::vector<nc::NcDim> with(std::vector<nc::NcDim> dims, const nc::NcDim& last) {
   dims.push_back(last);
   return dims;
@@ -155,9 +162,7 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
   l.level = f.addDim("belt_level", l.levels);
   auto level_index = f.addVar("belt_level", nc::ncInt, l.level);
   describe(level_index, "1", "belt level number", "number j = 1..n of the belt level v_j");
-  std::vector<int> numbers(l.levels);
-  for (std::size_t i = 0; i < l.levels; ++i) numbers[i] = static_cast<int>(i + 1);
-  level_index.putVar(numbers.data());
+  level_index.putVar(level_numbers(l.levels).data());
   // The second bin dimension of the joint histograms (the same length as bin).
   if (!joint_histograms().empty()) l.bin_y = f.addDim("bin_y", l.bins);
   return l;
@@ -460,9 +465,7 @@ void write_generator_derivatives(nc::NcFile& f, const layout_info& l, const resu
   auto to_index = f.addVar("belt_level_to", nc::ncInt, to);
   describe(to_index, "1", "belt level number (to)",
            "number j = 1..n of the level a jump of the belt goes to");
-  std::vector<int> numbers(n);
-  for (std::size_t i = 0; i < n; ++i) numbers[i] = static_cast<int>(i + 1);
-  to_index.putVar(numbers.data());
+  to_index.putVar(level_numbers(n).data());
   const auto dims = with(with(l.grid, l.level), to);
   for (const auto& q : quantities()) {
     if (!q.generator_score) continue;
