@@ -8,8 +8,7 @@
 // kernels of detail/fast_math.hpp use.
 //
 // Each round, for every lane (= one realization in flight):
-//   1. scalar: start a realization in an idle lane, and run the rare slips
-//      that start at a reversal;
+//   1. scalar: start a realization in an idle lane;
 //   2. vector: both the stick and the slip outcome of every lane: the stick's
 //      end (band edge, switch or t_a), the slip's root by atan (mirror
 //      return) or atan2 (general root), and the sin and cos of the phase
@@ -20,7 +19,7 @@
 //      events, and leave one bit per lane for each piece of bookkeeping
 //      (close an episode, draw the next switch, finish the realization);
 //   4. scalar: that bookkeeping, only for the lanes whose bit is set.
-// In the common round (every lane busy, none starting at a reversal) step 1
+// In the common round (every lane busy) step 1
 // is a vector step as well: count the event, check the max_events bound.
 // The closed-form steps of an event (stick end, slip orbit, rotation, root
 // position and angle arguments, mirror return) are the templates of
@@ -47,9 +46,12 @@
 // from the outward edge leaves, whether a switch out of a stick mirrors)
 // are broadcast once per step; per lane, |v| times the stick and the other
 // level is a blend on v == v1. After a stick break with mu_s > mu_k the slip
-// starts at x' = v and runs the reversal arc, in the vector step (its atan2
-// shares the step's Atan). The paper's instance (Family = false) compiles
-// exactly the code it had before. tests/unit/test_fast_path_family.cpp holds
+// starts at x' = v and runs the reversal arc. In both instances a slip that
+// starts at a reversal runs in the vector step (its atan2 shares the step's
+// Atan); until 2026-11 the paper's instance ran it scalar, one lane at a
+// time, which took a quarter of the time at mu = 0.5 (docs/performance.md).
+// The paper's instance (Family = false) otherwise compiles the code it had
+// before. tests/unit/test_fast_path_family.cpp holds
 // the family instance to simulate_model, every episode and event field.
 //
 // The engine is a template over what it does with a finished realization
@@ -408,95 +410,29 @@ class lane_engine {
       hn::Store(st, d, steps_ + j);
       hn::Store(hn::IfThenElse(act, one, zero), d, run_ + j);
       over = hn::Or(over, hn::And(act, hn::Gt(st, hn::Set(d, max_steps_))));
-      // Family: the vector step runs the slips after a reversal as well
-      const auto sp = Family ? hn::Not(act)
-                             : hn::Or(hn::Not(act), hn::Gt(hn::Load(d, arv_ + j), half));
+      // the vector step runs the slips after a reversal as well
+      const auto sp = hn::Not(act);
       special |= lane_bits(d, sp) << static_cast<unsigned>(j);
     }
     if (!hn::AllFalse(d, over)) throw bound_exceeded{};
-    for (unsigned m = special; m != 0; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      if constexpr (!Family)
-        if (active_[l]) scalar_reversal_slip(l);  // its event was counted above
-      prepare(l);
-    }
+    for (unsigned m = special; m != 0; m &= m - 1) prepare(std::countr_zero(m));
     auto any = hn::FirstN(d, 0);
     for (int k = 0; k < groups; ++k)
       any = hn::Or(any, hn::Gt(hn::Load(d, run_ + static_cast<std::size_t>(k) * N), half));
     return !hn::AllFalse(d, any);
   }
 
-  // Start a realization in an idle lane and run the rare slips that start at
-  // a reversal (scalar) until the lane has an event the vector step
-  // handles (counting each event). Returns whether the lane runs.
+  // Start a realization in an idle lane (counting its first event).
+  // Returns whether the lane runs.
   bool prepare(int l) {
     run_[l] = 0.0;
-    while (true) {
-      if (!active_[l]) {
-        if (next_ >= last_ || next_ - flush_ >= pool_.size()) return false;
-        start(l, next_++);
-      }
-      count_step(l);
-      if (Family || arv_[l] == 0.0) break;
-      if constexpr (!Family) scalar_reversal_slip(l);
+    if (!active_[l]) {
+      if (next_ >= last_ || next_ - flush_ >= pool_.size()) return false;
+      start(l, next_++);
     }
+    count_step(l);
     run_[l] = 1.0;
     return true;
-  }
-
-  // simulate()'s slip branch for a slip that starts on a root after a
-  // reversal (after_reversal): all of the sigma region is left to run.
-  void scalar_reversal_slip(int l) {
-    const double a = a_, w = w_, ta = ta_;
-    const double t = t_[l], x = x_[l], z = z_[l], v = v_[l], sigma = sig_[l];
-    const auto o = physics::orbit_of(x, z, v, sigma, a, w);
-    double t_root = inf;
-    if (grz_[l] == 0.0 && o.disc > 0.0) {
-      // reversal_arc_angle, with this target's atan2 kernel inlined
-      const double alpha = sk::atan21(std::abs(o.wy), v);
-      t_root = physics::time_after_phase(t, reversal_arc_from_alpha(alpha, sigma), w);
-    }
-    const double t_next = std::min(t_root, tsw_[l]);
-    arv_[l] = 0.0;
-    if (t_next >= ta) {
-      if constexpr (with_pieces) {
-        const double dt = ta - t;
-        const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
-        add_slip_piece(l, v, dt, x, physics::rotated_position(o, z, w, cs, sn));
-      }
-      finish_realization(l);
-      return;
-    }
-    if (tsw_[l] <= t_root) {
-      const double dt = tsw_[l] - t;
-      const double cs = sk::cos1(w * dt), sn = sk::sin1(w * dt);
-      x_[l] = physics::rotated_position(o, z, w, cs, sn);
-      if constexpr (with_pieces) add_slip_piece(l, v, dt, x, x_[l]);
-      z_[l] = physics::rotated_velocity(o, z, cs, sn);
-      t_[l] = tsw_[l];
-      v_[l] = -v;
-      grz_[l] = mir_[l] = 0.0;
-      n_sw_[l] += 1.0;
-      emit(l, event_kind::belt_switch);
-      tsw_[l] = next_switch(l);
-      if (z_[l] == v_[l]) {
-        contact_at_switch(l);
-      } else {
-        sig_[l] = v_[l] > z_[l] ? 1.0 : -1.0;
-      }
-      return;
-    }
-    x_[l] = physics::root_position(o, sigma, std::sqrt(o.disc), w);
-    if constexpr (with_pieces) add_slip_piece(l, v, t_root - t, x, x_[l]);
-    z_[l] = v;
-    t_[l] = t_root;
-    root_contact(l, sigma);
-  }
-
-  // A slip piece of the scalar path: the vector step's sums, lane l alone.
-  void add_slip_piece(int l, double v, double dt, double x0, double x1) noexcept {
-    (v > 0 ? lt0_[l] : lt1_[l]) += dt;
-    trav_[l] += std::abs(v * dt - (x1 - x0));
   }
 
   // simulate()'s contact_at (physics::resolve_contact): a stick, a grazing
@@ -572,7 +508,7 @@ class lane_engine {
       graz[k] = hn::Gt(hn::Load(d, grz_ + j), half);
       mirr[k] = hn::Gt(hn::Load(d, mir_ + j), half);
       run[k] = hn::Gt(hn::Load(d, run_ + j), half);
-      if constexpr (Family) arv[k] = hn::Gt(hn::Load(d, arv_ + j), half);
+      arv[k] = hn::Gt(hn::Load(d, arv_ + j), half);
     }
     K_LOOP {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
@@ -593,7 +529,7 @@ class lane_engine {
       const auto q = vphysics::root_angle_arguments(o[k].wy, z[k], v[k], r[k]);
       ay[k] = q.y;
       ax[k] = q.x;
-      if constexpr (Family) {  // reversal_arc_angle: alpha = atan2(|w y|, v)
+      {  // reversal_arc_angle: alpha = atan2(|w y|, v)
         ay[k] = IfThenElse(arv[k], hn::Abs(o[k].wy), ay[k]);
         ax[k] = IfThenElse(arv[k], v[k], ax[k]);
       }
@@ -618,7 +554,7 @@ class lane_engine {
                                     IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
       const vec dt_mir = vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
       vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
-      if constexpr (Family) {  // reversal_arc_from_alpha
+      {  // reversal_arc_from_alpha
         const vec two_raw = Mul(Set(d, 2.0), raw);
         const vec dt_rev = IfThenElse(hn::Gt(sig[k], zero), Sub(Set(d, two_pi), two_raw), two_raw);
         dtheta = IfThenElse(arv[k], dt_rev, dtheta);
