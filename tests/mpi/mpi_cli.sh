@@ -29,6 +29,42 @@ done
   || fail "mpirun --resume"
 $compare "$work/single" "$work/resume" >/dev/null || fail "MPI resume differs"
 echo "mpi_cli: mpirun -np 3 --resume of a half-journaled sweep == single process"
+# Adaptive sampling (--target-ci) under mpirun: the stop rule runs in block
+# order, so the realizations chosen per point and every output equal the
+# single-process run for any number of ranks, and after a resume under MPI.
+tci=(sweep --k 40 --mu 0.5,5 --lambda log:0.3:20:4 --target-ci R:0.0025 --seed 11)
+"$bin" "${tci[@]}" --threads 2 -o "$work/tci-single" 2>/dev/null || fail "single-process --target-ci"
+for np in 2 3; do
+  "${launch[@]}" -np $np "$bin" "${tci[@]}" --threads 1 -o "$work/tci-np$np" 2>"$work/tci.err" \
+    || { cat "$work/tci.err"; fail "mpirun -np $np --target-ci"; }
+  $compare "$work/tci-single" "$work/tci-np$np" >/dev/null || fail "--target-ci: -np $np differs"
+done
+/usr/bin/python3 - "$work/tci-single/summary.json" <<'PY' || fail "--target-ci: the target is not met per point"
+import json, sys
+points = json.load(open(sys.argv[1]))["points"]
+ns = {p["realizations"] for p in points}
+assert all((p["R"]["ci95"][1] - p["R"]["ci95"][0]) / 2 <= 0.0025 for p in points), points
+assert len(ns) > 2, f"realizations chosen per point: {sorted(ns)}"
+PY
+# Resume: shards are refused with --target-ci, so stop a run under mpirun
+# with SIGUSR1 once its journal has a segment, and resume it with 3 ranks.
+tlong=(sweep --k 40 --mu 0.5,5 --lambda log:0.3:20:4 --target-ci R:0.0005 --seed 12
+       --checkpoint-interval 0)
+"$bin" "${tlong[@]}" --threads 2 -o "$work/tlong-single" 2>/dev/null || fail "single-process long --target-ci"
+"${launch[@]}" -np 2 "$bin" "${tlong[@]}" --threads 1 -o "$work/tci-usr1" 2>"$work/tci-usr1.err" & pid=$!
+( sleep 120; kill -KILL $pid ) >/dev/null 2>&1 & watchdog=$!
+for _ in $(seq 300); do
+  compgen -G "$work/tci-usr1/.journal/seg-*" >/dev/null && break
+  sleep 0.05
+done
+kill -USR1 $pid
+wait $pid; rc=$?
+pkill -P $watchdog 2>/dev/null; kill $watchdog 2>/dev/null
+((rc != 0)) || fail "--target-ci SIGUSR1: the sweep finished before the signal (make it longer)"
+"${launch[@]}" -np 3 "$bin" "${tlong[@]}" --threads 1 --resume -o "$work/tci-usr1" 2>/dev/null \
+  || fail "mpirun -np 3 --resume --target-ci"
+$compare "$work/tlong-single" "$work/tci-usr1" >/dev/null || fail "--target-ci: MPI resume differs"
+echo "mpi_cli: --target-ci under mpirun -np 2 and 3, and stopped and resumed under MPI, == single process"
 # reproduce under mpirun: the ranks share every sweep of the study (rank 0
 # coordinates, the others serve), the report records 2 ranks, and it equals
 # the single-process reproduction.
