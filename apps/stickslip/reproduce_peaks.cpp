@@ -111,18 +111,13 @@ study::peak_locator kept_peak_locator(std::string runs_dir, run::runner& r,
     }
     auto q = request;
     q.run = [&r, &stop](const sweep_spec& s) {
-      ordered_merger merger(s);
-      sweep_hooks hooks;
-      hooks.wanted = [&stop](const work_unit&) { return !stop.requested(); };
-      r.run(s, merger, hooks);
-      if (stop.requested())
+      auto rs = run::run_unless_stopped(r, s, stop);
+      if (!rs)
         throw error(static_cast<exit_code>(128 + stop.reason()),
                     fmt::format("interrupted by signal {}: the finished sweeps and peak "
                                 "searches are kept; continue with the same command and --resume",
                                 stop.reason()));
-      if (!merger.complete())
-        throw error(exit_code::internal, "a peak sweep ended with units missing from the merge");
-      return make_result_set(s, std::move(merger));
+      return std::move(*rs);
     };
     p = precision::find_peak_by_sweeps(q);
     std::filesystem::create_directories(runs_dir);

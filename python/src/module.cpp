@@ -365,7 +365,13 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
 }
 
 // stickslip.peak(): the CLI's `peak` (precision/peak_sweep.hpp), the same
-// numbers for the same arguments. The GIL is released while it runs.
+// numbers for the same arguments. It runs on a worker thread without the
+// GIL; Ctrl-C starts no further unit and raises KeyboardInterrupt once the
+// units in flight are done (a search has nothing to keep: no output).
+// Ends a peak search stopped by Ctrl-C (run_interruptibly raises the
+// pending KeyboardInterrupt).
+struct peak_interrupted {};
+
 py::dict peak_py(const py::dict& model, const std::string& over, const std::string& statistic,
                  double lo, double hi, double target, const std::string& method,
                  std::uint64_t seed, unsigned threads, std::uint64_t initial,
@@ -386,12 +392,25 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
   q.options.max_total_realizations = budget;
   q.common_random_numbers = method == "common";
   q.threads = threads;
+  run::stop_token stop;
+  run::thread_runner runner(threads);
+  q.run = [&](const sweep_spec& s) {
+    auto rs = run::run_unless_stopped(runner, s, stop);
+    if (!rs) throw peak_interrupted{};
+    return std::move(*rs);
+  };
   precision::peak_result r;
   const auto start = std::chrono::steady_clock::now();
-  {
-    py::gil_scoped_release release;
-    r = precision::find_peak_by_sweeps(q);
-  }
+  std::atomic<std::uint64_t> no_count{0};
+  const bool interrupted = run_interruptibly(
+      [&] {
+        try {
+          r = precision::find_peak_by_sweeps(q);
+        } catch (const peak_interrupted&) {
+        }
+      },
+      stop, py::none(), no_count, no_count);
+  if (interrupted) throw py::error_already_set();
   py::dict d;
   d["statistic"] = q.statistic->summary_name;
   d["method"] = method;

@@ -1,6 +1,12 @@
 """stickslip.peak() against the CLI's `peak --format json`: the same numbers,
-bit for bit, for both methods; bad input raises stickslip.Error."""
+bit for bit, for both methods; bad input raises stickslip.Error; Ctrl-C
+stops a long search with KeyboardInterrupt."""
 import json
+import signal
+import subprocess
+import sys
+import textwrap
+import time
 
 import pytest
 
@@ -32,3 +38,37 @@ def test_peak_bad_input_raises_error():
         stickslip.peak(mu=5, lam=2, range=(0.3, 30))
     with pytest.raises(stickslip.Error, match="method"):
         stickslip.peak(**ARGS, method="magic")
+
+
+LONG_SEARCH = textwrap.dedent("""
+    import sys, time, stickslip
+    print("started", flush=True)
+    t0 = time.monotonic()
+    try:
+        stickslip.peak(mu=0.5, k=40, range=(0.1, 30), target_halfwidth=0.001, threads=1)
+    except KeyboardInterrupt:
+        print("KeyboardInterrupt after %.1f s" % (time.monotonic() - t0), flush=True)
+        sys.exit(42)
+    sys.exit(0)
+""")
+
+
+def test_ctrl_c_stops_a_peak_search():
+    # The search (mu = 0.5 to a half-width of 0.001: hours) runs on a worker
+    # thread without the GIL; Ctrl-C must reach it: no new sweep unit, and
+    # KeyboardInterrupt once the units in flight are done.
+    p = subprocess.Popen([sys.executable, "-c", LONG_SEARCH], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(2.0)  # inside the search (the import is done)
+    assert p.poll() is None, p.stderr.read()
+    sent = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    try:
+        stdout, stderr = p.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        pytest.fail("Ctrl-C did not stop stickslip.peak()")
+    assert p.returncode == 42, (p.returncode, stderr[-2000:])
+    assert "KeyboardInterrupt" in stdout
+    assert time.monotonic() - sent < 30

@@ -4,6 +4,9 @@
 // Every runner merges with ordered_merger, so results do not depend on the
 // runner, the thread count or the rank count.
 #pragma once
+#include <optional>
+
+#include "stickslip/run/stop.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::run {
@@ -28,6 +31,13 @@ class thread_runner final : public runner {
  private:
   unsigned threads_;
 };
+
+// One whole sweep on `r` that can be stopped: once `stop` is requested no
+// unit starts any more, and the result is empty (never a partial result).
+// Used where sweeps are run one after another under a stop request: the
+// peak searches of `reproduce` and Python's stickslip.peak().
+[[nodiscard]] std::optional<result_set> run_unless_stopped(runner& r, const sweep_spec& s,
+                                                           const stop_token& stop);
 
 // Threads that `threads` = 0 means on this machine (all cores, at least 1).
 [[nodiscard]] unsigned resolve_threads(unsigned threads) noexcept;
