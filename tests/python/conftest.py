@@ -2,6 +2,7 @@
 the build tree's python/ folder and STICKSLIP_CLI at the command-line tool,
 so that every Python result can be compared with the CLI's."""
 import os
+import signal
 import subprocess
 
 import pytest
@@ -19,3 +20,21 @@ def cli():
             raise AssertionError(f"stickslip {' '.join(map(str, args))} failed ({p.returncode}): {p.stderr}")
         return p
     return run
+
+
+@pytest.fixture(scope="session")
+def ctrl_c():
+    """Sends SIGINT to a running script that exits 42 after printing
+    "KeyboardInterrupt"; fails unless it does so within `timeout` seconds.
+    Returns its stdout."""
+    def send(p, what, timeout=60):
+        p.send_signal(signal.SIGINT)
+        try:
+            stdout, stderr = p.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            pytest.fail(f"Ctrl-C did not stop {what}")
+        assert p.returncode == 42, (p.returncode, stderr[-2000:])
+        assert "KeyboardInterrupt" in stdout
+        return stdout
+    return send
