@@ -364,14 +364,14 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
     io::write_netcdf(*outcome.results, meta, netcdf_path);
 }
 
-// stickslip.peak(): the CLI's `peak` (precision/peak_sweep.hpp), the same
-// numbers for the same arguments. It runs on a worker thread without the
-// GIL; Ctrl-C starts no further unit and raises KeyboardInterrupt once the
-// units in flight are done (a search has nothing to keep: no output).
 // Ends a peak search stopped by Ctrl-C (run_interruptibly raises the
 // pending KeyboardInterrupt).
 struct peak_interrupted {};
 
+// stickslip.peak(): the CLI's `peak` (precision/peak_sweep.hpp), the same
+// numbers for the same arguments. It runs on a worker thread without the
+// GIL; Ctrl-C starts no further unit and raises KeyboardInterrupt once the
+// units in flight are done (a search has nothing to keep: no output).
 py::dict peak_py(const py::dict& model, const std::string& over, const std::string& statistic,
                  double lo, double hi, double target, const std::string& method,
                  std::uint64_t seed, unsigned threads, std::uint64_t initial,
@@ -391,7 +391,6 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
   q.options.initial_realizations = initial;
   q.options.max_total_realizations = budget;
   q.common_random_numbers = method == "common";
-  q.threads = threads;
   run::stop_token stop;
   run::thread_runner runner(threads);
   q.run = [&](const sweep_spec& s) {

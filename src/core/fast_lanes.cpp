@@ -410,7 +410,8 @@ class lane_engine {
       hn::Store(st, d, steps_ + j);
       hn::Store(hn::IfThenElse(act, one, zero), d, run_ + j);
       over = hn::Or(over, hn::And(act, hn::Gt(st, hn::Set(d, max_steps_))));
-      // the vector step runs the slips after a reversal as well
+      // idle lanes (the vector step runs every busy lane, also a slip that
+      // starts at a reversal)
       const auto sp = hn::Not(act);
       special |= lane_bits(d, sp) << static_cast<unsigned>(j);
     }
