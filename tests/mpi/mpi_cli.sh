@@ -10,6 +10,22 @@ compare="/usr/bin/python3 $here/../resume/compare_outputs.py"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 launch=("$mpirun" --oversubscribe --mca btl self,vader --mca btl_vader_single_copy_mechanism none)
 fail() { echo "mpi_cli: FAILED: $*" >&2; exit 1; }
+# Runs `mpirun -np 2 stickslip ARGS --threads 1 -o DIR` (stderr in DIR.err),
+# sends SIGUSR1 once its journal has a first segment, and fails unless the
+# run ended early; its exit status is left in $rc. A watchdog ends a hung run.
+usr1_mid_run() {
+  local dir=$1 what=$2; shift 2
+  "${launch[@]}" -np 2 "$bin" "$@" --threads 1 -o "$dir" 2>"$dir.err" & local pid=$!
+  ( sleep 120; kill -KILL $pid ) >/dev/null 2>&1 & local watchdog=$!
+  for _ in $(seq 300); do  # signal once the first journal segment is written
+    compgen -G "$dir/.journal/seg-*" >/dev/null && break
+    sleep 0.05
+  done
+  kill -USR1 $pid
+  wait $pid; rc=$?
+  pkill -P $watchdog 2>/dev/null; kill $watchdog 2>/dev/null  # and its sleep
+  ((rc != 0)) || fail "$what: the sweep finished before the signal (make it longer)"
+}
 rm -rf "$work"; mkdir -p "$work"
 args=(sweep --lambda log:0.05:30:5 --mu 0.5,3 --ta 30 --realizations 90 --block-size 8 --records --seed 3)
 
@@ -51,16 +67,7 @@ PY
 tlong=(sweep --k 40 --mu 0.5,5 --lambda log:0.3:20:4 --target-ci R:0.0005 --seed 12
        --checkpoint-interval 0)
 "$bin" "${tlong[@]}" --threads 2 -o "$work/tlong-single" 2>/dev/null || fail "single-process long --target-ci"
-"${launch[@]}" -np 2 "$bin" "${tlong[@]}" --threads 1 -o "$work/tci-usr1" 2>"$work/tci-usr1.err" & pid=$!
-( sleep 120; kill -KILL $pid ) >/dev/null 2>&1 & watchdog=$!
-for _ in $(seq 300); do
-  compgen -G "$work/tci-usr1/.journal/seg-*" >/dev/null && break
-  sleep 0.05
-done
-kill -USR1 $pid
-wait $pid; rc=$?
-pkill -P $watchdog 2>/dev/null; kill $watchdog 2>/dev/null
-((rc != 0)) || fail "--target-ci SIGUSR1: the sweep finished before the signal (make it longer)"
+usr1_mid_run "$work/tci-usr1" "--target-ci SIGUSR1" "${tlong[@]}"
 "${launch[@]}" -np 3 "$bin" "${tlong[@]}" --threads 1 --resume -o "$work/tci-usr1" 2>/dev/null \
   || fail "mpirun -np 3 --resume --target-ci"
 $compare "$work/tlong-single" "$work/tci-usr1" >/dev/null || fail "--target-ci: MPI resume differs"
@@ -95,16 +102,7 @@ echo "mpi_cli: errors under mpirun: exit 2 (bad input) and 4 (work bound), no ha
 # --resume completes the same results. A watchdog ends a hung run.
 long=(sweep --lambda log:0.1:30:40 --mu 0.5,5 --realizations 4000 --checkpoint-interval 0)
 "$bin" "${long[@]}" --threads 2 -o "$work/long-single" 2>/dev/null || fail "single-process long run"
-"${launch[@]}" -np 2 "$bin" "${long[@]}" --threads 1 -o "$work/usr1" 2>"$work/usr1.err" & pid=$!
-( sleep 120; kill -KILL $pid ) >/dev/null 2>&1 & watchdog=$!
-for _ in $(seq 300); do  # signal once the first journal segment is written
-  compgen -G "$work/usr1/.journal/seg-*" >/dev/null && break
-  sleep 0.05
-done
-kill -USR1 $pid
-wait $pid; rc=$?
-pkill -P $watchdog 2>/dev/null; kill $watchdog 2>/dev/null  # and its sleep
-((rc != 0)) || fail "SIGUSR1 under mpirun: the sweep finished before the signal (make it longer)"
+usr1_mid_run "$work/usr1" "SIGUSR1 under mpirun" "${long[@]}"
 grep -q "interrupted by signal" "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report (exit $rc)"; }
 "${launch[@]}" -np 2 "$bin" "${long[@]}" --threads 1 --resume -o "$work/usr1" 2>/dev/null \
   || fail "resume after SIGUSR1"
