@@ -44,6 +44,10 @@ namespace stickslip {
 
 struct event_counts {
   std::uint64_t belt_switches = 0, stick_onsets = 0, stick_breaks = 0, slip_reversals = 0;
+  // The sum of the belt switch times in [0, t_a], in time order (not a
+  // count: the integral of N(t) over the window is N t_a minus it, which the
+  // causal likelihood-ratio derivative needs; docs/precision.md).
+  double switch_time_sum = 0.0;
   [[nodiscard]] std::uint64_t total() const noexcept {
     return belt_switches + stick_onsets + stick_breaks + slip_reversals;
   }
@@ -53,6 +57,7 @@ struct event_counts {
     stick_onsets += o.stick_onsets;
     stick_breaks += o.stick_breaks;
     slip_reversals += o.slip_reversals;
+    switch_time_sum += o.switch_time_sum;
     return *this;
   }
 };
@@ -198,7 +203,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   auto close_episode = [&](double when, mode next_mode) {
     ep.end = when;
     if (ep.end > ep.start) obs.on_episode(ep);
-    ep = episode{next_mode, when, 0.0, x, v, false};
+    ep = episode{next_mode, when, 0.0, x, v, false, counts.belt_switches};
   };
 
   std::int64_t steps = 0;
@@ -229,6 +234,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
         grazing = after_reversal = false;
         mirror = true;
         ++counts.belt_switches;
+        counts.switch_time_sum += t;
         obs.on_event(event{event_kind::belt_switch, t, x, z, v});
         close_episode(t, mode::slip);
         t_switch = switches.next();
@@ -279,6 +285,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       v = -v;  // belt switch during a slip
       grazing = after_reversal = mirror = false;
       ++counts.belt_switches;
+      counts.switch_time_sum += t;
       obs.on_event(event{event_kind::belt_switch, t, x, z, v});
       t_switch = switches.next();
       if (z == v) {  // measure zero: landed exactly on relative rest

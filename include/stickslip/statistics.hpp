@@ -54,6 +54,11 @@ struct realization_record {
   bool first_stick_censored = false;
   double friction_power = 0;  // W_f [W]
   double damping_power = 0;   // W_c [W]
+  // Over the sticks (positive length): sum of N(start) D_i and of the mid
+  // time (start + end)/2 D_i, i.e. int N(t) dt and int t dt over the sticks
+  // (N(t) is constant during a stick): the causal score's Z
+  // (causal_score_moments).
+  double stick_switch_moment = 0, stick_time_moment = 0;
   event_counts events;
 };
 
@@ -118,6 +123,9 @@ class point_statistics {
   mean_variance damping_power;         // W_c
   histogram stick_fraction_hist, stick_duration_hist, first_stick_duration_hist,
       slip_duration_hist, stick_onset_position_hist;
+  // R's causal score (Z, Y of causal_score_moments), at points with
+  // Poisson switching (has_poisson_switching): the peak finder's derivative.
+  causal_score_moments stick_fraction_causal_score;
   // Against K = N - lambda t_a (N belt switches): d mean/dlambda and the
   // control-variate means of R, S_T/t_a, S_L/t_a (score_moments.hpp).
   score_moments stick_fraction_score, sticks_per_time_score, slips_per_time_score;
@@ -211,6 +219,8 @@ class realization_observer : public observer_base {
       }
       ++rec_.sticks;
       total_stick_ += d;
+      rec_.stick_switch_moment += static_cast<double>(e.switches_before) * d;
+      rec_.stick_time_moment += 0.5 * (e.start + e.end) * d;
       if constexpr (Durations) sticks_.push_back(d);
       if constexpr (Onsets) {
         if (family_) onsets_.push_back(e.position_at_start);

@@ -349,16 +349,19 @@ class lane_engine {
     ep_start_[l] = 0.0;
     ep_x_[l] = x;
     ep_v_[l] = v;
+    ep_nsw_[l] = 0;
+    sws_[l] = 0.0;
   }
 
   HWY_INLINE double next_switch(int l) noexcept { return sw_[l].next(target_log_inplace{}); }
 
   void finish_realization(int l) {
-    obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true});
+    obs_[l]->on_episode(
+        episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true, ep_nsw_[l]});
     if constexpr (with_pieces) obs_[l]->set_paper_sums(lt0_[l], lt1_[l], trav_[l]);
     collect_.end(*obs_[l], event_counts{
         static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
-        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l])});
+        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l]), sws_[l]});
     active_[l] = false;
     act_[l] = 0.0;
     done_[(r_[l] - first_) % pool_.size()] = 1;
@@ -380,9 +383,11 @@ class lane_engine {
   // after the event (x_, v_ are already updated when this is called).
   void close_episode(int l, double when, mode next_mode) {
     if (when > ep_start_[l])
-      obs_[l]->on_episode(episode{ep_kind_[l], ep_start_[l], when, ep_x_[l], ep_v_[l], false});
+      obs_[l]->on_episode(
+          episode{ep_kind_[l], ep_start_[l], when, ep_x_[l], ep_v_[l], false, ep_nsw_[l]});
     ep_kind_[l] = next_mode;
     ep_start_[l] = when;
+    ep_nsw_[l] = static_cast<std::uint64_t>(n_sw_[l]);
     ep_x_[l] = x_[l];
     ep_v_[l] = v_[l];
   }
@@ -706,6 +711,7 @@ class lane_engine {
     }
     for (unsigned m = pop; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
+      sws_[l] += t_[l];  // the switch just taken: t_ is its time (simulate()'s order)
       tsw_[l] = next_switch(l);
       if (z_[l] == v_[l] && stk_[l] == 0.0 && static_cast<int>(code_[l]) == ev_slip_sw) contact_at_switch(l);
     }
@@ -766,6 +772,8 @@ class lane_engine {
   std::uint64_t r_[lanes] = {};
   // The episode in progress: kind, start, and x, v at its start.
   double ep_start_[lanes] = {}, ep_x_[lanes] = {}, ep_v_[lanes] = {};
+  std::uint64_t ep_nsw_[lanes] = {};  // episode::switches_before
+  double sws_[lanes] = {};            // event_counts::switch_time_sum
   mode ep_kind_[lanes] = {};
   observer* obs_[lanes] = {};
   switch_source sw_[lanes] = {};

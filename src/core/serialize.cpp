@@ -64,6 +64,7 @@ void put(writer& w, const event_counts& e) {
   w.u64(e.stick_onsets);
   w.u64(e.stick_breaks);
   w.u64(e.slip_reversals);
+  w.f64(e.switch_time_sum);
 }
 event_counts get_counts(reader& r) {
   event_counts e;
@@ -71,6 +72,7 @@ event_counts get_counts(reader& r) {
   e.stick_onsets = r.u64("event counts");
   e.stick_breaks = r.u64("event counts");
   e.slip_reversals = r.u64("event counts");
+  e.switch_time_sum = r.f64("switch time sum");
   return e;
 }
 
@@ -127,6 +129,8 @@ void put(writer& w, const point_statistics& s) {
       for (int i = 0; i < 5; ++i) w.f64((s.*q.score).sum(i));
     }
   w.f64(s.expected_switches);
+  w.u64(s.stick_fraction_causal_score.count());
+  for (int i = 0; i < 5; ++i) w.f64(s.stick_fraction_causal_score.sum(i));
   for (const auto& q : quantities())
     if (q.rate_score)
       for (const auto& m : s.*q.rate_score) {
@@ -191,6 +195,12 @@ point_statistics get_statistics(reader& r) {
       s.*q.score = score_moments::from_raw(count, sums);
     }
   s.expected_switches = r.f64("expected switches");
+  {
+    const auto count = r.u64("causal score moments");
+    double sums[5];
+    for (double& x : sums) x = r.f64("causal score moments");
+    s.stick_fraction_causal_score = causal_score_moments::from_raw(count, sums);
+  }
   for (const auto& q : quantities())
     if (q.rate_score)
       for (auto& m : s.*q.rate_score) {
@@ -257,7 +267,7 @@ point_statistics get_statistics(reader& r) {
   return s;
 }
 
-constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 32;
+constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 8 + 8 + 40;
 
 void put(writer& w, const realization_record& x) {
   w.u64(x.realization);
@@ -272,6 +282,8 @@ void put(writer& w, const realization_record& x) {
   w.u8(x.first_stick_censored ? 1 : 0);
   w.f64(x.friction_power);
   w.f64(x.damping_power);
+  w.f64(x.stick_switch_moment);
+  w.f64(x.stick_time_moment);
   put(w, x.events);
 }
 realization_record get_record(reader& r) {
@@ -293,6 +305,8 @@ realization_record get_record(reader& r) {
   x.first_stick_censored = r.boolean("record censoring flag");
   x.friction_power = r.f64("record");
   x.damping_power = r.f64("record");
+  x.stick_switch_moment = r.f64("record");
+  x.stick_time_moment = r.f64("record");
   x.events = get_counts(r);
   return x;
 }

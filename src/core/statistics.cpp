@@ -181,6 +181,17 @@ void point_statistics::add(const realization_samples& in, double window) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
   }(std::make_index_sequence<counter_table.size()>{});
+  if (expected_switches > 0.0 && belt_rates[0] == 0.0 && generator.empty()) {
+    // The causal score of R (causal_score_moments): M(t) = N(t)/lambda - t,
+    // Z = int stick(t) M(t) dt / t_a, Y = int M(t) dt / t_a with
+    // int_0^t_a N(t) dt = N t_a - (sum of the switch times).
+    const double lambda = expected_switches / window;
+    const double z = (r.stick_switch_moment / lambda - r.stick_time_moment) / window;
+    const double n = static_cast<double>(r.events.belt_switches);
+    const double y =
+        ((n * window - r.events.switch_time_sum) / lambda - 0.5 * window * window) / window;
+    stick_fraction_causal_score.add(z, y);
+  }
   if (!family_statistics) return;
   if (belt_rates[0] > 0.0 && in.level_fractions.size() == 2) {
     const auto k = belt_rate_scores(
@@ -228,6 +239,7 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
     generator_start_terms = o.generator_start_terms;
   }
   realizations += o.realizations;
+  stick_fraction_causal_score += o.stick_fraction_causal_score;
   for (const auto& c : counters()) c.of(*this) += c.value(o);
   return *this;
 }

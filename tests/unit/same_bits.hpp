@@ -15,14 +15,18 @@ inline bool same_bits(const mean_variance& a, const mean_variance& b) {
   return a.count() == b.count() && same_bits(a.mean(), b.mean()) &&
          same_bits(a.sum_sq_dev(), b.sum_sq_dev());
 }
-inline bool same_bits(const score_moments& a, const score_moments& b) {
+// score_moments and causal_score_moments: the count and the five sums.
+template <class Moments>
+  requires requires(const Moments& m) { m.sum(0); }
+inline bool same_bits(const Moments& a, const Moments& b) {
   bool ok = a.count() == b.count();
   for (int i = 0; i < 5; ++i) ok = ok && same_bits(a.sum(i), b.sum(i));
   return ok;
 }
 inline bool same_bits(const event_counts& a, const event_counts& b) {
   return a.belt_switches == b.belt_switches && a.stick_onsets == b.stick_onsets &&
-         a.stick_breaks == b.stick_breaks && a.slip_reversals == b.slip_reversals;
+         a.stick_breaks == b.stick_breaks && a.slip_reversals == b.slip_reversals &&
+         same_bits(a.switch_time_sum, b.switch_time_sum);
 }
 // Every accumulator of the statistics schema, the realization count and the
 // convergence trace.
@@ -34,6 +38,7 @@ inline bool same_bits(const point_statistics& a, const point_statistics& b) {
     if (q.score) ok = ok && same_bits(a.*q.score, b.*q.score);
   }
   ok = ok && same_bits(a.expected_switches, b.expected_switches);
+  ok = ok && same_bits(a.stick_fraction_causal_score, b.stick_fraction_causal_score);
   for (const auto& c : counters()) ok = ok && c.value(a) == c.value(b);
   for (const auto& l : level_quantities()) {
     ok = ok && (a.*l.moments).size() == (b.*l.moments).size();
@@ -58,7 +63,9 @@ inline bool same_bits(const realization_record& a, const realization_record& b) 
          same_bits(a.first_stick_duration, b.first_stick_duration) &&
          a.first_stick_censored == b.first_stick_censored &&
          same_bits(a.friction_power, b.friction_power) &&
-         same_bits(a.damping_power, b.damping_power) && same_bits(a.events, b.events);
+         same_bits(a.damping_power, b.damping_power) &&
+         same_bits(a.stick_switch_moment, b.stick_switch_moment) &&
+         same_bits(a.stick_time_moment, b.stick_time_moment) && same_bits(a.events, b.events);
 }
 
 }  // namespace stickslip::testing_support

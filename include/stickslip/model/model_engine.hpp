@@ -120,7 +120,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
   auto close_episode = [&](double when, mode next_mode) {
     ep.end = when;
     if (ep.end > ep.start) obs.on_episode(ep);
-    ep = episode{next_mode, when, 0.0, x, v, false};
+    ep = episode{next_mode, when, 0.0, x, v, false, counts.belt_switches};
   };
   // A piece of motion from the current state (observer.hpp).
   auto piece = [&](mode kind, double dt, double x1, double z1) {
@@ -133,6 +133,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     v = levels[level];
     b = -c_over_k * v;
     ++counts.belt_switches;
+    counts.switch_time_sum += t;
     obs.on_event(event{event_kind::belt_switch, t, x, z, v});
     next_switch = switches.next();
   };

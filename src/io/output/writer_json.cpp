@@ -70,6 +70,17 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
     j.end_object();
   }
   j.end_object();
+  // "dmean_dlambda_causal": R's causal score derivative
+  // (causal_score_moments), the same slope with far less variance.
+  j.key("dmean_dlambda_causal");
+  j.begin_object();
+  j.key("R");
+  j.begin_object();
+  emit_estimate_members(j, has_poisson_switching(p.parameters)
+                               ? causal_score_derivative(s.stick_fraction_causal_score)
+                               : estimate{});
+  j.end_object();
+  j.end_object();
   // "dmean_drates": the same derivative over the rates r1, r2 of a
   // two-level belt given its own rates (only at such points).
   if (s.belt_rates[0] > 0.0) {
