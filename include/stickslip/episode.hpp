@@ -2,7 +2,6 @@
 // or slip intervals). Episodes tile [0, t_a]; a slip episode runs through belt
 // switches and slip reversals.
 #pragma once
-#include <cstdint>
 
 namespace stickslip {
 
@@ -46,10 +45,11 @@ struct episode {
   double belt_velocity;      // v at `start`
   bool censored;             // cut off by the end of the window t_a
   // N(start): the belt switches in [0, start], the switch that starts the
-  // episode included. Constant during a stick (a switch ends every stick),
-  // so it gives the causal likelihood-ratio derivative its integral of
-  // N(t) over the sticks (docs/precision.md).
-  std::uint64_t switches_before = 0;
+  // episode included (a count, exact in a double, which the lane engine
+  // keeps it in). Constant during a stick (a switch ends every stick), so it
+  // gives the causal likelihood-ratio derivative its integral of N(t) over
+  // the sticks (docs/precision.md).
+  double switches_before = 0.0;
   [[nodiscard]] double duration() const noexcept { return end - start; }
 };
 

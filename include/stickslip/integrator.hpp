@@ -203,7 +203,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   auto close_episode = [&](double when, mode next_mode) {
     ep.end = when;
     if (ep.end > ep.start) obs.on_episode(ep);
-    ep = episode{next_mode, when, 0.0, x, v, false, counts.belt_switches};
+    ep = episode{next_mode, when, 0.0, x, v, false, static_cast<double>(counts.belt_switches)};
   };
 
   std::int64_t steps = 0;

@@ -34,6 +34,19 @@ struct observer_base {
 
 struct null_observer : observer_base {};
 
+// Whether an observer uses episode::switches_before and
+// event_counts::switch_time_sum (the causal score of
+// accumulators/score_moments.hpp): default yes; an observer opts out with
+// `static constexpr bool causal_score = false`, and the lane engine then
+// skips that bookkeeping (the paper study's observer: docs/performance.md).
+template <class Observer>
+inline constexpr bool wants_causal_score = [] {
+  if constexpr (requires { Observer::causal_score; })
+    return Observer::causal_score;
+  else
+    return true;
+}();
+
 // Whether an observer takes events or segments itself, or inherits the no-ops
 // of observer_base (the lane engine then skips building them, and refuses an
 // observer of segments at compile time).

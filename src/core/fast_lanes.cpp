@@ -261,6 +261,8 @@ class lane_engine {
   // the time at +V and at -V and the slips' relative travel |v dt - dx|,
   // accumulated here piece by piece in simulate()'s order, so the same bits.
   static constexpr bool with_pieces = observes_pieces<observer>;
+  // episode::switches_before and event_counts::switch_time_sum (observer.hpp)
+  static constexpr bool with_causal = wants_causal_score<observer>;
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
@@ -349,7 +351,7 @@ class lane_engine {
     ep_start_[l] = 0.0;
     ep_x_[l] = x;
     ep_v_[l] = v;
-    ep_nsw_[l] = 0;
+    ep_nsw_[l] = 0.0;
     sws_[l] = 0.0;
   }
 
@@ -387,7 +389,7 @@ class lane_engine {
           episode{ep_kind_[l], ep_start_[l], when, ep_x_[l], ep_v_[l], false, ep_nsw_[l]});
     ep_kind_[l] = next_mode;
     ep_start_[l] = when;
-    ep_nsw_[l] = static_cast<std::uint64_t>(n_sw_[l]);
+    if constexpr (with_causal) ep_nsw_[l] = n_sw_[l];
     ep_x_[l] = x_[l];
     ep_v_[l] = v_[l];
   }
@@ -711,7 +713,7 @@ class lane_engine {
     }
     for (unsigned m = pop; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      sws_[l] += t_[l];  // the switch just taken: t_ is its time (simulate()'s order)
+      if constexpr (with_causal) sws_[l] += t_[l];  // the switch just taken, at t_ (simulate()'s order)
       tsw_[l] = next_switch(l);
       if (z_[l] == v_[l] && stk_[l] == 0.0 && static_cast<int>(code_[l]) == ev_slip_sw) contact_at_switch(l);
     }
@@ -772,7 +774,7 @@ class lane_engine {
   std::uint64_t r_[lanes] = {};
   // The episode in progress: kind, start, and x, v at its start.
   double ep_start_[lanes] = {}, ep_x_[lanes] = {}, ep_v_[lanes] = {};
-  std::uint64_t ep_nsw_[lanes] = {};  // episode::switches_before
+  double ep_nsw_[lanes] = {};  // episode::switches_before
   double sws_[lanes] = {};            // event_counts::switch_time_sum
   mode ep_kind_[lanes] = {};
   observer* obs_[lanes] = {};

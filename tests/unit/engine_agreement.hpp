@@ -31,7 +31,7 @@ inline bool same_episode(const episode& a, const episode& b) {
   return a.kind == b.kind && same_bits(a.start, b.start) && same_bits(a.end, b.end) &&
          same_bits(a.position_at_start, b.position_at_start) &&
          same_bits(a.belt_velocity, b.belt_velocity) && a.censored == b.censored &&
-         a.switches_before == b.switches_before;
+         same_bits(a.switches_before, b.switches_before);
 }
 inline bool same_event(const event& a, const event& b) {
   return a.kind == b.kind && same_bits(a.time, b.time) && same_bits(a.position, b.position) &&

@@ -25,6 +25,7 @@
 #include "stickslip/model/oscillator_model.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
+#include "unit/engine_agreement.hpp"
 
 namespace stickslip {
 namespace {
@@ -188,6 +189,30 @@ TEST(FamilyStatistics, OffLeavesThePapersStatisticsAndEmptiesTheFamilys) {
       EXPECT_EQ(y.friction_power.count(), 0u);
       EXPECT_EQ(y.level_fraction[0].count(), 0u);
       EXPECT_EQ(y.stick_duration_onset.total(), 0u);
+    }
+  }
+}
+
+// The study's setting skips the causal score's bookkeeping on the lane
+// engine (paper_statistics_observer) and drops it on the reference engines:
+// the statistics stay the same bits on every engine, for the paper's model
+// and a family model, the score is left empty, and the records carry none of
+// its sums. (Their friction and damping power are not the same there: the
+// lane engine's paper observer does not sum pieces of motion.)
+TEST(FamilyStatistics, OffLeavesNoCausalScoreAndTheEnginesAgree) {
+  for (sweep_spec s : {paper_spec(), family_spec()}) {
+    s.family_statistics = false;
+    testing_support::expect_engines_agree(s, 2);
+    s.keep_records = true;
+    for (const sweep_engine engine : {sweep_engine::fast, sweep_engine::reference}) {
+      s.engine = engine;
+      const auto rs = run_sweep(s, 2);
+      for (const auto& p : rs.points) EXPECT_EQ(p.stats.stick_fraction_causal_score.count(), 0u);
+      for (const auto& r : rs.records[0]) {
+        EXPECT_EQ(r.events.switch_time_sum, 0.0);
+        EXPECT_EQ(r.stick_switch_moment, 0.0);
+        EXPECT_EQ(r.stick_time_moment, 0.0);
+      }
     }
   }
 }

@@ -120,7 +120,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
   auto close_episode = [&](double when, mode next_mode) {
     ep.end = when;
     if (ep.end > ep.start) obs.on_episode(ep);
-    ep = episode{next_mode, when, 0.0, x, v, false, counts.belt_switches};
+    ep = episode{next_mode, when, 0.0, x, v, false, static_cast<double>(counts.belt_switches)};
   };
   // A piece of motion from the current state (observer.hpp).
   auto piece = [&](mode kind, double dt, double x1, double z1) {
