@@ -14,25 +14,12 @@
 #include "stickslip/error.hpp"
 #include "stickslip/precision/common_peak_finder.hpp"
 #include "stickslip/precision/peak_finder.hpp"
+#include "unit/synthetic_curves.hpp"
 
 namespace sp = stickslip::precision;
+using namespace stickslip::testing_support;
 
 namespace {
-
-// A standard normal from a portable generator (std::normal_distribution is
-// not specified bit for bit): Box-Muller.
-double normal(std::mt19937_64& g) {
-  const double u1 = (static_cast<double>(g() >> 11) + 0.5) * 0x1.0p-53;
-  const double u2 = (static_cast<double>(g() >> 11) + 0.5) * 0x1.0p-53;
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-}
-
-struct curve {
-  const char* name;
-  double argmax;
-  std::function<double(double)> mean;
-  std::function<double(double)> sigma;  // per-realization standard deviation
-};
 
 // The sweep's noise model: the sample mean of n realizations is normal with
 // sd sigma/sqrt(n) (n >= 100 here), and its standard error is estimated from
@@ -67,45 +54,12 @@ sp::group_evaluator crn_noisy(const curve& c, double kappa, std::uint64_t proble
     std::vector<std::vector<double>> means(groups);
     for (auto& row : means) {
       const double level = normal(g);
-      double walk = 0.0;
-      for (std::size_t i = 0; i < xs.size(); ++i) {
-        if (i > 0) walk += std::sqrt((xs[i] - xs[i - 1]) / c.argmax) * normal(g);
-        const double se = c.sigma(xs[i]) / std::sqrt(static_cast<double>(n));
-        row.push_back(c.mean(xs[i]) + se * (level + kappa * walk + 0.1 * normal(g)));
-      }
+      const auto e = crn_errors(g, xs, c.argmax, level, kappa, 0.1);
+      for (std::size_t i = 0; i < xs.size(); ++i)
+        row.push_back(c.mean(xs[i]) + c.sigma(xs[i]) / std::sqrt(static_cast<double>(n)) * e[i]);
     }
     return means;
   };
-}
-
-// Curves shaped like R(lambda): a rise and a slower fall.
-curve gamma_shape(double x0, double a, double height, double sigma) {
-  // h (x/x0)^a exp(a (1 - x/x0)): maximizer x0 (d/dx ln f = a/x - a/x0).
-  return {"gamma", x0,
-          [=](double x) { return height * std::pow(x / x0, a) * std::exp(a * (1 - x / x0)); },
-          [=](double x) { return sigma * (0.7 + 0.3 * x / x0 / (1 + x / x0)); }};
-}
-curve lognormal_shape(double x0, double s, double height, double sigma) {
-  // h exp(-(ln x - ln x0 + s^2)^2 / (2 s^2)) ... written with its mode:
-  // maximizer of exp(-(ln x - m)^2/(2 s^2)) in x is exp(m) (symmetric in ln x,
-  // skewed in x).
-  return {"lognormal", x0,
-          [=](double x) {
-            const double u = std::log(x / x0);
-            return 0.1 + height * std::exp(-u * u / (2 * s * s));
-          },
-          [=](double) { return sigma; }};
-}
-curve skewed_quartic(double x0, double height, double sigma) {
-  // h - (u^2 - 0.8 u^3 + 0.3 u^4) with u = x - x0: derivative
-  // u (2 - 2.4 u + 1.2 u^2), whose quadratic factor has no real root, so x0
-  // is the only stationary point and the curve is strongly asymmetric.
-  return {"skewed", x0,
-          [=](double x) {
-            const double u = x - x0;
-            return height - 0.05 * (u * u - 0.8 * u * u * u + 0.3 * u * u * u * u);
-          },
-          [=](double) { return sigma; }};
 }
 
 }  // namespace
@@ -155,44 +109,16 @@ TEST(LocalFit, ArgmaxStandardErrorMatchesTheSpreadOverReplicates) {
 }
 
 TEST(PeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
-  // 240 problems: three families (one symmetric in ln x, two asymmetric),
-  // maximizers from 0.5 to 8, targets from 0.005 to 0.05 relative.
-  int covered = 0, met = 0, total = 0, max_covered = 0;
-  double work = 0;  // sum of realizations / (sigma/target)^2, a cost per unit precision
+  // The 240 problems of synthetic_curves.hpp, with independent points.
+  coverage_tally tally;
   for (int i = 0; i < 240; ++i) {
-    const double x0 = 0.5 * std::pow(16.0, (i % 40) / 39.0);
-    curve c = i % 3 == 0   ? gamma_shape(x0, 1.5 + (i % 7) * 0.5, 0.4, 0.2)
-              : i % 3 == 1 ? lognormal_shape(x0, 0.6 + (i % 5) * 0.2, 0.3, 0.25)
-                           : skewed_quartic(x0, 0.5, 0.05);
-    sp::peak_options o;
-    o.lo = x0 / (3.0 + (i % 4));
-    o.hi = x0 * (4.0 + (i % 5));
-    o.log_scan = true;
-    o.target_halfwidth = x0 * (i % 2 ? 0.01 : 0.03);
-    o.initial_realizations = 400;
-    o.max_total_realizations = std::uint64_t{1} << 40;
-    o.max_stages = 60;
-    const auto r = sp::find_peak(noisy(c, 1000 + i), o);
-    ++total;
-    met += r.target_met;
-    work += std::log(static_cast<double>(r.realizations));
-    if (r.argmax_lo <= c.argmax && c.argmax <= r.argmax_hi) {
-      ++covered;
-    } else {  // allowed while the coverage stays >= 93 %
-      std::printf("not covered: %s x0 %g [%g, %g] bias %g\n", c.name, x0, r.argmax_lo,
-                  r.argmax_hi, r.model_bias);
-    }
-    if (r.max_lo <= c.mean(c.argmax) && c.mean(c.argmax) <= r.max_hi) ++max_covered;
-    if (r.target_met) {
-      EXPECT_LE(r.halfwidth(), o.target_halfwidth * (1 + 1e-12));
-    }
+    const auto p = problem(i);
+    tally.add(p, sp::find_peak(noisy(p.c, 1000 + static_cast<std::uint64_t>(i)), p.base));
   }
-  const double coverage = static_cast<double>(covered) / total;
-  std::printf("argmax coverage %d/%d = %.3f, max coverage %d/%d, target met %d/%d, mean ln realizations %.3f\n",
-              covered, total, coverage, max_covered, total, met, total, work / total);
-  EXPECT_GE(coverage, 0.93);
-  EXPECT_EQ(met, total);
-  EXPECT_GE(static_cast<double>(max_covered) / total, 0.93);
+  tally.print("");
+  EXPECT_GE(tally.coverage(), 0.93);
+  EXPECT_EQ(tally.met, tally.total);
+  EXPECT_GE(tally.max_coverage(), 0.93);
 }
 
 TEST(PeakFinder, RefusesAMaximumAtTheEndOfTheRange) {
@@ -258,43 +184,17 @@ TEST(StudentT, QuantilesMatchTables) {
 // Four seed sets of the 240 problems (960 runs): one set alone gives between
 // 92.5 % and 95.8 %, so the 93 % floor is checked on all of them together.
 TEST(CommonPeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
-  int covered = 0, met = 0, total = 0, max_covered = 0;
-  double work = 0;
-  for (int problem = 0; problem < 960; ++problem) {
-    const int i = problem % 240, seeds = 5000 + 4000 * (problem / 240);
-    const double x0 = 0.5 * std::pow(16.0, (i % 40) / 39.0);
-    curve c = i % 3 == 0   ? gamma_shape(x0, 1.5 + (i % 7) * 0.5, 0.4, 0.2)
-              : i % 3 == 1 ? lognormal_shape(x0, 0.6 + (i % 5) * 0.2, 0.3, 0.25)
-                           : skewed_quartic(x0, 0.5, 0.05);
+  coverage_tally tally;
+  for (int problem_index = 0; problem_index < 960; ++problem_index) {
+    const int i = problem_index % 240, seeds = 5000 + 4000 * (problem_index / 240);
+    const auto p = problem(i);
     sp::common_peak_options o;
-    o.base.lo = x0 / (3.0 + (i % 4));
-    o.base.hi = x0 * (4.0 + (i % 5));
-    o.base.log_scan = true;
-    o.base.target_halfwidth = x0 * (i % 2 ? 0.01 : 0.03);
-    o.base.initial_realizations = 400;
-    o.base.max_total_realizations = std::uint64_t{1} << 40;
-    o.base.max_stages = 60;
-    const double kappa = 0.3 + 0.4 * (i % 5);  // 0.3 .. 1.9
-    const auto r = sp::find_peak_common(crn_noisy(c, kappa, static_cast<std::uint64_t>(seeds + i)), o);
-    ++total;
-    met += r.target_met;
-    work += std::log(static_cast<double>(r.realizations));
-    if (r.argmax_lo <= c.argmax && c.argmax <= r.argmax_hi) {
-      ++covered;
-    } else {
-      std::printf("not covered: %s x0 %g kappa %g [%g, %g] bias %g\n", c.name, x0, kappa,
-                  r.argmax_lo, r.argmax_hi, r.model_bias);
-    }
-    if (r.max_lo <= c.mean(c.argmax) && c.mean(c.argmax) <= r.max_hi) ++max_covered;
-    if (r.target_met) {
-      EXPECT_LE(r.halfwidth(), o.base.target_halfwidth * (1 + 1e-12));
-    }
+    o.base = p.base;
+    tally.add(p, sp::find_peak_common(
+                     crn_noisy(p.c, p.kappa, static_cast<std::uint64_t>(seeds + i)), o));
   }
-  const double coverage = static_cast<double>(covered) / total;
-  std::printf("common: argmax coverage %d/%d = %.3f, max coverage %d/%d, target met %d/%d, mean ln "
-              "realizations %.3f\n",
-              covered, total, coverage, max_covered, total, met, total, work / total);
-  EXPECT_GE(coverage, 0.93);
-  EXPECT_EQ(met, total);
-  EXPECT_GE(static_cast<double>(max_covered) / total, 0.93);
+  tally.print("common: ");
+  EXPECT_GE(tally.coverage(), 0.93);
+  EXPECT_EQ(tally.met, tally.total);
+  EXPECT_GE(tally.max_coverage(), 0.93);
 }

@@ -1,12 +1,11 @@
 #include "stickslip/precision/common_peak_finder.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "stickslip/accumulators/mean_variance.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/precision/batch_means.hpp"
 
 namespace stickslip::precision {
 
@@ -18,47 +17,6 @@ double student_t95(std::size_t dof) noexcept {
   const double g3 = (3 * z7 + 19 * z5 + 17 * z3 - 15 * z) / 384;
   return z + g1 / nu + g2 / (nu * nu) + g3 / (nu * nu * nu);
 }
-
-namespace {
-
-// The least-squares polynomial of the stage's mean curve, with the
-// covariance of its coefficients from the spread of the groups' fits (the
-// fit is linear in the data, so the mean of the groups' coefficients is the
-// fit of the mean curve, and its covariance is theirs over G).
-polynomial_fit fit_groups(const std::vector<double>& xs,
-                          const std::vector<std::vector<double>>& means, std::size_t degree,
-                          double center, double scale) {
-  const std::size_t g = means.size(), k = degree + 1;
-  std::vector<std::vector<double>> coefs;
-  for (const auto& row : means) {
-    std::vector<evaluation> pts;
-    for (std::size_t i = 0; i < xs.size(); ++i) pts.push_back({xs[i], row[i], 1.0});
-    coefs.push_back(fit_polynomial(pts, degree, center, scale).coef);
-  }
-  polynomial_fit f;
-  f.center = center;
-  f.scale = scale;
-  f.coef.assign(k, 0.0);
-  for (const auto& c : coefs)
-    for (std::size_t j = 0; j < k; ++j) f.coef[j] += c[j] / static_cast<double>(g);
-  f.covariance.assign(k, std::vector<double>(k, 0.0));
-  const double norm = static_cast<double>(g) * static_cast<double>(g - 1);
-  for (const auto& c : coefs)
-    for (std::size_t a = 0; a < k; ++a)
-      for (std::size_t b = 0; b < k; ++b)
-        f.covariance[a][b] += (c[a] - f.coef[a]) * (c[b] - f.coef[b]) / norm;
-  f.dof = xs.size() - k;
-  return f;
-}
-
-std::vector<double> mean_curve(const std::vector<std::vector<double>>& means) {
-  std::vector<double> m(means.front().size(), 0.0);
-  for (const auto& row : means)
-    for (std::size_t i = 0; i < m.size(); ++i) m[i] += row[i] / static_cast<double>(means.size());
-  return m;
-}
-
-}  // namespace
 
 peak_result find_peak_common(const group_evaluator& eval, const common_peak_options& co) {
   const peak_options& o = co.base;
@@ -82,12 +40,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
   const auto scan_x = spaced_points(o.lo, o.hi, o.scan_points, o.log_scan);
   const auto scan =
       mean_curve(run(scan_x, per_group_of(o.initial_realizations), groups, 0));
-  const auto best = static_cast<std::size_t>(std::max_element(scan.begin(), scan.end()) - scan.begin());
-  if (best == 0 || best + 1 == scan.size())
-    throw error(exit_code::invalid_input,
-                fmt::format("the largest mean of the first scan is at {} = the {} end of the "
-                            "range [{}, {}]; the maximizer may lie outside: widen the range",
-                            scan_x[best], best == 0 ? "lower" : "upper", o.lo, o.hi));
+  const auto best = interior_scan_maximum(scan_x, scan, o);
   double c = scan_x[best];
   double w = std::max(c - scan_x[best - 1], scan_x[best + 1] - c) * 1.5;
   std::uint64_t n = o.initial_realizations;
@@ -181,12 +134,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
       // data keep the stop rule from favouring an error estimate that is
       // small by chance (optional stopping).
       frozen = true;
-      const double have = static_cast<double>(means.size());
-      add = static_cast<std::size_t>(
-          std::clamp(std::ceil(have * (ratio * ratio - 1.0)), std::ceil(0.5 * have), 3.0 * have));
-      // The next look must be able to stop: at least min_groups_to_stop groups.
-      if (have + static_cast<double>(add) < static_cast<double>(co.min_groups_to_stop))
-        add = co.min_groups_to_stop - means.size();
+      add = groups_to_add(means.size(), ratio, co.min_groups_to_stop);
       continue;
     }
     // Moving on. The bias term falls like w^2 (the quadratic-vs-cubic
