@@ -126,7 +126,7 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   q.over = over;
   q.statistic = &stat;
   q.options = o;
-  q.common_random_numbers = f.method == "common";
+  q.method = precision::peak_method_named("--method", f.method);
   q.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   const std::clock_t cpu_start = std::clock();
   const auto r = precision::find_peak_by_sweeps(q);
@@ -191,9 +191,12 @@ void add_peak_command(CLI::App& app, const invocation&) {
   cmd->add_option("--method", f->method,
                   "common: each stage runs 20 independent groups, common random numbers "
                   "across the points within a group (smooth curves; the interval from the "
-                  "groups' spread); independent: every point its own streams (default common)")
-      ->type_name("common|independent")
-      ->check(CLI::IsMember({"common", "independent"}));
+                  "groups' spread); score: the same groups, but the root of dE[R]/dlambda from "
+                  "the causal score derivative at 3 points (over lambda, statistic R, Poisson "
+                  "switching; far fewer realizations where R(lambda) is flat); independent: "
+                  "every point its own streams (default common)")
+      ->type_name("common|score|independent")
+      ->check(CLI::IsMember({"common", "score", "independent"}));
   cmd->add_option("--threads", f->threads, "worker threads, 0 = all cores (default 0)");
   cmd->add_flag("--progress", f->progress,
                 "print one line per stage on stderr (window, realizations, estimate, about how "

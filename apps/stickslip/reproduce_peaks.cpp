@@ -41,10 +41,12 @@ std::string describe_request(const precision::sweep_peak_request& q) {
   const auto& o = q.options;
   return fmt::format(
       "spec {:016x} over {} statistic {} range {} {} log {} target {} scan {} window {} "
-      "initial {} budget {} stages {} common {}",
+      "initial {} budget {} stages {} common {}{}",
       fingerprint(q.spec), q.over, q.statistic ? q.statistic->summary_name : "(none)", o.lo,
       o.hi, o.log_scan, o.target_halfwidth, o.scan_points, o.window_points,
-      o.initial_realizations, o.max_total_realizations, o.max_stages, q.common_random_numbers);
+      o.initial_realizations, o.max_total_realizations, o.max_stages,
+      q.method == precision::peak_method::common,
+      q.method == precision::peak_method::score ? " score" : "");
 }
 
 std::string kept_peak_text(const std::string& request, const precision::peak_result& p) {

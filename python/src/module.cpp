@@ -376,8 +376,7 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
                  double lo, double hi, double target, const std::string& method,
                  std::uint64_t seed, unsigned threads, std::uint64_t initial,
                  std::uint64_t budget, std::int64_t max_events) {
-  if (method != "common" && method != "independent")
-    throw invalid_value("method", method, "common or independent");
+  const auto peak_method = precision::peak_method_named("method", method);
   precision::sweep_peak_request q;
   q.spec.base = parameters_from(model);
   q.spec.seed = seed;
@@ -390,7 +389,7 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
   q.options.target_halfwidth = target;
   q.options.initial_realizations = initial;
   q.options.max_total_realizations = budget;
-  q.common_random_numbers = method == "common";
+  q.method = peak_method;
   run::stop_token stop;
   run::thread_runner runner(threads);
   q.run = [&](const sweep_spec& s) {

@@ -18,8 +18,10 @@ def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # 
         "first_stick_duration".
     over: the parameter symbol to maximize over (default "lambda").
     range: (lo, hi), required unless over="lambda" (default (0.1, 100)).
-    method: "common" (default: groups with common random numbers) or
-        "independent" (every point its own streams).
+    method: "common" (default: groups with common random numbers),
+        "score" (the same groups; the root of dE[R]/dlambda from the causal
+        score derivative: over="lambda", statistic="R", Poisson switching)
+        or "independent" (every point its own streams).
     seed, threads, initial_realizations, max_realizations, max_events: as
         the CLI's flags.
 

@@ -172,7 +172,7 @@ located_peak locate_peak(const sweep_spec& base, const std::vector<double>& lamb
   q.options.log_scan = q.options.hi >= 4 * q.options.lo;
   q.options.target_halfwidth = halfwidth;
   q.options.max_total_realizations = o.peak_max_realizations;
-  q.common_random_numbers = true;
+  q.method = precision::peak_method::common;
   q.threads = o.threads;
   try {
     l.result = o.locate ? o.locate(q, id) : precision::find_peak_by_sweeps(q);

@@ -54,6 +54,29 @@ lo, hi = a["argmax_ci95"]
 assert lo <= a["argmax"] <= hi and (hi - lo) / 2 <= 0.3 * (1 + 1e-12), a
 PY
 
+# --method score (the root of the causal score derivative, 3 points per
+# stage): the same result for any thread count, the interval around the
+# estimate and within the target.
+run_ok "${args[@]}" --method score --threads 1 && cp "$WORK/stdout" score1.json
+"$BIN" "${args[@]}" --method score --threads 2 --progress >score2.json 2>score.err \
+  || fail "peak --method score --progress"
+grep -qE "^peak: stage 1: lambda in \[[0-9.]+, [0-9.]+\] at 3 points" score.err \
+  || fail "peak --method score --progress: $(head -c 300 score.err)"
+"$PY" - score1.json score2.json one.json <<'PY' || fail "peak --method score"
+import json, sys
+a, b, common = (json.load(open(p)) for p in sys.argv[1:4])
+assert a["method"] == "score" and a["target_met"] is True, a
+lo, hi = a["argmax_ci95"]
+assert lo <= a["argmax"] <= hi and (hi - lo) / 2 <= 0.3 * (1 + 1e-12), a
+for key in a:
+    if key not in ("elapsed_seconds", "cpu_seconds"):
+        assert a[key] == b[key], (key, a[key], b[key])
+# The same peak as the common method's, within both intervals.
+clo, chi = common["argmax_ci95"]
+assert max(lo, clo) <= min(hi, chi), (a["argmax_ci95"], common["argmax_ci95"])
+PY
+pass
+
 # Bad input: exit 2, the flag, the value, the allowed values; nothing on stdout.
 expect_peak_error() {
   local phrases=$1
@@ -76,5 +99,10 @@ expect_peak_error "--initial-realizations|'1'" --initial-realizations 1
 expect_peak_error "mu (friction coefficient)|0|> 0" --mu 0
 expect_peak_error "upper end|widen the range" --mu 5 --k 40 --ta 10 --range 0.05:0.3 \
   --initial-realizations 200
+expect_peak_error "--method|newton|common,score,independent" --method newton
+expect_peak_error "over|'mu'|lambda with the score method" --method score --over mu --range 1:9
+expect_peak_error "statistic|'sticks_per_time'|R with the score method" --method score \
+  --statistic sticks_per_time
+expect_peak_error "method|'score'|Poisson switching" --method score --belt-rates 1,2
 
 finish

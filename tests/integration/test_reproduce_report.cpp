@@ -401,7 +401,7 @@ TEST_F(ReproduceReport, EveryMaximumIsThePeakFindersResult) {
       const auto& q = r.located.request;
       EXPECT_EQ(q.over, "lambda");
       EXPECT_EQ(q.statistic->summary_name, "R");
-      EXPECT_TRUE(q.common_random_numbers);
+      EXPECT_EQ(q.method, precision::peak_method::common);
       EXPECT_EQ(q.spec.base.friction_coefficient, r.mu);
       EXPECT_EQ(q.options.target_halfwidth, study_->options.peak_halfwidth);
       const auto p = precision::find_peak_by_sweeps(q);

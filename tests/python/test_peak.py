@@ -1,5 +1,5 @@
 """stickslip.peak() against the CLI's `peak --format json`: the same numbers,
-bit for bit, for both methods; bad input raises stickslip.Error; Ctrl-C
+bit for bit, for every method; bad input raises stickslip.Error; Ctrl-C
 stops a long search with KeyboardInterrupt."""
 import json
 import subprocess
@@ -16,7 +16,7 @@ CLI = ["peak", "--mu", "5", "--k", "40", "--ta", "10", "--range", "0.3:30",
        "--target-halfwidth", "0.3", "--initial-realizations", "200", "--format", "json"]
 
 
-@pytest.mark.parametrize("method", ["common", "independent"])
+@pytest.mark.parametrize("method", ["common", "score", "independent"])
 def test_peak_equals_the_cli(cli, method):
     ours = stickslip.peak(**ARGS, method=method, threads=2)
     theirs = json.loads(cli(*CLI, "--method", method, "--threads", "1").stdout)
@@ -37,6 +37,8 @@ def test_peak_bad_input_raises_error():
         stickslip.peak(mu=5, lam=2, range=(0.3, 30))
     with pytest.raises(stickslip.Error, match="method"):
         stickslip.peak(**ARGS, method="magic")
+    with pytest.raises(stickslip.Error, match="lambda with the score method"):
+        stickslip.peak(over="mu", range=(1, 9), target_halfwidth=0.1, method="score")
 
 
 LONG_SEARCH = textwrap.dedent("""

@@ -16,9 +16,35 @@ const quantity_info& peak_statistic(const std::string& key, const std::string& n
   throw invalid_value(key, name, "one of the per-realization statistics: " + names);
 }
 
+const char* to_string(peak_method m) noexcept {
+  switch (m) {
+    case peak_method::independent: return "independent";
+    case peak_method::common: return "common";
+    case peak_method::score: return "score";
+  }
+  return "?";
+}
+
+peak_method peak_method_named(const std::string& key, const std::string& name) {
+  for (auto m : {peak_method::independent, peak_method::common, peak_method::score})
+    if (name == to_string(m)) return m;
+  throw invalid_value(key, name, "independent, common or score");
+}
+
 peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
   if (!q.statistic) throw invalid_value("statistic", "(none)", "a per-realization statistic");
   validate(q.options);
+  if (q.method == peak_method::score) {
+    // The causal score is the derivative of R over the Poisson switch rate.
+    if (q.over != "lambda")
+      throw invalid_value("over", q.over, "lambda with the score method (the derivative is over the switch rate)");
+    if (q.statistic != &peak_statistic("statistic", "R"))
+      throw invalid_value("statistic", q.statistic->summary_name, "R with the score method");
+    if (!has_poisson_switching(q.spec.base))
+      throw invalid_value("method", "score",
+                          "common or independent for a belt given its rates or generator (the "
+                          "score method needs Poisson switching at rate lambda)");
+  }
   // Both ends of the range must be valid models (and within the work bound).
   for (double x : {q.options.lo, q.options.hi}) {
     auto check = q.spec;
@@ -46,7 +72,29 @@ peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
     validate(s);
     return q.run ? q.run(s) : run_sweep(s, q.threads);
   };
-  if (q.common_random_numbers) {
+  if (q.method == peak_method::score) {
+    // Each stage: `groups` sweeps with common random numbers across the
+    // points (seeds as the common method's); each point's derivative is the
+    // causal score with the finder's fixed baseline (exactly unbiased).
+    score_peak_options so;
+    so.base = q.options;
+    const score_group_evaluator eval = [&](const std::vector<double>& xs, std::uint64_t n,
+                                           std::size_t groups, std::uint64_t stage,
+                                           double baseline) {
+      std::vector<score_group> out(groups);
+      for (std::size_t g = 0; g < groups; ++g) {
+        const auto result = sweep_at(xs, n, stage_seed(stage_seed(q.spec.seed, stage), g), true);
+        for (const auto& p : result.points) {
+          out[g].value.push_back((p.stats.*moments).mean());
+          out[g].derivative.push_back(
+              p.stats.stick_fraction_causal_score.derivative_with_baseline(baseline));
+        }
+      }
+      return out;
+    };
+    return find_peak_score(eval, so);
+  }
+  if (q.method == peak_method::common) {
     // Each stage: `groups` sweeps with common random numbers across the
     // points, seeds hashed from (seed, stage, group).
     common_peak_options co;
