@@ -25,6 +25,12 @@ namespace stickslip::precision {
                                         const std::vector<std::vector<double>>& rows,
                                         std::size_t degree, double center, double scale);
 
+// The polynomial whose coefficients are the mean of the groups' (coefs[g]
+// in t = (x - center)/scale), with their batch-means covariance: what
+// fit_groups does after fitting each group.
+[[nodiscard]] polynomial_fit average_of_groups(const std::vector<std::vector<double>>& coefs,
+                                               double center, double scale);
+
 // The index of the highest mean of the first scan; throws stickslip::error
 // (invalid_input) when it is at an end of the range, where the maximizer
 // may lie outside.

@@ -2,11 +2,15 @@
 // returns, per group and point, the group's mean of the statistic and an
 // unbiased estimate of its derivative in x (for R(lambda), the causal
 // likelihood-ratio estimator), and the maximizer is the root of the mean
-// derivative. Each stage evaluates 3 points c - w, c, c + w in G independent
-// groups; the quadratic through the three derivative values has a root whose
-// bias is third order in w, so the window need not shrink much, and the
-// sampling error of the root is that of the derivative at the root, which
-// does not grow as the window shrinks (unlike a maximizer fitted to values).
+// derivative D. Each stage evaluates 3 points c - w, c, c + w in G
+// independent groups, common random numbers across the points within a
+// group; D(t) = a + b t + q t^2 near the root, with b and q from the
+// derivatives at the 3 points and a = D(c) the best mix of the derivative
+// at the centre and the values' central difference corrected by q (exact to
+// fourth order). The root's sampling error is a's over |R''|, which does not
+// grow as the window shrinks (unlike a maximizer fitted to values). Where
+// the values do not pay (their variance above half the derivative's), the
+// ends get 1/8 of the centre's realizations and a is the derivative alone.
 // Coefficient covariances are batch means over the groups, as in
 // find_peak_common. No I/O.
 #pragma once
@@ -40,10 +44,6 @@ struct score_peak_options {
   // window) and a sampling part of sampling_share x the target (by n), as in
   // find_peak_common.
   double bias_share = 0.2, sampling_share = 0.8;
-  // Realizations at each end of the window per realization at its centre:
-  // the ends only give the slope and curvature, whose errors enter the root
-  // multiplied by t* and t*^2 (docs/precision.md).
-  double end_share = 0.125;
 };
 
 // The result is the last stage's (a frozen window's stages pool their

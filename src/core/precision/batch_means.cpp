@@ -19,13 +19,21 @@ std::vector<double> mean_curve(const std::vector<std::vector<double>>& rows) {
 polynomial_fit fit_groups(const std::vector<double>& xs,
                           const std::vector<std::vector<double>>& rows, std::size_t degree,
                           double center, double scale) {
-  const std::size_t g = rows.size(), k = degree + 1;
+  const std::size_t k = degree + 1;
   std::vector<std::vector<double>> coefs;
   for (const auto& row : rows) {
     std::vector<evaluation> pts;
     for (std::size_t i = 0; i < xs.size(); ++i) pts.push_back({xs[i], row[i], 1.0});
     coefs.push_back(fit_polynomial(pts, degree, center, scale).coef);
   }
+  auto f = average_of_groups(coefs, center, scale);
+  f.dof = xs.size() - k;
+  return f;
+}
+
+polynomial_fit average_of_groups(const std::vector<std::vector<double>>& coefs, double center,
+                                 double scale) {
+  const std::size_t g = coefs.size(), k = coefs.front().size();
   polynomial_fit f;
   f.center = center;
   f.scale = scale;
@@ -38,7 +46,6 @@ polynomial_fit fit_groups(const std::vector<double>& xs,
     for (std::size_t a = 0; a < k; ++a)
       for (std::size_t b = 0; b < k; ++b)
         f.covariance[a][b] += (c[a] - f.coef[a]) * (c[b] - f.coef[b]) / norm;
-  f.dof = xs.size() - k;
   return f;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <utility>
 
 #include "stickslip/error.hpp"
 #include "stickslip/precision/batch_means.hpp"
@@ -45,54 +46,71 @@ double root_std_error(const polynomial_fit& p, double r) {
   return std::sqrt(std::max(var, 0.0));
 }
 
+// One group's estimates at the 3 points (left, centre, right) of a window
+// of half-width `half`, in t = (x - mid)/half: the derivative D(t) ~ a + b t
+// + q t^2 and the checks of the bias terms.
+struct group_estimate {
+  double d_centre, d_values;  // D(0): the score at the centre; from the values
+  double b, q;                // from the scores at the 3 points
+  double b_values;            // b from the values' second difference
+};
+group_estimate estimate_of(const std::vector<double>& v, const std::vector<double>& d,
+                           double half) {
+  group_estimate e;
+  e.d_centre = d[1];
+  e.b = 0.5 * (d[2] - d[0]);
+  e.q = 0.5 * (d[0] + d[2] - 2.0 * d[1]);
+  // The values' central difference is D(0) + R''' h^2/6 + R^(5) h^4/120;
+  // the scores' second difference gives R''' h^2/6 = q/3 (+ R^(5) h^4/72),
+  // so the corrected difference is D(0) to O(h^4). With common random
+  // numbers it has a small variance where neighbouring paths stay coupled
+  // (mu = 5: 15x less than the score at the centre for h = 0.4; mu = 0.5:
+  // about the score's), and it is nearly uncorrelated with the score.
+  e.d_values = (v[2] - v[0]) / (2.0 * half) - e.q / 3.0;
+  // R'' h^2 = V(+) + V(-) - 2 V(0) (+ R'''' h^4/12), against b = R'' h
+  // (+ R'''' h^3/6) from the scores.
+  e.b_values = (v[2] + v[0] - 2.0 * v[1]) / half;
+  return e;
+}
+
+// mean and standard error of f over the groups.
+template <class F>
+std::pair<double, double> group_mean(const std::vector<group_estimate>& es, F f) {
+  double m = 0.0, m2 = 0.0;
+  const auto g = static_cast<double>(es.size());
+  for (const auto& e : es) m += f(e) / g;
+  for (const auto& e : es) m2 += (f(e) - m) * (f(e) - m);
+  return {m, std::sqrt(m2 / (g * (g - 1.0)))};
+}
+
 }  // namespace
 
 peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_options& so) {
   const peak_options& o = so.base;
   validate(o);
   if (so.groups < 5) throw invalid_parameter("groups", static_cast<double>(so.groups), ">= 5");
-  if (!(so.end_share > 0.0 && so.end_share <= 1.0))
-    throw invalid_parameter("end share", so.end_share, "in (0, 1]");
   const std::size_t groups = so.groups;
   const double target = o.target_halfwidth;
   std::uint64_t total = 0;
   double baseline = 0.0;  // the scan runs with 0 (any fixed value is unbiased)
   std::vector<std::vector<double>> values, derivatives;  // per group, per point
+  auto run = [&](const std::vector<double>& xs, std::uint64_t per_group, std::size_t count,
+                 std::uint64_t stage) {
+    for (auto& g : eval(xs, per_group, count, stage, baseline)) {
+      values.push_back(std::move(g.value));
+      derivatives.push_back(std::move(g.derivative));
+    }
+    total += per_group * count * xs.size();
+  };
   const auto per_group_of = [&](std::uint64_t n) {
     return std::max<std::uint64_t>(2, (n + groups - 1) / groups);
   };
-
-  // 1. The scan over the range, as find_peak_common's. The first window
-  // reaches the best point's neighbours: the maximizer lies between them
-  // unless the scan's noise is comparable to the curve's differences (then
-  // the first stages walk, below).
-  const auto scan_x = spaced_points(o.lo, o.hi, o.scan_points, o.log_scan);
-  for (auto& g : eval(scan_x, per_group_of(o.initial_realizations), groups, 0, baseline))
-    values.push_back(std::move(g.value));
-  total += per_group_of(o.initial_realizations) * groups * scan_x.size();
-  const auto scan = mean_curve(values);
-  const auto best = interior_scan_maximum(scan_x, scan, o);
-  double c = scan_x[best];
-  double w = std::max(c - scan_x[best - 1], scan_x[best + 1] - c);
-  // The scan's window spans two scan intervals and may be wider than the
-  // curve's own scale, where the 3-point model's next-order error exceeds
-  // its bias term (a noisy q hides it: a synthetic skewed quartic stopped
-  // there 0.35 from its maximizer, 4 - 8 half-widths). A window is trusted
-  // to freeze or stop only once it has shrunk below this one.
-  const double scan_w = w;
-  // The control's coefficient from now on: the scan's highest mean is near
-  // the peak's value, which minimizes the derivative estimator's variance
-  // there; it stays fixed, so every stage's estimate stays unbiased.
-  baseline = scan[best];
-  std::uint64_t n = o.initial_realizations;
-
-  // One stage's groups at the 3 points: the centre with `per_group`
-  // realizations, the two ends with end_share of them, in two calls of the
-  // same stage (each group's seed depends on the stage and the group only,
-  // so a group's ends share their random numbers with its centre's first
-  // realizations). Rows are (left, centre, right).
-  const auto run_stage = [&](const std::vector<double>& xs, std::uint64_t per_group,
-                             std::uint64_t per_end, std::size_t count, std::uint64_t stage) {
+  // The centre design: the centre with `per_group` realizations and the two
+  // ends with 1/8 of them, in two calls of the same stage (a group's seed
+  // depends on the stage and the group only, so its ends share their random
+  // numbers with its centre's first realizations). Rows (left, centre, right).
+  const auto run_centre = [&](const std::vector<double>& xs, std::uint64_t per_group,
+                              std::uint64_t per_end, std::size_t count, std::uint64_t stage) {
     auto centre = eval({xs[1]}, per_group, count, stage, baseline);
     auto ends = eval({xs[0], xs[2]}, per_end, count, stage, baseline);
     for (std::size_t g = 0; g < count; ++g) {
@@ -103,34 +121,66 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     total += (per_group + 2 * per_end) * count;
   };
 
-  // 2. Stages: 3 points c - w, c, c + w. Near the root the estimate is the
-  // Newton step c - D(c)/D'(c), corrected by the quadratic through the 3
-  // derivative values: its sampling error is the centre's derivative error
-  // over |R''|, so the centre gets the realizations; the ends only give the
-  // slope and the curvature, whose errors enter multiplied by t* and t*^2
-  // (small once the root is central), and get end_share of them. While the
-  // window moves and shrinks each stage runs `groups` new groups; once the
-  // root is central and the bias term small the window is frozen and later
-  // stages add groups at the same points, as in find_peak_common.
+  // 1. The scan over the range, as find_peak_common's.
+  const auto scan_x = spaced_points(o.lo, o.hi, o.scan_points, o.log_scan);
+  run(scan_x, per_group_of(o.initial_realizations), groups, 0);
+  const auto scan = mean_curve(values);
+  const auto best = interior_scan_maximum(scan_x, scan, o);
+  double c = scan_x[best];
+  double w = std::max(c - scan_x[best - 1], scan_x[best + 1] - c);
+  // The scan's window spans two scan intervals and may be wider than the
+  // curve's own scale, where the 3-point model's next-order error exceeds
+  // what its bias terms show while the noise is large (a synthetic skewed
+  // quartic stopped there 0.35 from its maximizer). A window is trusted to
+  // freeze or stop only once it has shrunk below this one.
+  const double scan_w = w;
+  // The control's coefficient from now on: the scan's highest mean is near
+  // the peak's value, which minimizes the score's variance there; it stays
+  // fixed, so every stage's estimate stays unbiased.
+  baseline = scan[best];
+  std::uint64_t n = o.initial_realizations;
+
+  // 2. Stages: 3 points c - w, c, c + w, every group with common random
+  // numbers across them. D(t) = a + b t + q t^2: b and q from the scores at
+  // the 3 points (strongly correlated, so their differences are precise), a
+  // = D at the centre as the best combination of two estimates, the score
+  // there and the values' corrected central difference (estimate_of), with
+  // the weight that minimizes the variance of the mix over the stage's
+  // groups. The estimate is the falling root of the mean polynomial; its
+  // interval is batch means over the groups, as find_peak_common's. While
+  // the window moves and shrinks each stage runs `groups` new groups; once
+  // the root is central and the bias term small the window is frozen and
+  // later stages add groups at the same points.
   peak_result r;
   bool frozen = false;
   std::vector<double> xs;
   std::uint64_t per_group = 0, per_end = 0;
   std::size_t add = groups;
+  // Which design a new window gets. The values' estimate of D at the centre
+  // needs all 3 points at n realizations (3n per group), the score alone
+  // only the centre (n + 2 n/8 with the ends for b and q): the values pay
+  // when their per-realization variance is below half the score's (then
+  // n triplets inform more than 3n centre-only realizations). The first
+  // window measures both; later ones follow the last window's measurement
+  // (mu = 5: 0.12 at h = 0.2; mu = 0.5: ~0.8 at h = 0.17).
+  bool values_design = true;
+  double alpha_prior = 0.5;  // the score's weight in a values design's D(0)
   for (std::size_t stage = 1; stage <= o.max_stages; ++stage) {
     const double wlo = std::max(o.lo, c - w), whi = std::min(o.hi, c + w);
     if (!frozen) {
       xs = spaced_points(wlo, whi, 3, false);
       per_group = per_group_of(n);
-      per_end = std::max<std::uint64_t>(
-          2, static_cast<std::uint64_t>(std::ceil(so.end_share * static_cast<double>(per_group))));
+      per_end = values_design ? per_group : std::max<std::uint64_t>(2, (per_group + 7) / 8);
       add = groups;
       values.clear();
       derivatives.clear();
     }
     const std::uint64_t cost = (per_group + 2 * per_end) * add;
     if (total + cost > o.max_total_realizations) break;
-    run_stage(xs, per_group, per_end, add, stage);
+    if (values_design)
+      run(xs, per_group, add, stage);
+    else
+      run_centre(xs, per_group, per_end, add, stage);
     r.stages = stage;
     peak_stage progress{stage, wlo, whi, xs.size(), cost, total};
     const auto report = [&] {
@@ -138,7 +188,30 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     };
     const double t_quantile = student_t95(derivatives.size() - 1);
     const double mid = xs[1], half = 0.5 * (xs[2] - xs[0]);  // t = (x - mid)/half
-    const auto dquad = fit_groups(xs, derivatives, 2, mid, half);  // exact through the 3 points
+    std::vector<group_estimate> es;
+    for (std::size_t g = 0; g < derivatives.size(); ++g)
+      es.push_back(estimate_of(values[g], derivatives[g], half));
+    // The weight of the score in a: Var(mix) is least at
+    // (V_v - C) / (V_s + V_v - 2 C), from the groups' spread.
+    const auto [ms, ss] = group_mean(es, [](const group_estimate& e) { return e.d_centre; });
+    const auto [mv, sv] = group_mean(es, [](const group_estimate& e) { return e.d_values; });
+    double cov = 0.0;
+    for (const auto& e : es) cov += (e.d_centre - ms) * (e.d_values - mv);
+    cov /= static_cast<double>(es.size()) * static_cast<double>(es.size() - 1);
+    const double denom = ss * ss + sv * sv - 2.0 * cov;
+    // The weight comes from the previous stage's groups: weights fitted to
+    // the same groups would favour the mixes whose noise is small by chance
+    // (the stand-in for mu = 5 covered 93.3 % so, docs/precision.md).
+    const double alpha = values_design ? alpha_prior : 1.0;
+    if (values_design && denom > 0.0) alpha_prior = std::clamp((sv * sv - cov) / denom, 0.0, 1.0);
+    // Per realization: the score's variance at the centre, the values'.
+    const double groups_n = static_cast<double>(es.size());
+    const double var_score = ss * ss * groups_n * static_cast<double>(per_group);
+    const double var_values = sv * sv * groups_n * static_cast<double>(per_end);
+    std::vector<std::vector<double>> coefs;
+    for (const auto& e : es)
+      coefs.push_back({alpha * e.d_centre + (1.0 - alpha) * e.d_values, e.b, e.q});
+    const auto dquad = average_of_groups(coefs, mid, half);
     const double tq = falling_root(dquad, -1.0, 1.0);
     if (!(dquad.coef[1] < 0) || std::isnan(tq)) {
       // The derivative does not fall through zero in the window: the peak
@@ -151,34 +224,39 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
       continue;
     }
     const double xq = mid + half * tq;
-    // The bias term, in two parts. (1) The size of the quadratic's
-    // correction to the Newton step from the centre, |x_q - (mid - D/D')|
-    // ~ |q| t*^2/|b| (t in half-windows). (2) Half the bias of the line
-    // through the 3 points, ~ |q|/(3 |b|) half-windows, with q less two of
-    // its standard errors: the 3-point model leaves out the next order, the
-    // interpolation error R'''' t* (t*^2 - 1) w^3/6 over |R''|, which is
-    // below (2) while the window is small against the curve's own scale, and
-    // (2) keeps a wide window from stopping on a curvature the noise hides;
-    // the noise is taken out so that (2) fades as the window shrinks (with
-    // the ends' few realizations q is noisy; a noisy floor would cost
-    // realizations, docs/precision.md). The synthetic problems check both.
-    const double b = dquad.coef[1], q = dquad.coef[2];
+    // The bias term, the sum of three noise-corrected parts (each less two
+    // of its standard errors, so that they fade as the window shrinks or
+    // the noise falls; what they bound is of higher order):
+    // (1) the size of the quadratic's correction to the Newton step from
+    //     the centre, |x_q - (mid - a/b)| ~ |q| t*^2/|b| half-windows: the
+    //     next order of the local model is below it near the root;
+    // (2) the values' estimate of a against the score's (their difference
+    //     is the O(h^4) error of the values' one), times its weight;
+    // (3) the two estimates of b against each other: their difference is
+    //     R'''' h^3/12, half the scores' error R'''' h^3/6, which moves the
+    //     root by t* db/b.
+    const double b = dquad.coef[1];
     const double tnewton = -dquad.coef[0] / b;
-    const double q_signal = std::max(0.0, std::abs(q) - 2.0 * std::sqrt(dquad.covariance[2][2]));
+    const auto [dv, dv_se] =
+        group_mean(es, [](const group_estimate& e) { return e.d_values - e.d_centre; });
+    const auto [db, db_se] =
+        group_mean(es, [](const group_estimate& e) { return e.b_values - e.b; });
+    const double values_bias = (1.0 - alpha) * std::max(0.0, std::abs(dv) - 2.0 * dv_se);
+    const double slope_bias = 2.0 * std::abs(tq) * std::max(0.0, std::abs(db) - 2.0 * db_se);
     r.argmax = xq;
     r.sampling_halfwidth = t_quantile * half * root_std_error(dquad, tq);
-    r.model_bias = half * std::max(std::abs(tq - tnewton), q_signal * 2.0 / (3.0 * std::abs(b)));
+    r.model_bias = half * (std::abs(tq - tnewton) + (values_bias + slope_bias) / std::abs(b));
     const double hw = r.sampling_halfwidth + r.model_bias;
     r.argmax_lo = xq - hw;
     r.argmax_hi = xq + hw;
     // 3. The maximum: the quadratic through the 3 values at x_q (x_q treated
     // as fixed: the mean is flat there), against the second-order Taylor
-    // expansion from the centre with the derivative fit's D and D'. Both are
-    // second-order estimates of the same value; their difference bounds the
-    // local model's error.
+    // expansion from the centre with a and b. Both are second-order
+    // estimates of the same value; their difference bounds the local
+    // model's error.
     const auto vquad = fit_groups(xs, values, 2, mid, half);
     const double u = xq - mid;
-    const double taylor = vquad.value(0) + dquad.coef[0] * u + dquad.coef[1] / half * u * u / 2;
+    const double taylor = vquad.value(0) + dquad.coef[0] * u + b / half * u * u / 2;
     r.max = vquad.value(tq);
     const double max_hw = t_quantile * vquad.value_std_error(tq) + std::abs(r.max - taylor);
     r.max_lo = r.max - max_hw;
@@ -191,10 +269,8 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     progress.sampling_halfwidth = r.sampling_halfwidth;
     progress.model_bias = r.model_bias;
     report();
-    // 4. Stop with the root in the central 60 % of the window (the errors of
-    // the ends enter with t* and t*^2, and the interpolation error grows
-    // towards them) and enough groups for a stable error estimate
-    // (find_peak_common's reason).
+    // 4. Stop with the root in the central 60 % of the window and enough
+    // groups for a stable error estimate (find_peak_common's reason).
     const bool centred = std::abs(tq) <= 0.6, trusted = w < scan_w;
     if (hw <= target && centred && trusted && derivatives.size() >= so.min_groups_to_stop) {
       r.target_met = true;
@@ -203,19 +279,23 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     // 5. The sampling part falls like 1/sqrt(groups or n); the frozen
     // window adds what it needs (find_peak_common's rule).
     const double ratio = r.sampling_halfwidth / (so.sampling_share * target);
-    if (centred && trusted && r.model_bias <= 1.5 * so.bias_share * target) {
+    // A frozen window stays frozen while its root is central and its bias
+    // term leaves room for the sampling part (half the target): moving
+    // would throw its groups away for a small gain (mu = 5: a window whose
+    // bias term rose from 0.0029 to 0.0031 moved and lost 40 % of the work).
+    const double freeze_limit = (frozen ? 0.5 : 1.5 * so.bias_share) * target;
+    if (centred && trusted && r.model_bias <= freeze_limit) {
       frozen = true;
       add = groups_to_add(derivatives.size(), ratio, so.min_groups_to_stop);
       continue;
     }
+    values_design = var_values < 0.5 * var_score;
     // Moving on: re-centre on the root and shrink the window so that the
-    // bias term (~ w^2 at a given t*) would be bias_share of the target, at
-    // most 0.4x per stage; but keep the root's 95 % interval inside the
-    // window (w at least the sampling half-width) and w at least half the
-    // target (a narrower window buys nothing). The root's standard error is
-    // the derivative's at the root over |R''|, which to first order does not
-    // depend on w: n alone sets the sampling part, n *= ratio^2 (at most 8x
-    // per stage, as find_peak_common).
+    // bias term would be bias_share of the target (each of its parts falls
+    // at least like w^2), at most 0.4x per stage and at least 0.5x for the
+    // scan's window; but keep the root's 95 % interval inside the window
+    // and w at least half the target. n *= ratio^2 (at most 8x per stage,
+    // as find_peak_common).
     frozen = false;
     double shrink =
         r.model_bias > 0 ? std::clamp(std::sqrt(so.bias_share * target / r.model_bias), 0.4, 1.0)
