@@ -30,7 +30,7 @@ struct peak_flags {
   model_flags model;
   std::string statistic = "R", over = "lambda", range, target = "0.01";
   std::string initial = "1000", budget = "400000000", threads = "0", format = "text";
-  std::string method = "common";
+  std::string method = "auto";
   bool progress = false;  // one line per stage on stderr (default: when it is a terminal)
 };
 
@@ -126,7 +126,7 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
   q.over = over;
   q.statistic = &stat;
   q.options = o;
-  q.method = precision::peak_method_named("--method", f.method);
+  q.method = precision::peak_method_named("--method", f.method, q);
   q.threads = static_cast<unsigned>(io::parse_unsigned("--threads", f.threads, 0, 1u << 16));
   const std::clock_t cpu_start = std::clock();
   const auto r = precision::find_peak_by_sweeps(q);
@@ -142,7 +142,7 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
         "  \"argmax_model_bias\": {},\n  \"max\": {},\n  \"max_ci95\": [{}, {}],\n"
         "  \"realizations\": {},\n  \"stages\": {},\n  \"window\": [{}, {}],\n  \"seed\": {},\n"
         "  \"elapsed_seconds\": {},\n  \"cpu_seconds\": {}\n}}\n",
-        stat.summary_name, f.method, over, json_number(lo), json_number(hi),
+        stat.summary_name, precision::to_string(q.method), over, json_number(lo), json_number(hi),
         json_number(o.target_halfwidth), r.target_met ? "true" : "false", json_number(r.argmax),
         json_number(r.argmax_lo), json_number(r.argmax_hi), json_number(r.sampling_halfwidth),
         json_number(r.model_bias), json_number(r.max), json_number(r.max_lo),
@@ -189,14 +189,14 @@ void add_peak_command(CLI::App& app, const invocation&) {
                   "budget of realizations over all stages (default 400000000)")
       ->type_name("N");
   cmd->add_option("--method", f->method,
-                  "common: each stage runs 20 independent groups, common random numbers "
-                  "across the points within a group (smooth curves; the interval from the "
-                  "groups' spread); score: the same groups, but the root of dE[R]/dlambda from "
-                  "the causal score derivative at 3 points (over lambda, statistic R, Poisson "
-                  "switching; far fewer realizations where R(lambda) is flat); independent: "
-                  "every point its own streams (default common)")
-      ->type_name("common|score|independent")
-      ->check(CLI::IsMember({"common", "score", "independent"}));
+                  "score: the root of dE[R]/dlambda, from the causal score derivative and the "
+                  "values at 3 points, in 20 independent groups with common random numbers "
+                  "across the points (over lambda, statistic R, Poisson switching); common: "
+                  "the same groups at 5 points, a cubic fitted to the values; independent: "
+                  "every point its own streams; auto: score where it applies, else common "
+                  "(default auto)")
+      ->type_name("auto|score|common|independent")
+      ->check(CLI::IsMember({"auto", "score", "common", "independent"}));
   cmd->add_option("--threads", f->threads, "worker threads, 0 = all cores (default 0)");
   cmd->add_flag("--progress", f->progress,
                 "print one line per stage on stderr (window, realizations, estimate, about how "

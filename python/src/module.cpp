@@ -376,7 +376,6 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
                  double lo, double hi, double target, const std::string& method,
                  std::uint64_t seed, unsigned threads, std::uint64_t initial,
                  std::uint64_t budget, std::int64_t max_events) {
-  const auto peak_method = precision::peak_method_named("method", method);
   precision::sweep_peak_request q;
   q.spec.base = parameters_from(model);
   q.spec.seed = seed;
@@ -389,7 +388,7 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
   q.options.target_halfwidth = target;
   q.options.initial_realizations = initial;
   q.options.max_total_realizations = budget;
-  q.method = peak_method;
+  q.method = precision::peak_method_named("method", method, q);
   run::stop_token stop;
   run::thread_runner runner(threads);
   q.run = [&](const sweep_spec& s) {
@@ -411,7 +410,7 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
   if (interrupted) throw py::error_already_set();
   py::dict d;
   d["statistic"] = q.statistic->summary_name;
-  d["method"] = method;
+  d["method"] = precision::to_string(q.method);
   d["over"] = q.over;
   d["range"] = py::make_tuple(lo, hi);
   d["target_halfwidth"] = target;

@@ -5,7 +5,7 @@ from ._parameters import belt_arguments, describe, model_arguments
 
 
 def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # noqa: A002
-         method="common", seed=1, threads=0, initial_realizations=1000,
+         method="auto", seed=1, threads=0, initial_realizations=1000,
          max_realizations=400_000_000, max_events=None, belt_levels=None, belt_rates=None,
          belt_generator=None, **model):
     """Locate the maximizer of the mean of `statistic` over the parameter
@@ -18,10 +18,12 @@ def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # 
         "first_stick_duration".
     over: the parameter symbol to maximize over (default "lambda").
     range: (lo, hi), required unless over="lambda" (default (0.1, 100)).
-    method: "common" (default: groups with common random numbers),
-        "score" (the same groups; the root of dE[R]/dlambda from the causal
-        score derivative: over="lambda", statistic="R", Poisson switching)
-        or "independent" (every point its own streams).
+    method: "auto" (default: "score" where it applies, else "common"),
+        "score" (the root of dE[R]/dlambda from the causal score derivative
+        and the values at 3 points, in groups with common random numbers:
+        over="lambda", statistic="R", Poisson switching), "common" (the same
+        groups, a cubic fitted to the values at 5 points) or "independent"
+        (every point its own streams).
     seed, threads, initial_realizations, max_realizations, max_events: as
         the CLI's flags.
 

@@ -21,7 +21,7 @@ mlo, mhi = a["max_ci95"]
 assert mlo <= a["max"] <= mhi and 0 < a["max"] < 1, a
 assert isinstance(a["realizations"], int) and a["realizations"] > 0, a
 assert a["statistic"] == "R" and a["over"] == "lambda", a
-assert a["method"] == "common", a  # the default: common random numbers, batch-means interval
+assert a["method"] == "score", a  # the default (auto): score, as over lambda for R
 # Any thread count: the same numbers, bit for bit (only the timings differ).
 for key in a:
     if key not in ("elapsed_seconds", "cpu_seconds"):
@@ -32,7 +32,7 @@ pass
 # --progress: one line per stage on stderr with the window, the realizations
 # and the estimate; stdout (the JSON) is the same as without it.
 "$BIN" "${args[@]}" --threads 2 --progress >prog.json 2>prog.err || fail "peak --progress"
-grep -qE "^peak: stage 1: lambda in \[[0-9.]+, [0-9.]+\] at 5 points, \+[0-9.e+]+ realizations" prog.err \
+grep -qE "^peak: stage 1: lambda in \[[0-9.]+, [0-9.]+\] at 3 points, \+[0-9.e+]+ realizations" prog.err \
   || fail "peak --progress stage line: $(head -c 300 prog.err)"
 grep -qE "lambda\* = [0-9.]+ \+- [0-9.e-]+ \(sampling" prog.err || fail "peak --progress estimate: $(cat prog.err)"
 "$PY" - one.json prog.json <<'PY' || fail "peak --progress changed the result"
@@ -55,22 +55,25 @@ assert lo <= a["argmax"] <= hi and (hi - lo) / 2 <= 0.3 * (1 + 1e-12), a
 PY
 
 # --method score (the root of the causal score derivative, 3 points per
-# stage): the same result for any thread count, the interval around the
-# estimate and within the target.
+# stage; the default here): the same result for any thread count and as
+# the default's, the interval around the estimate and within the target,
+# and the same peak as --method common's.
+run_ok "${args[@]}" --method common --threads 2 && cp "$WORK/stdout" common.json
 run_ok "${args[@]}" --method score --threads 1 && cp "$WORK/stdout" score1.json
 "$BIN" "${args[@]}" --method score --threads 2 --progress >score2.json 2>score.err \
   || fail "peak --method score --progress"
 grep -qE "^peak: stage 1: lambda in \[[0-9.]+, [0-9.]+\] at 3 points" score.err \
   || fail "peak --method score --progress: $(head -c 300 score.err)"
-"$PY" - score1.json score2.json one.json <<'PY' || fail "peak --method score"
+"$PY" - score1.json score2.json common.json one.json <<'PY' || fail "peak --method score"
 import json, sys
-a, b, common = (json.load(open(p)) for p in sys.argv[1:4])
+a, b, common, default = (json.load(open(p)) for p in sys.argv[1:5])
+assert common["method"] == "common" and common["target_met"] is True, common
 assert a["method"] == "score" and a["target_met"] is True, a
 lo, hi = a["argmax_ci95"]
 assert lo <= a["argmax"] <= hi and (hi - lo) / 2 <= 0.3 * (1 + 1e-12), a
 for key in a:
     if key not in ("elapsed_seconds", "cpu_seconds"):
-        assert a[key] == b[key], (key, a[key], b[key])
+        assert a[key] == b[key] == default[key], (key, a[key], b[key], default[key])
 # The same peak as the common method's, within both intervals.
 clo, chi = common["argmax_ci95"]
 assert max(lo, clo) <= min(hi, chi), (a["argmax_ci95"], common["argmax_ci95"])
@@ -99,7 +102,7 @@ expect_peak_error "--initial-realizations|'1'" --initial-realizations 1
 expect_peak_error "mu (friction coefficient)|0|> 0" --mu 0
 expect_peak_error "upper end|widen the range" --mu 5 --k 40 --ta 10 --range 0.05:0.3 \
   --initial-realizations 200
-expect_peak_error "--method|newton|common,score,independent" --method newton
+expect_peak_error "--method|newton|auto,score,common,independent" --method newton
 expect_peak_error "over|'mu'|lambda with the score method" --method score --over mu --range 1:9
 expect_peak_error "statistic|'sticks_per_time'|R with the score method" --method score \
   --statistic sticks_per_time

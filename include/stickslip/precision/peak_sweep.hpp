@@ -35,10 +35,16 @@ struct sweep_peak_request {
 // throws stickslip::error naming `key` and the allowed names otherwise.
 [[nodiscard]] const quantity_info& peak_statistic(const std::string& key, const std::string& name);
 
-// The method's name (independent, common, score) and back; the second throws
-// stickslip::error naming `key` otherwise.
+// The method's name (independent, common, score) and back: "auto" is score
+// where it applies to the request (score_applies), else common. Throws
+// stickslip::error naming `key` for any other name.
 [[nodiscard]] const char* to_string(peak_method m) noexcept;
-[[nodiscard]] peak_method peak_method_named(const std::string& key, const std::string& name);
+[[nodiscard]] peak_method peak_method_named(const std::string& key, const std::string& name,
+                                            const sweep_peak_request& q);
+
+// Whether the score method applies: over lambda, statistic R, Poisson
+// switching (the causal score is R's derivative over the switch rate).
+[[nodiscard]] bool score_applies(const sweep_peak_request& q) noexcept;
 
 // Validates the request (both ends of the range valid models; for the score
 // method: over lambda, statistic R and Poisson switching) and runs the

@@ -29,10 +29,17 @@ const char* to_string(peak_method m) noexcept {
   return "?";
 }
 
-peak_method peak_method_named(const std::string& key, const std::string& name) {
+bool score_applies(const sweep_peak_request& q) noexcept {
+  return q.over == "lambda" && q.statistic && std::string(q.statistic->summary_name) == "R" &&
+         has_poisson_switching(q.spec.base);
+}
+
+peak_method peak_method_named(const std::string& key, const std::string& name,
+                              const sweep_peak_request& q) {
+  if (name == "auto") return score_applies(q) ? peak_method::score : peak_method::common;
   for (auto m : {peak_method::independent, peak_method::common, peak_method::score})
     if (name == to_string(m)) return m;
-  throw invalid_value(key, name, "independent, common or score");
+  throw invalid_value(key, name, "auto, common, score or independent");
 }
 
 namespace {
