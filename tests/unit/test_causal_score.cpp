@@ -13,22 +13,12 @@
 #include "stickslip/replay.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
+#include "unit/figure_spec.hpp"
 
 namespace stickslip {
 namespace {
 
-// The paper's figures (k = 40), friction mu, lambda over `lambdas`.
-sweep_spec figure_spec(double mu, std::vector<double> lambdas, std::uint64_t n, bool crn,
-                       std::uint64_t seed) {
-  sweep_spec s;
-  s.base.stiffness = 40.0;
-  s.base.friction_coefficient = mu;
-  s.axes = {{"lambda", std::move(lambdas)}};
-  s.realizations = n;
-  s.seed = seed;
-  s.common_random_numbers = crn;
-  return s;
-}
+using testing_support::figure_spec;
 
 // Z and Y of one realization computed from its replay alone: N(t) counted
 // from the belt_switch events, the sticks from the episodes, the integrals

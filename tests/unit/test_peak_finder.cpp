@@ -185,14 +185,11 @@ TEST(StudentT, QuantilesMatchTables) {
 // 92.5 % and 95.8 %, so the 93 % floor is checked on all of them together.
 TEST(CommonPeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
   coverage_tally tally;
-  for (int problem_index = 0; problem_index < 960; ++problem_index) {
-    const int i = problem_index % 240, seeds = 5000 + 4000 * (problem_index / 240);
-    const auto p = problem(i);
+  for_each_synthetic_run([&](const synthetic_problem& p, std::uint64_t seed) {
     sp::common_peak_options o;
     o.base = p.base;
-    tally.add(p, sp::find_peak_common(
-                     crn_noisy(p.c, p.kappa, static_cast<std::uint64_t>(seeds + i)), o));
-  }
+    tally.add(p, sp::find_peak_common(crn_noisy(p.c, p.kappa, seed), o));
+  });
   tally.print("common: ");
   EXPECT_GE(tally.coverage(), 0.93);
   EXPECT_EQ(tally.met, tally.total);

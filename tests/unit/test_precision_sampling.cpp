@@ -15,6 +15,7 @@
 #include "stickslip/replay.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
+#include "figure_spec.hpp"
 #include "same_bits.hpp"
 
 namespace stickslip {
@@ -24,14 +25,7 @@ using testing_support::same_bits;
 // The paper's figures (k = 40), mu = 5, lambda over `lambdas`.
 sweep_spec figure_spec(std::vector<double> lambdas, std::uint64_t n, bool crn,
                        std::uint64_t seed = 13) {
-  sweep_spec s;
-  s.base.stiffness = 40.0;
-  s.base.friction_coefficient = 5.0;
-  s.axes = {{"lambda", std::move(lambdas)}};
-  s.realizations = n;
-  s.seed = seed;
-  s.common_random_numbers = crn;
-  return s;
+  return testing_support::figure_spec(5.0, std::move(lambdas), n, crn, seed);
 }
 
 // Sample mean and variance, with the standard error of the variance from

@@ -76,6 +76,15 @@ sp::score_group_evaluator exact(const std::function<double(double)>& mean,
   };
 }
 
+// The exact curves' search: range 0.3 .. 4, target 0.01.
+sp::score_peak_options exact_options() {
+  sp::score_peak_options o;
+  o.base.lo = 0.3;
+  o.base.hi = 4.0;
+  o.base.target_halfwidth = 0.01;
+  return o;
+}
+
 }  // namespace
 
 TEST(ScorePeakFinder, FindsTheExactRootOfAQuadraticDerivative) {
@@ -84,10 +93,7 @@ TEST(ScorePeakFinder, FindsTheExactRootOfAQuadraticDerivative) {
   std::vector<double> baselines;
   const auto mean = [](double x) { return 1 - (x - 2) * (x - 2) / 2 + 0.1 * std::pow(x - 2, 3); };
   const auto slope = [](double x) { return -(x - 2) + 0.3 * (x - 2) * (x - 2); };
-  sp::score_peak_options o;
-  o.base.lo = 0.3;
-  o.base.hi = 4.0;
-  o.base.target_halfwidth = 0.01;
+  const auto o = exact_options();
   const auto r = sp::find_peak_score(exact(mean, slope, baselines), o);
   ASSERT_TRUE(r.target_met);
   EXPECT_NEAR(r.argmax, 2.0, 1e-12);  // the quadratic through 3 points is exact
@@ -119,10 +125,7 @@ TEST(ScorePeakFinder, FindsTheRootOfACubicDerivativeWithinItsInterval) {
     const double u = x - 2;
     return -u + 0.3 * u * u - 0.2 * u * u * u;
   };
-  sp::score_peak_options o;
-  o.base.lo = 0.3;
-  o.base.hi = 4.0;
-  o.base.target_halfwidth = 0.01;
+  const auto o = exact_options();
   const auto r = sp::find_peak_score(exact(mean, slope, baselines), o);
   ASSERT_TRUE(r.target_met);
   EXPECT_LE(r.argmax_lo, 2.0);
@@ -152,15 +155,11 @@ TEST(ScorePeakFinder, RefusesAMaximumAtTheEndOfTheRange) {
 // runs), rho = 0.3.
 TEST(ScorePeakFinder, IntervalCoversTheKnownMaximizerOnSyntheticProblems) {
   coverage_tally tally;
-  for (int problem_index = 0; problem_index < 960; ++problem_index) {
-    const int i = problem_index % 240, seeds = 5000 + 4000 * (problem_index / 240);
-    const auto p = problem(i);
+  for_each_synthetic_run([&](const synthetic_problem& p, std::uint64_t seed) {
     sp::score_peak_options o;
     o.base = p.base;
-    tally.add(p, sp::find_peak_score(score_noisy(p.c, p.kappa, 0.3, 10.0 / p.c.argmax,
-                                                 static_cast<std::uint64_t>(seeds + i)),
-                                     o));
-  }
+    tally.add(p, sp::find_peak_score(score_noisy(p.c, p.kappa, 0.3, 10.0 / p.c.argmax, seed), o));
+  });
   tally.print("score: ");
   EXPECT_GE(tally.coverage(), 0.93);
   EXPECT_EQ(tally.met, tally.total);

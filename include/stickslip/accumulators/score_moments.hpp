@@ -27,48 +27,51 @@
 
 namespace stickslip {
 
-class score_moments {
+// A count and five running sums, merged by addition (in block order, so
+// the bits are reproducible): the storage of score_moments and
+// causal_score_moments, which differ in what they sum.
+template <class Derived>
+class five_sums {
  public:
-  // One realization: its value x and K = N - lambda t_a.
-  void add(double x, double k) noexcept {
-    ++n_;
-    const double xk = x * k;
-    sk_ += k;
-    skk_ += k * k;
-    sxk_ += xk;
-    sxkk_ += xk * k;
-    sxxkk_ += xk * xk;
-  }
-  score_moments& operator+=(const score_moments& o) noexcept {
+  Derived& operator+=(const Derived& o) noexcept {
     n_ += o.n_;
-    sk_ += o.sk_;
-    skk_ += o.skk_;
-    sxk_ += o.sxk_;
-    sxkk_ += o.sxkk_;
-    sxxkk_ += o.sxxkk_;
-    return *this;
+    for (int i = 0; i < 5; ++i) s_[i] += o.s_[i];
+    return static_cast<Derived&>(*this);
   }
   [[nodiscard]] std::uint64_t count() const noexcept { return n_; }
-  // The sums in a fixed order (serialization): K, K^2, X K, X K^2, X^2 K^2.
-  [[nodiscard]] double sum(int i) const noexcept {
-    const double s[5] = {sk_, skk_, sxk_, sxkk_, sxxkk_};
-    return s[i];
-  }
-  static score_moments from_raw(std::uint64_t n, const double (&s)[5]) noexcept {
-    score_moments m;
+  // The sums in their fixed order (serialization).
+  [[nodiscard]] double sum(int i) const noexcept { return s_[i]; }
+  static Derived from_raw(std::uint64_t n, const double (&s)[5]) noexcept {
+    Derived m;
     m.n_ = n;
-    m.sk_ = s[0];
-    m.skk_ = s[1];
-    m.sxk_ = s[2];
-    m.sxkk_ = s[3];
-    m.sxxkk_ = s[4];
+    for (int i = 0; i < 5; ++i) m.s_[i] = s[i];
     return m;
   }
-  friend bool operator==(const score_moments&, const score_moments&) = default;
+  friend bool operator==(const five_sums&, const five_sums&) = default;
+
+ protected:
+  void add_sums(double a, double b, double c, double d, double e) noexcept {
+    ++n_;
+    s_[0] += a;
+    s_[1] += b;
+    s_[2] += c;
+    s_[3] += d;
+    s_[4] += e;
+  }
 
  private:
   std::uint64_t n_ = 0;
-  double sk_ = 0.0, skk_ = 0.0, sxk_ = 0.0, sxkk_ = 0.0, sxxkk_ = 0.0;
+  double s_[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+};
+
+// The sums K, K^2, X K, X K^2, X^2 K^2.
+class score_moments : public five_sums<score_moments> {
+ public:
+  // One realization: its value x and K = N - lambda t_a.
+  void add(double x, double k) noexcept {
+    const double xk = x * k;
+    add_sums(k, k * k, xk, xk * k, xk * xk);
+  }
 };
 
 // An estimate with its standard error; NaN below 3 realizations.
@@ -127,54 +130,17 @@ struct controlled_mean {
 // removes the part of Z that is the mean stick fraction times M (without
 // it Z alone is far noisier than the full score). Per realization at mu =
 // 0.5, lambda = 3.5: sd 0.044 against 0.061 for the full score
-// (docs/precision.md). Accumulated as plain sums of Z, Y, Z^2, Y^2, Z Y
-// (merging is addition, in block order).
-class causal_score_moments {
+// (docs/precision.md).
+// The sums Z, Y, Z^2, Y^2, Z Y.
+class causal_score_moments : public five_sums<causal_score_moments> {
  public:
-  void add(double z, double y) noexcept {
-    ++n_;
-    sz_ += z;
-    sy_ += y;
-    szz_ += z * z;
-    syy_ += y * y;
-    szy_ += z * y;
-  }
-  causal_score_moments& operator+=(const causal_score_moments& o) noexcept {
-    n_ += o.n_;
-    sz_ += o.sz_;
-    sy_ += o.sy_;
-    szz_ += o.szz_;
-    syy_ += o.syy_;
-    szy_ += o.szy_;
-    return *this;
-  }
-  [[nodiscard]] std::uint64_t count() const noexcept { return n_; }
-  // The sums in a fixed order (serialization): Z, Y, Z^2, Y^2, Z Y.
-  [[nodiscard]] double sum(int i) const noexcept {
-    const double s[5] = {sz_, sy_, szz_, syy_, szy_};
-    return s[i];
-  }
-  static causal_score_moments from_raw(std::uint64_t n, const double (&s)[5]) noexcept {
-    causal_score_moments m;
-    m.n_ = n;
-    m.sz_ = s[0];
-    m.sy_ = s[1];
-    m.szz_ = s[2];
-    m.syy_ = s[3];
-    m.szy_ = s[4];
-    return m;
-  }
+  void add(double z, double y) noexcept { add_sums(z, y, z * z, y * y, z * y); }
   // mean(Z) - baseline x mean(Y) with a fixed baseline: exactly unbiased
   // (the peak finder's groups use the stick fraction of its scan).
   [[nodiscard]] double derivative_with_baseline(double baseline) const noexcept {
-    const auto n = static_cast<double>(n_);
-    return n_ == 0 ? NAN : sz_ / n - baseline * (sy_ / n);
+    const auto n = static_cast<double>(count());
+    return count() == 0 ? NAN : sum(0) / n - baseline * (sum(1) / n);
   }
-  friend bool operator==(const causal_score_moments&, const causal_score_moments&) = default;
-
- private:
-  std::uint64_t n_ = 0;
-  double sz_ = 0.0, sy_ = 0.0, szz_ = 0.0, syy_ = 0.0, szy_ = 0.0;
 };
 
 // D with the fitted beta (unbiased up to O(1/n), like control_variate_mean)

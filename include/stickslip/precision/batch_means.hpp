@@ -5,6 +5,7 @@
 // interior, and how many groups a frozen window adds. No I/O.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "stickslip/precision/local_fit.hpp"
@@ -30,6 +31,16 @@ namespace stickslip::precision {
 // fit_groups does after fitting each group.
 [[nodiscard]] polynomial_fit average_of_groups(const std::vector<std::vector<double>>& coefs,
                                                double center, double scale);
+
+// What both group finders record of a stage with an estimate (r.argmax,
+// its interval and r.max set): the maximum's interval r.max +- max_halfwidth,
+// the window and its point count, and the progress report's estimate.
+void record_stage_estimate(peak_result& r, peak_stage& progress, double max_halfwidth,
+                           double window_lo, double window_hi, std::size_t points) noexcept;
+
+// The realizations per point of the next window: `want`, but at least n and
+// at most 8n (8n when want is not finite).
+[[nodiscard]] std::uint64_t grown_realizations(std::uint64_t n, double want) noexcept;
 
 // The index of the highest mean of the first scan; throws stickslip::error
 // (invalid_input) when it is at an end of the range, where the maximizer

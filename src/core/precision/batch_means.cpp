@@ -49,6 +49,24 @@ polynomial_fit average_of_groups(const std::vector<std::vector<double>>& coefs, 
   return f;
 }
 
+void record_stage_estimate(peak_result& r, peak_stage& progress, double max_halfwidth,
+                           double window_lo, double window_hi, std::size_t points) noexcept {
+  r.max_lo = r.max - max_halfwidth;
+  r.max_hi = r.max + max_halfwidth;
+  r.window_lo = window_lo;
+  r.window_hi = window_hi;
+  r.points_in_fit = points;
+  progress.estimate = true;
+  progress.argmax = r.argmax;
+  progress.sampling_halfwidth = r.sampling_halfwidth;
+  progress.model_bias = r.model_bias;
+}
+
+std::uint64_t grown_realizations(std::uint64_t n, double want) noexcept {
+  const auto dn = static_cast<double>(n);
+  return std::isfinite(want) ? static_cast<std::uint64_t>(std::clamp(want, dn, 8.0 * dn)) : 8 * n;
+}
+
 std::size_t interior_scan_maximum(const std::vector<double>& xs, const std::vector<double>& means,
                                   const peak_options& o) {
   const auto best =

@@ -108,15 +108,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
     r.max = cubic.value(mc.t);
     const double max_hw =
         t_quantile * cubic.value_std_error(mc.t) + std::abs(quad.value(mq.t) - r.max);
-    r.max_lo = r.max - max_hw;
-    r.max_hi = r.max + max_hw;
-    r.window_lo = wlo;
-    r.window_hi = whi;
-    r.points_in_fit = xs.size();
-    progress.estimate = true;
-    progress.argmax = r.argmax;
-    progress.sampling_halfwidth = r.sampling_halfwidth;
-    progress.model_bias = r.model_bias;
+    record_stage_estimate(r, progress, max_hw, wlo, whi, xs.size());
     report();
     const bool centred = std::abs(mc.t) <= 0.6;
     // Stop only with enough groups for a stable error estimate: with 20 the
@@ -149,10 +141,7 @@ peak_result find_peak_common(const group_evaluator& eval, const common_peak_opti
         std::clamp(std::sqrt(co.bias_share * o.target_halfwidth / r.model_bias), 0.4, 1.0);
     w *= shrink;
     c = std::clamp(xc, o.lo, o.hi);
-    const double want = static_cast<double>(n) * ratio * ratio / shrink;
-    n = std::isfinite(want) ? static_cast<std::uint64_t>(std::clamp(
-                                  want, static_cast<double>(n), 8.0 * static_cast<double>(n)))
-                            : 8 * n;
+    n = grown_realizations(n, static_cast<double>(n) * ratio * ratio / shrink);
   }
   r.realizations = total;
   return r;

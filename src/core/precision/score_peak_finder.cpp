@@ -259,15 +259,7 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     const double taylor = vquad.value(0) + dquad.coef[0] * u + b / half * u * u / 2;
     r.max = vquad.value(tq);
     const double max_hw = t_quantile * vquad.value_std_error(tq) + std::abs(r.max - taylor);
-    r.max_lo = r.max - max_hw;
-    r.max_hi = r.max + max_hw;
-    r.window_lo = wlo;
-    r.window_hi = whi;
-    r.points_in_fit = xs.size();
-    progress.estimate = true;
-    progress.argmax = r.argmax;
-    progress.sampling_halfwidth = r.sampling_halfwidth;
-    progress.model_bias = r.model_bias;
+    record_stage_estimate(r, progress, max_hw, wlo, whi, xs.size());
     report();
     // 4. Stop with the root in the central 60 % of the window and enough
     // groups for a stable error estimate (find_peak_common's reason).
@@ -303,10 +295,7 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     if (!trusted) shrink = std::min(shrink, 0.5);
     w = std::min(w, std::max({w * shrink, r.sampling_halfwidth, 0.5 * target}));
     c = std::clamp(xq, o.lo, o.hi);
-    const double want = static_cast<double>(n) * ratio * ratio;
-    n = std::isfinite(want) ? static_cast<std::uint64_t>(std::clamp(
-                                  want, static_cast<double>(n), 8.0 * static_cast<double>(n)))
-                            : 8 * n;
+    n = grown_realizations(n, static_cast<double>(n) * ratio * ratio);
   }
   r.realizations = total;
   return r;
