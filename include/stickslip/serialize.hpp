@@ -32,7 +32,7 @@ namespace stickslip {
 // Bumped whenever the layout of anything below changes. Readers refuse other
 // versions (a journal from another version is recomputed, never misread).
 // Version 2: the layout id follows the version.
-inline constexpr std::uint32_t serial_format_version = 5;  // 5: belt generator scores
+inline constexpr std::uint32_t serial_format_version = 6;  // 6: causal score, switch times
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.
 [[nodiscard]] std::uint64_t layout_id() noexcept;

@@ -6,11 +6,13 @@
 // independent groups, common random numbers across the points within a
 // group; D(t) = a + b t + q t^2 near the root, with b and q from the
 // derivatives at the 3 points and a = D(c) the best mix of the derivative
-// at the centre and the values' central difference corrected by q (exact to
-// fourth order). The root's sampling error is a's over |R''|, which does not
-// grow as the window shrinks (unlike a maximizer fitted to values). Where
-// the values do not pay (their variance above half the derivative's), the
-// ends get 1/8 of the centre's realizations and a is the derivative alone.
+// at the centre and the values' central difference corrected by q (its
+// error O(w^4)). The root's sampling error is a's over |R''|: with the
+// derivative alone it does not grow as the window shrinks (unlike a
+// maximizer fitted to values); the values' part does, as their variance
+// grows at small w. Where the values do not pay (their variance above half
+// the derivative's), the ends get 1/8 of the centre's realizations and a is
+// the derivative alone.
 // Coefficient covariances are batch means over the groups, as in
 // find_peak_common. No I/O.
 #pragma once

@@ -45,7 +45,8 @@ peak_method peak_method_named(const std::string& key, const std::string& name,
 namespace {
 
 // The sweeps of one stage's groups. Without a runner of the caller's they
-// run side by side, one thread each, on q.threads threads: a sweep gives the
+// run side by side on q.threads threads, one each (or their share when
+// there are more threads than groups): a sweep gives the
 // same bits on any number of threads, and a group's sweep is small (~1.4 ms
 // of setup, and an idle tail on two threads: the score method's groups ran
 // at 1.3 cores of 2). Errors are rethrown in group order, the first first.
@@ -56,23 +57,27 @@ std::vector<result_set> run_side_by_side(const std::vector<sweep_spec>& specs,
     for (std::size_t g = 0; g < specs.size(); ++g) out[g] = q.run(specs[g]);
     return out;
   }
-  const unsigned workers = static_cast<unsigned>(std::min<std::size_t>(
-      specs.size(), q.threads ? q.threads : std::max(1u, std::thread::hardware_concurrency())));
+  // More threads than groups: each group's sweep gets its share.
+  const unsigned threads = q.threads ? q.threads : std::max(1u, std::thread::hardware_concurrency());
+  const auto workers = static_cast<unsigned>(std::min<std::size_t>(specs.size(), threads));
+  const unsigned each = std::max(1u, threads / std::max(1u, workers));
   std::vector<std::exception_ptr> failed(specs.size());
   std::atomic<std::size_t> next{0};
   const auto work = [&] {
     for (std::size_t g; (g = next.fetch_add(1)) < specs.size();) {
       try {
-        out[g] = run_sweep(specs[g], 1);
+        out[g] = run_sweep(specs[g], each);
       } catch (...) {
         failed[g] = std::current_exception();
       }
     }
   };
-  std::vector<std::thread> threads;
-  for (unsigned t = 1; t < workers; ++t) threads.emplace_back(work);
-  work();
-  for (auto& t : threads) t.join();
+  {
+    // jthread: joined on leaving the block, also when starting one throws.
+    std::vector<std::jthread> pool;
+    for (unsigned t = 1; t < workers; ++t) pool.emplace_back(work);
+    work();
+  }
   for (const auto& e : failed)
     if (e) std::rethrow_exception(e);
   return out;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <limits>
 #include <utility>
 
@@ -63,9 +62,10 @@ group_estimate estimate_of(const std::vector<double>& v, const std::vector<doubl
   // The values' central difference is D(0) + R''' h^2/6 + R^(5) h^4/120;
   // the scores' second difference gives R''' h^2/6 = q/3 (+ R^(5) h^4/72),
   // so the corrected difference is D(0) to O(h^4). With common random
-  // numbers it has a small variance where neighbouring paths stay coupled
-  // (mu = 5: 15x less than the score at the centre for h = 0.4; mu = 0.5:
-  // about the score's), and it is nearly uncorrelated with the score.
+  // numbers its variance falls as h grows (mu = 5: 1/5.4 of the score's at
+  // the centre for h = 0.1, 1/14 for h = 0.4; mu = 0.5: about the score's at
+  // h = 0.17, 1/3.3 at h = 0.4), and it is nearly uncorrelated with the
+  // score.
   e.d_values = (v[2] - v[0]) / (2.0 * half) - e.q / 3.0;
   // R'' h^2 = V(+) + V(-) - 2 V(0) (+ R'''' h^4/12), against b = R'' h
   // (+ R'''' h^3/6) from the scores.
@@ -158,11 +158,13 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
   std::size_t add = groups;
   // Which design a new window gets. The values' estimate of D at the centre
   // needs all 3 points at n realizations (3n per group), the score alone
-  // only the centre (n + 2 n/8 with the ends for b and q): the values pay
-  // when their per-realization variance is below half the score's (then
-  // n triplets inform more than 3n centre-only realizations). The first
-  // window measures both; later ones follow the last window's measurement
-  // (mu = 5: 0.12 at h = 0.2; mu = 0.5: ~0.8 at h = 0.17).
+  // only the centre (1.25n with the ends at n/8 for b and q). With the two
+  // estimates uncorrelated the values break even at a variance ratio of
+  // 0.71 (information (1/V_s + 1/V_v)/3 against 1/(1.25 V_s) per
+  // realization); the rule asks for 0.5, leaning to the centre design, whose
+  // interval has no weight to estimate. The first window measures both;
+  // later ones follow the last window's measurement (mu = 5: 0.12 at h =
+  // 0.2; mu = 0.5: ~0.8 at h = 0.17).
   bool values_design = true;
   double alpha_prior = 0.5;  // the score's weight in a values design's D(0)
   for (std::size_t stage = 1; stage <= o.max_stages; ++stage) {
@@ -199,9 +201,11 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     for (const auto& e : es) cov += (e.d_centre - ms) * (e.d_values - mv);
     cov /= static_cast<double>(es.size()) * static_cast<double>(es.size() - 1);
     const double denom = ss * ss + sv * sv - 2.0 * cov;
-    // The weight comes from the previous stage's groups: weights fitted to
+    // The weight comes from the previous look's groups: weights fitted to
     // the same groups would favour the mixes whose noise is small by chance
-    // (the stand-in for mu = 5 covered 93.3 % so, docs/precision.md).
+    // (the stand-in for mu = 5 covered 93.3 % so, 94.2 % now). In a frozen
+    // window those groups are still in the pool, so this only dilutes that
+    // selection; the synthetic coverage is what checks it.
     const double alpha = values_design ? alpha_prior : 1.0;
     if (values_design && denom > 0.0) alpha_prior = std::clamp((sv * sv - cov) / denom, 0.0, 1.0);
     // Per realization: the score's variance at the centre, the values'.
