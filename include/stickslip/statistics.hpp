@@ -105,6 +105,11 @@ class point_statistics {
   point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true,
                    bool stationary_start = true, bool means_only = false);
 
+  // Whether add() keeps R's causal score: not in the paper study's
+  // configuration (neither family statistics nor means only), whose lane
+  // observer skips its bookkeeping (paper_statistics_observer); the
+  // reference engines drop theirs there too (sweep.cpp).
+  [[nodiscard]] bool keeps_causal_score() const noexcept { return family_statistics || means_only; }
   // Add one finished realization. Precondition: one level fraction per level.
   void add(const realization_samples& r, double window);
   // Exact merge (see mean_variance). Precondition: same binning.

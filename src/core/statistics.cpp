@@ -181,9 +181,7 @@ void point_statistics::add(const realization_samples& in, double window) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
   }(std::make_index_sequence<counter_table.size()>{});
-  // (Not in the paper study's configuration, whose lane observer skips the
-  // bookkeeping: paper_statistics_observer.)
-  if ((family_statistics || means_only) && expected_switches > 0.0 && belt_rates[0] == 0.0 &&
+  if (keeps_causal_score() && expected_switches > 0.0 && belt_rates[0] == 0.0 &&
       generator.empty()) {
     // The causal score of R (causal_score_moments): M(t) = N(t)/lambda - t,
     // Z = int stick(t) M(t) dt / t_a, Y = int M(t) dt / t_a with

@@ -249,12 +249,11 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
   return results;
 }
 
-// The paper study's configuration (neither the family statistics nor means
-// only) runs the lane engine with paper_statistics_observer, which skips the
-// causal score's bookkeeping; the reference engines drop theirs there, so
-// that the records are the same bits.
+// Where the statistics keep no causal score (point_statistics::
+// keeps_causal_score: the paper study's configuration, whose lane observer
+// skips the bookkeeping), the reference engines drop theirs, so that the
+// records are the same bits.
 namespace {
-bool keeps_causal_score(const sweep_spec& s) noexcept { return s.family_statistics || s.means_only; }
 void drop_causal_score(realization_record& r) noexcept {
   r.stick_switch_moment = r.stick_time_moment = 0.0;
   r.events.switch_time_sum = 0.0;
@@ -280,7 +279,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
     const auto counts = simulate(p, ic, sw, obs, s.max_events);
     obs.finish();
     obs.record().events = counts;
-    if (!keeps_causal_score(s)) drop_causal_score(obs.record());
+    if (!out.stats.keeps_causal_score()) drop_causal_score(obs.record());
     out.stats.add(obs.samples(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }
@@ -306,7 +305,7 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
     const auto counts = simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
     obs.finish();
     obs.record().events = counts;
-    if (!keeps_causal_score(s)) drop_causal_score(obs.record());
+    if (!out.stats.keeps_causal_score()) drop_causal_score(obs.record());
     out.stats.add(obs.samples(), p.window);
     if (s.keep_records) out.records.push_back(obs.record());
   }

@@ -44,7 +44,7 @@ struct sweep_peak_request {
 
 // Whether the score method applies: over lambda, statistic R, Poisson
 // switching (the causal score is R's derivative over the switch rate).
-[[nodiscard]] bool score_applies(const sweep_peak_request& q) noexcept;
+[[nodiscard]] bool score_applies(const sweep_peak_request& q);
 
 // Validates the request (both ends of the range valid models; for the score
 // method: over lambda, statistic R and Poisson switching) and runs the

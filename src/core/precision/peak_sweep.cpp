@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <exception>
+#include <optional>
 #include <thread>
 
 #include "stickslip/error.hpp"
@@ -29,10 +30,28 @@ const char* to_string(peak_method m) noexcept {
   return "?";
 }
 
-bool score_applies(const sweep_peak_request& q) noexcept {
-  return q.over == "lambda" && q.statistic && std::string(q.statistic->summary_name) == "R" &&
-         has_poisson_switching(q.spec.base);
+namespace {
+
+// Why the score method does not apply to q (what a request for it throws),
+// or nothing: the causal score is R's derivative over the Poisson switch
+// rate.
+std::optional<error> score_refusal(const sweep_peak_request& q) {
+  if (q.over != "lambda")
+    return invalid_value("over", q.over,
+                         "lambda with the score method (the derivative is over the switch rate)");
+  if (!q.statistic || std::string(q.statistic->summary_name) != "R")
+    return invalid_value("statistic", q.statistic ? q.statistic->summary_name : "(none)",
+                         "R with the score method");
+  if (!has_poisson_switching(q.spec.base))
+    return invalid_value("method", "score",
+                         "common or independent for a belt given its rates or generator (the "
+                         "score method needs Poisson switching at rate lambda)");
+  return std::nullopt;
 }
+
+}  // namespace
+
+bool score_applies(const sweep_peak_request& q) { return !score_refusal(q); }
 
 peak_method peak_method_named(const std::string& key, const std::string& name,
                               const sweep_peak_request& q) {
@@ -88,17 +107,8 @@ std::vector<result_set> run_side_by_side(const std::vector<sweep_spec>& specs,
 peak_result find_peak_by_sweeps(const sweep_peak_request& q) {
   if (!q.statistic) throw invalid_value("statistic", "(none)", "a per-realization statistic");
   validate(q.options);
-  if (q.method == peak_method::score) {
-    // The causal score is the derivative of R over the Poisson switch rate.
-    if (q.over != "lambda")
-      throw invalid_value("over", q.over, "lambda with the score method (the derivative is over the switch rate)");
-    if (q.statistic != &peak_statistic("statistic", "R"))
-      throw invalid_value("statistic", q.statistic->summary_name, "R with the score method");
-    if (!has_poisson_switching(q.spec.base))
-      throw invalid_value("method", "score",
-                          "common or independent for a belt given its rates or generator (the "
-                          "score method needs Poisson switching at rate lambda)");
-  }
+  if (q.method == peak_method::score)
+    if (auto refusal = score_refusal(q)) throw *refusal;
   // Both ends of the range must be valid models (and within the work bound).
   for (double x : {q.options.lo, q.options.hi}) {
     auto check = q.spec;
