@@ -41,6 +41,7 @@
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
+#include "stickslip/version.hpp"
 #include "stickslip/run/journaled_run.hpp"
 
 namespace stickslip::app {
@@ -182,8 +183,21 @@ void check_result_memory(const sweep_spec& spec) {
                             bytes / (1u << 30), ram / (1u << 30)));
 }
 
+// --resume found this configuration's finished outputs and no journal.
+void report_already_complete(const run::run_plan& plan, const io::run_metadata& written_by) {
+  fmt::print(stderr, "stickslip: {} already holds the complete results of this configuration "
+                     "(written {}): nothing to do, they are left as they are\n",
+             plan.dir, written_by.created_utc);
+  if (written_by.version != stickslip::version || written_by.git_revision != stickslip::git_revision)
+    fmt::print(stderr, "stickslip: note: they were written by stickslip {} (git {}), this is {} "
+                       "(git {}); add --overwrite to recompute them with this build\n",
+               written_by.version, written_by.git_revision, stickslip::version,
+               stickslip::git_revision);
+}
+
 void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_outcome& out,
             const run::runner& r) {
+  if (out.already_complete) return report_already_complete(plan, out.metadata);
   const std::string thread_text =
       fmt::format("{} thread{}", r.threads(), r.threads() == 1 ? "" : "s");
   const std::string where =
@@ -233,6 +247,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   plan.dir = o.out_dir;
   plan.slice = run::parse_shard(o.shard);
   plan.resume = o.resume;
+  plan.overwrite = o.overwrite;
   const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);
   if (!(interval >= 0) || interval > 86400)
     throw invalid_parameter("--checkpoint-interval", interval, "0 .. 86400 seconds");
@@ -326,7 +341,9 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
       ->required();
   cmd->add_flag("--resume", o.resume,
                 "continue the sweep journaled in DIR (after a crash, kill or time limit); "
-                "refused if the configuration changed; starts afresh if DIR has no journal");
+                "refused if the configuration changed. Without a journal: nothing to do if DIR "
+                "holds this configuration's finished results, refused if it holds another's "
+                "(unless --overwrite), else starts afresh");
   cmd->add_option("--shard", o.shard,
                   "run only units with index % n == i and journal them in DIR (no final "
                   "outputs); combine shards with `stickslip merge`")

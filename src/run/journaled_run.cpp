@@ -6,7 +6,10 @@
 #include <vector>
 
 #include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
+#include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/serialize.hpp"
 #include "stickslip/run/work_meter.hpp"
 
 namespace stickslip::run {
@@ -111,6 +114,47 @@ void write_outputs(const run_outcome& out, const std::string& dir, bool keep_jou
   if (!keep_journal) io::remove_journal(dir);
 }
 
+std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
+                                                    const std::string& dir) {
+  const auto found = io::existing_sweep_results(dir);
+  if (found.empty()) return std::nullopt;
+  const std::string nothing_to_resume =
+      "; there is no journal, so --resume has nothing to continue: choose another -o DIR for "
+      "this configuration, or add --overwrite to replace those results";
+  std::string problem;
+  const auto meta = io::read_finished_metadata(dir, &problem);
+  if (!meta)
+    throw error(exit_code::invalid_input,
+                fmt::format("-o '{}' holds the outputs of a finished run ('{}' found) whose "
+                            "configuration cannot be read ({}){}",
+                            dir, found.front(), problem, nothing_to_resume));
+  std::string difference;
+  try {
+    const sweep_spec theirs = io::parse_sweep_toml(
+        meta->resolved_config, (std::filesystem::path(dir) / io::results_file).string());
+    if (!same_results(theirs, spec)) difference = first_difference(theirs, spec);
+  } catch (const error& e) {
+    difference = fmt::format("its resolved_config does not parse here: {}", e.what());
+  }
+  if (!difference.empty())
+    throw error(exit_code::invalid_input,
+                fmt::format("-o '{}' holds the finished run of another configuration ({}; "
+                            "those results vs this command){}",
+                            dir, difference, nothing_to_resume));
+  std::vector<std::string> wanted{io::results_file, io::summary_json_file, io::summary_csv_file};
+  if (spec.keep_records) wanted.push_back(io::records_csv_file);
+  for (const auto& name : wanted) {
+    const auto path = (std::filesystem::path(dir) / name).string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+      throw error(exit_code::invalid_input,
+                  fmt::format("-o '{}' holds an incomplete set of finished outputs of this "
+                              "configuration ('{}' is missing){}",
+                              dir, path, nothing_to_resume));
+  }
+  return meta;
+}
+
 directory_state directory_state::of(const std::string& dir) {
   return {std::filesystem::exists(dir), io::journal_exists(dir)};
 }
@@ -126,6 +170,14 @@ void clean_up_after_failure(const error& e, const std::string& dir, const direct
 
 run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::run_metadata& fresh,
                        runner& r, bool keep_journal) {
+  if (plan.resume && !plan.overwrite && !io::journal_exists(plan.dir)) {
+    if (auto finished = finished_outputs_of(spec, plan.dir)) {
+      run_outcome out;
+      out.metadata = std::move(*finished);
+      out.already_complete = true;
+      return out;
+    }
+  }
   const auto before = directory_state::of(plan.dir);
   try {
     auto out = run_journaled(spec, plan, fresh, r);

@@ -2,14 +2,24 @@
 // write several text files all or nothing.
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "stickslip/io/metadata.hpp"
 
 namespace stickslip::io {
 
 // The results of a finished sweep that `dir` holds now (results.nc,
 // summary.json, summary.csv, records.csv; the journal is not a result).
 [[nodiscard]] std::vector<std::string> existing_sweep_results(const std::string& dir);
+
+// The run metadata (resolved configuration, version, git revision, command
+// line, creation time) that DIR/results.nc of a finished sweep carries in its
+// global attributes; nullopt, with the reason in `problem`, when the file is
+// missing, unreadable or lacks the resolved configuration.
+[[nodiscard]] std::optional<run_metadata> read_finished_metadata(const std::string& dir,
+                                                                 std::string* problem = nullptr);
 
 // Throws stickslip::error (exit code 2, invalid input) naming the first of
 // `paths` that exists: "'P' already exists (...): <how_to_proceed>".

@@ -30,6 +30,11 @@ struct run_plan {
   std::string dir;                  // the output directory; the journal is DIR/.journal
   std::optional<shard> slice;       // --shard i/n: run and journal only this slice
   bool resume = false;              // continue the journal in DIR (refused without it)
+  // --overwrite: finished outputs in DIR may be replaced. Without it, a
+  // resume into a DIR without a journal but with finished outputs does
+  // nothing when they are this spec's and is refused when they are not
+  // (finished_outputs_of).
+  bool overwrite = false;
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
@@ -45,7 +50,24 @@ struct run_outcome {
   io::run_metadata metadata;          // the first run's (from the journal when resumed)
   std::uint64_t resumed_units = 0, computed_units = 0;
   double elapsed_this_run = 0;        // seconds
+  // --resume found this spec's finished outputs in DIR and no journal:
+  // nothing ran, nothing was written; `metadata` is the finished outputs'.
+  bool already_complete = false;
 };
+
+// A resume into `dir` that holds no journal: the finished outputs there, if
+// any, must be exactly this configuration's. "Exactly" is established like a
+// journal's: the resolved configuration in results.nc's global attributes
+// (resolved_config, the TOML of the spec that made them) is parsed and
+// compared with `spec` by same_results (every results-relevant field, to the
+// bit; the engine does not count), and the set must be whole (results.nc,
+// summary.json, summary.csv, and records.csv when spec.keep_records).
+// Returns nullopt when `dir` holds no outputs (start from the beginning), the
+// outputs' metadata when they are this spec's (nothing to do), and throws
+// invalid_input (exit 2) naming `dir` and what to do when they are another
+// configuration's or cannot be identified.
+[[nodiscard]] std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
+                                                                  const std::string& dir);
 
 // Journal, resume, shard and stop around `r`. `fresh` is the metadata a new
 // journal records. Throws: invalid_input when DIR holds an unfinished journal
@@ -70,7 +92,9 @@ struct directory_state {
 void clean_up_after_failure(const error& e, const std::string& dir, const directory_state& before);
 
 // run_journaled, then (unless a shard) write_outputs into plan.dir; the
-// result set records the runner's ranks and threads. Cleans up after a
+// result set records the runner's ranks and threads. A resume into a DIR
+// without a journal first checks its finished outputs (finished_outputs_of,
+// unless plan.overwrite): this spec's give already_complete and nothing runs. Cleans up after a
 // deterministic failure and rethrows.
 [[nodiscard]] run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan,
                                      const io::run_metadata& fresh, runner& r,
