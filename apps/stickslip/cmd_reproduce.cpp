@@ -15,8 +15,12 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "execution.hpp"
@@ -34,6 +38,10 @@ namespace {
 
 // Numbers are kept as text and parsed with io::parse_unsigned, so that "-5"
 // is refused with the flag, the value and the range (CLI11 would wrap it).
+// OUT/.runs/<sweep>: the journal of each of the study's sweeps until the
+// report is written.
+std::string runs_dir(const std::string& out_dir) { return out_dir + "/.runs"; }
+
 struct reproduce_flags {
   std::string out_dir = "reproduction";
   std::string realizations;         // empty: 2000 (200 with --quick)
@@ -71,9 +79,87 @@ study::study_options resolve(const reproduce_flags& f) {
   return o;
 }
 
-// OUT/.runs/<sweep>: the journal of each of the study's sweeps until the
-// report is written.
-std::string runs_dir(const std::string& out_dir) { return out_dir + "/.runs"; }
+// OUT/reproduce.toml: the settings that define a reproduction (everything
+// resolve() decides that changes its results), one `key = value` line each,
+// written next to the report so that a later --resume can tell this
+// reproduction's finished outputs from another's.
+constexpr const char* settings_file = "reproduce.toml";
+
+std::string settings_text(const study::study_options& o) {
+  std::string t = "# stickslip reproduce: the settings of the reproduction in this folder\n";
+  t += fmt::format("quick = {}\ncandidates = {}\nseed = {}\n", o.quick, o.candidates, o.seed);
+  t += fmt::format("realizations = {}\nrefine_realizations = {}\nrefine_points = {}\n",
+                   o.realizations, o.refine_realizations, o.refine_points);
+  t += fmt::format("refine_log_half_width = {}\ncandidate_realizations = {}\n",
+                   o.refine_log_half_width, o.candidate_realizations);
+  t += fmt::format("candidate_refine_realizations = {}\npeak_halfwidth = {}\n",
+                   o.candidate_refine_realizations, o.peak_halfwidth);
+  t += fmt::format("candidate_peak_halfwidth = {}\npeak_max_realizations = {}\n",
+                   o.candidate_peak_halfwidth, o.peak_max_realizations);
+  return t;
+}
+
+// The first line in which two settings texts differ, as "KEY: A vs B".
+std::string first_setting_difference(const std::string& theirs, const std::string& ours) {
+  auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t at = 0;
+    while (at < text.size()) {
+      const auto end = std::min(text.find('\n', at), text.size());
+      out.push_back(text.substr(at, end - at));
+      at = end + 1;
+    }
+    return out;
+  };
+  const auto a = lines(theirs), b = lines(ours);
+  for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+    const std::string x = i < a.size() ? a[i] : "(nothing)", y = i < b.size() ? b[i] : "(nothing)";
+    if (x != y) return fmt::format("{} vs {}", x, y);
+  }
+  return "";
+}
+
+// --resume onto OUT without journals (OUT/.runs): when OUT holds a finished
+// reproduction, it must be this one (OUT/reproduce.toml equal to these
+// settings): then true (nothing to do). Another one's, or one whose settings
+// cannot be read, is refused (exit 2). False: nothing finished there.
+bool finished_reproduction(const std::string& out, const study::study_options& options) {
+  std::string found;
+  for (const char* name : {"report.md", "report.html", settings_file}) {
+    std::error_code ec;
+    if (std::filesystem::exists(out + "/" + name, ec)) {
+      found = out + "/" + name;
+      break;
+    }
+  }
+  if (found.empty()) return false;
+  const std::string what_to_do =
+      "; there are no journals (" + runs_dir(out) + "), so --resume has nothing to continue: "
+      "choose another -o DIR for these settings, or add --overwrite to replace that reproduction";
+  const std::string path = out + "/" + settings_file;
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw error(exit_code::invalid_input,
+                fmt::format("-o '{}' holds a finished reproduction ('{}') whose settings cannot "
+                            "be read ('{}' is missing){}",
+                            out, found, path, what_to_do));
+  const std::string theirs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string ours = settings_text(options);
+  if (theirs != ours)
+    throw error(exit_code::invalid_input,
+                fmt::format("-o '{}' holds the finished reproduction of other settings ({}; "
+                            "that reproduction vs this command){}",
+                            out, first_setting_difference(theirs, ours), what_to_do));
+  for (const char* name : {"report.md", "report.html"}) {
+    std::error_code ec;
+    if (!std::filesystem::exists(out + "/" + name, ec))
+      throw error(exit_code::invalid_input,
+                  fmt::format("-o '{}' holds an incomplete reproduction with these settings "
+                              "('{}/{}' is missing){}",
+                              out, out, name, what_to_do));
+  }
+  return true;
+}
 
 void print_journal_note(const std::string& line) {
   fmt::print(stderr, "stickslip: journal: {}\n", line);
@@ -121,6 +207,13 @@ void run(const reproduce_flags& f, const invocation& inv) {
     throw invalid_value("-o (output folder)", f.out_dir,
                         "a folder without the journals of an unfinished reproduce (found " + runs +
                             "): add --resume to continue it, or remove " + runs);
+  if (f.resume && !f.overwrite && !slice && !std::filesystem::exists(runs) &&
+      finished_reproduction(f.out_dir, options)) {
+    fmt::print(stderr, "reproduce: {} already holds the finished reproduction with these "
+                       "settings ({}): nothing to do, it is left as it is\n",
+               f.out_dir, f.out_dir + "/" + settings_file);
+    return;
+  }
   if (!f.overwrite && !f.resume && !slice)
     io::refuse_to_replace({f.out_dir + "/report.md", f.out_dir + "/report.html"},
                           "the report of an earlier reproduce",
@@ -155,6 +248,9 @@ void run(const reproduce_flags& f, const invocation& inv) {
   const auto meta = io::make_metadata(inv.argc, inv.argv, "");
   log(fmt::format("study done in {:.1f} s; writing {}", study.seconds, f.out_dir));
   const auto files = study::write_reproduction(study, meta, f.out_dir, render);
+  io::write_text_files({{"-o", f.out_dir + "/" + settings_file,
+                         [&options] { return settings_text(options); }}},
+                       true, "");
   if (!f.keep_journal) {
     std::error_code ec;
     std::filesystem::remove_all(runs, ec);
@@ -198,7 +294,9 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
                 "write figure data and gnuplot scripts but do not run gnuplot");
   cmd->add_flag("--resume", flags->resume,
                 "continue a reproduce that was killed or stopped (its sweeps are journaled in "
-                "OUT/.runs); refused if the settings changed");
+                "OUT/.runs); refused if the settings changed. Without journals: nothing to do "
+                "if OUT holds the finished reproduction with these settings (OUT/reproduce.toml), "
+                "refused if it holds another (unless --overwrite), else starts afresh");
   cmd->add_option("--shard", flags->shard,
                   "run only units with index % n == i of every main sweep and journal them in "
                   "OUT/.runs; then finish with --resume (docs/scaling.md)")
