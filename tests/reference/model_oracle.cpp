@@ -215,6 +215,12 @@ class model_reference {
           out_.near_tangencies.push_back(t_ + dt_min);
         }
       }
+    } else if (g(s0) == 0.0 && g_rate(s0) > 0.0 && tau > 0.0 && g(s1) <= 0.0) {
+      // A slip that leaves x' = v (a reversal just beyond the band edge, or
+      // a departure from the edge with mu_s > mu_k) and comes back within
+      // this one step: the return lies after the maximum of g.
+      const double dt_max = bisect(0.0, tau, [&](double dt) { return g_rate(rk4(s0, dt)) <= 0.0; });
+      dt_contact = bisect(dt_max, tau, contact_by);
     }
     if (dt_contact >= 0.0) {
       const phase s = rk4(s0, dt_contact);
