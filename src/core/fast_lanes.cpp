@@ -249,7 +249,8 @@ class trace_collector {
 // outward edge) with mu_s > mu_k a slip that starts at x' = v and returns by
 // the reversal arc (after_reversal, in the vector step), with mu_s = mu_k the
 // paper's grazing orbit. A belt switch goes to the other level; a stick
-// ended by one leaves a mirror slip only when v2 = -v1.
+// ended by one leaves a mirror slip only when v2 = -v1 and the stick is on
+// the inner side of the new slip's centre (|x| < a_k; model_engine.hpp).
 template <class Collector, bool Family>
 class lane_engine {
   using observer = typename Collector::observer;
@@ -643,7 +644,13 @@ class lane_engine {
       nsig = IfThenElse(stk, IfThenElse(ssw2, sig_sw, IfThenElse(st_brk, s[k], sig[k])), nsig);
       nstk = IfThenElse(stk, IfThenElse(sta, one, zero), nstk);
       ngrz = IfThenElse(stk, IfThenElse(st_brk, GRZ, zero), ngrz);
-      nmir = IfThenElse(stk, IfThenElse(ssw2, MIR, zero), nmir);
+      // a mirror return only from the inner side of the new slip's centre
+      // (simulate_model): sigma (x - sigma a_k) < 0; from the outer side
+      // (a_k < |x| <= a_s, mu_s > mu_k) the general root, half a period on
+      vec mir_sw = MIR;
+      if constexpr (Family)
+        mir_sw = hn::IfThenElseZero(hn::Lt(Mul(sig_sw, Sub(x_sw, Mul(sig_sw, AK))), zero), MIR);
+      nmir = IfThenElse(stk, IfThenElse(ssw2, mir_sw, zero), nmir);
       narv = IfThenElse(stk, Family ? IfThenElse(st_brk, ARV, zero) : zero, narv);
       code = IfThenElse(stk, IfThenElse(sta, Set(d, ev_stick_ta),
                                         IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),

@@ -25,6 +25,7 @@
 #include <optional>
 #include <string>
 
+#include "reference/model_agreement.hpp"
 #include "reference/model_oracle.hpp"
 #include "reference/model_scenario.hpp"
 #include "stickslip/statistics.hpp"
@@ -35,112 +36,6 @@ namespace {
 constexpr std::uint64_t scenario_seed = 0xfa417'5eedULL;
 constexpr int scenario_count = 1000;
 constexpr double steps_per_period = 800;
-
-struct tolerance {
-  double time, position;
-};
-
-double slowest_moving_level(const oscillator_model& m) {
-  double v = 1e300;
-  for (double u : m.belt.levels)
-    if (u != 0.0) v = std::min(v, std::abs(u));
-  return v;
-}
-double fastest_level(const oscillator_model& m) {
-  double v = 0;
-  for (double u : m.belt.levels) v = std::max(v, std::abs(u));
-  return v;
-}
-
-tolerance tolerance_for(const model_scenario& s, const model_exact_run& r, double n) {
-  double B = std::abs(s.ic.velocity);
-  for (const segment& g : r.segments)
-    if (g.kind == mode::slip) B = std::max(B, std::hypot(g.omega * (g.position - g.center), g.velocity));
-  const double kappa = 1.0 + B / slowest_moving_level(s.model);
-  const double e = s.model.window * std::pow(2.0 * std::numbers::pi / n, 4) / 120.0;
-  const double t = 10.0 * kappa * e + 1e-12 * s.model.window;
-  return {t, t * (fastest_level(s.model) + B)};
-}
-
-std::optional<std::string> near_degenerate(const model_scenario& s, const model_exact_run& r,
-                                           const model_oracle_result& o, tolerance tol) {
-  const double res = 10.0 * o.stick_resolution;
-  for (const episode& e : r.episodes)
-    if (e.kind == mode::stick && e.duration() < res) return "short exact stick";
-  for (const episode& e : o.episodes)
-    if (e.kind == mode::stick && e.duration() < res) return "short oracle stick";
-  if (!o.near_tangencies.empty()) return "near tangency";
-  const oscillator_model& m = s.model;
-  const double static_force = m.static_friction * m.mass * m.gravity;
-  auto near_switch = [&](double t) {
-    for (const level_switch& w : s.switches)
-      if (std::abs(w.time - t) < 1e3 * tol.time) return true;
-    return false;
-  };
-  for (const event& e : r.events) {
-    if (e.kind == event_kind::belt_switch) continue;
-    if (near_switch(e.time)) return "event next to a belt switch";
-    const double force = m.stiffness * e.position + m.damping * e.belt_velocity;
-    if (e.kind != event_kind::stick_break &&
-        std::abs(std::abs(force) - static_force) < 1e3 * m.stiffness * tol.position)
-      return "contact at the band edge";
-  }
-  for (const oracle_event& e : o.events) {
-    if (e.kind == event_kind::belt_switch) continue;
-    if (near_switch(e.time)) return "oracle event next to a belt switch";
-  }
-  return std::nullopt;
-}
-
-std::string describe(const model_scenario& s) {
-  const oscillator_model& m = s.model;
-  std::string out;
-  char buf[400];
-  std::snprintf(buf, sizeof buf,
-                "m=%.17g k=%.17g c=%.17g (zeta %.3g) mu_s=%.17g mu_k=%.17g ta=%.17g x0=%.17g "
-                "xdot0=%.17g level=%zu levels:",
-                m.mass, m.stiffness, m.damping, m.damping_ratio(), m.static_friction,
-                m.kinetic_friction, m.window, s.ic.position, s.ic.velocity, s.ic.level);
-  out += buf;
-  for (double v : m.belt.levels) {
-    std::snprintf(buf, sizeof buf, " %.17g", v);
-    out += buf;
-  }
-  out += " switches:";
-  for (const level_switch& w : s.switches) {
-    std::snprintf(buf, sizeof buf, " %.17g->%zu", w.time, w.level);
-    out += buf;
-  }
-  return out;
-}
-
-std::string episodes_text(const std::vector<episode>& es) {
-  std::string out;
-  char buf[160];
-  for (const episode& e : es) {
-    std::snprintf(buf, sizeof buf, "  %-5s %.12f %.12f x=%.9g v=%.4g\n", to_string(e.kind), e.start,
-                  e.end, e.position_at_start, e.belt_velocity);
-    out += buf;
-  }
-  return out;
-}
-
-struct difference {
-  double time = 0, position = 0;
-};
-std::optional<difference> compare(const std::vector<episode>& exact,
-                                  const std::vector<episode>& oracle) {
-  if (exact.size() != oracle.size()) return std::nullopt;
-  difference d;
-  for (std::size_t i = 0; i < exact.size(); ++i) {
-    if (exact[i].kind != oracle[i].kind) return std::nullopt;
-    d.time = std::max({d.time, std::abs(exact[i].start - oracle[i].start),
-                       std::abs(exact[i].end - oracle[i].end)});
-    d.position =
-        std::max(d.position, std::abs(exact[i].position_at_start - oracle[i].position_at_start));
-  }
-  return d;
-}
 
 TEST(ModelOracleAgreement, RandomFamilyScenariosHaveIdenticalEpisodeSequences) {
   std::mt19937_64 rng(scenario_seed);

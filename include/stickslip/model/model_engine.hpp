@@ -71,7 +71,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
   double sigma = 1.0;         // friction direction while slipping
   bool grazing = false;       // no return to x' = v before the next switch
   bool after_reversal = false;
-  bool mirror = false;        // undamped slip started by a switch that ended a stick, v -> -v
+  bool mirror = false;        // undamped slip from a stick inside the kinetic band, v -> -v
   double acceleration = 0.0;  // x'' at the start of a damped slip
 
   auto generic_acceleration = [&] { return -w2 * (x - sigma * ak) - 2.0 * gamma * z; };
@@ -165,7 +165,13 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         m = mode::slip;
         sigma = v > z ? 1.0 : -1.0;
         grazing = after_reversal = false;
-        mirror = !damped && v == -old_v;
+        // The undamped orbit about c = sigma a_k starts at (w y, x') = (w y, -v).
+        // From the inner side (sigma y < 0: |x| inside the kinetic band) its
+        // first return to x' = v is the mirror point, the same x. From the
+        // outer side (sigma y > 0: a stick between a_k and a_s, mu_s > mu_k)
+        // it first turns through the far side and returns after half a
+        // period at x = 2c - x: the general root (root_angle gives pi).
+        mirror = !damped && v == -old_v && sigma * (x - sigma * ak) < 0.0;
         acceleration = generic_acceleration();
         close_episode(t, mode::slip);
       } else {  // the stick breaks at the band edge; exact state
