@@ -148,8 +148,10 @@ void json_emitter::null() {
 }
 
 void emit_model_members(json_emitter& j, const model_parameters& p,
-                        const std::vector<std::string>& swept) {
+                        const std::vector<std::string>& swept,
+                        const std::vector<std::string>& omitted) {
   for (const char* sym : recorded_parameter_names) {
+    if (std::find(omitted.begin(), omitted.end(), sym) != omitted.end()) continue;
     if (std::find(swept.begin(), swept.end(), sym) != swept.end()) {
       j.key(sym);
       j.null();

@@ -72,9 +72,11 @@ class json_emitter {
 
 // The members of a model description: every recorded scalar
 // (recorded_parameter_names, resolved: mu_s of a model without one is mu),
-// null for a symbol in `swept`; then the resolved belt: "belt_levels" [v_i],
+// null for a symbol in `swept`, left out for a symbol in `omitted` (one that
+// does not define the model); then the resolved belt: "belt_levels" [v_i],
 // "belt_generator" [[q_ij]] and, for two levels, "belt_rates" [r1, r2].
 void emit_model_members(json_emitter& j, const model_parameters& p,
-                        const std::vector<std::string>& swept = {});
+                        const std::vector<std::string>& swept = {},
+                        const std::vector<std::string>& omitted = {});
 
 }  // namespace stickslip::io::detail

@@ -16,7 +16,7 @@ namespace detail {
 // quantities not sampled once per realization, then every counter.
 void fill_summary_csv(text_sink& out, const result_set& rs) {
   check_shape(rs);
-  const auto symbols = point_parameter_symbols(rs.spec);
+  const auto symbols = point_parameter_symbols(rs);
   const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
   for (const auto& sym : symbols) out.print("{},", sym);
   out.write("realizations");

@@ -53,36 +53,51 @@ void emit_estimate_members(json_emitter& j, const estimate& e) {
 }
 
 // "dmean_dlambda": the likelihood-ratio derivative of each mean over lambda,
-// "control_variate": each mean with the belt switch count as control
-// (accumulators/score_moments.hpp).
-void emit_score_estimates(json_emitter& j, const point_result& p) {
+// "dmean_dlambda_causal": R's causal score derivative (causal_score_moments),
+// the same slope with far less variance, and "control_variate": each mean
+// with the belt switch count as control (accumulators/score_moments.hpp).
+// Only with Poisson switching: without it there is no lambda.
+void emit_lambda_estimates(json_emitter& j, const point_result& p) {
   const auto& s = p.stats;
   j.key("dmean_dlambda");
   j.begin_object();
   for (const auto& q : quantities()) {
     if (!q.score) continue;
-    const auto d = has_poisson_switching(p.parameters)
-                       ? score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate)
-                       : estimate{};
     j.key(q.summary_name);
     j.begin_object();
-    emit_estimate_members(j, d);
+    emit_estimate_members(j, score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate));
     j.end_object();
   }
   j.end_object();
-  // "dmean_dlambda_causal": R's causal score derivative
-  // (causal_score_moments), the same slope with far less variance.
   j.key("dmean_dlambda_causal");
   j.begin_object();
   j.key("R");
   j.begin_object();
-  emit_estimate_members(j, has_poisson_switching(p.parameters)
-                               ? causal_score_derivative(s.stick_fraction_causal_score)
-                               : estimate{});
+  emit_estimate_members(j, causal_score_derivative(s.stick_fraction_causal_score));
   j.end_object();
   j.end_object();
-  // "dmean_drates": the same derivative over the rates r1, r2 of a
-  // two-level belt given its own rates (only at such points).
+  j.key("control_variate");
+  j.begin_object();
+  for (const auto& q : quantities()) {
+    if (!q.score) continue;
+    const auto c = control_variate_mean(s.*q.score, s.*q.moments);
+    j.key(q.summary_name);
+    j.begin_object();
+    j.member("mean", c.mean.value);
+    j.member("std_error", c.mean.std_error);
+    emit_interval(j, c.mean);
+    j.member("variance_reduction", c.variance_reduction);
+    j.end_object();
+  }
+  j.end_object();
+}
+
+// "dmean_drates": the same derivative over the rates r1, r2 of a two-level
+// belt given its own rates, and "dmean_dgenerator": over each positive
+// off-diagonal entry q_ij of a belt given by its generator (levels numbered
+// from 1, as in --belt-start); each only at such points.
+void emit_belt_estimates(json_emitter& j, const point_result& p) {
+  const auto& s = p.stats;
   if (s.belt_rates[0] > 0.0) {
     j.key("dmean_drates");
     j.begin_object();
@@ -101,9 +116,6 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
     }
     j.end_object();
   }
-  // "dmean_dgenerator": the same over each positive off-diagonal entry q_ij
-  // of a belt given by its generator (levels numbered from 1, as in
-  // --belt-start), only at such points.
   if (!s.generator.empty()) {
     const std::size_t n = s.level_fraction.size();
     j.key("dmean_dgenerator");
@@ -125,21 +137,12 @@ void emit_score_estimates(json_emitter& j, const point_result& p) {
     }
     j.end_object();
   }
-  j.key("control_variate");
-  j.begin_object();
-  for (const auto& q : quantities()) {
-    if (!q.score) continue;
-    const auto c = has_poisson_switching(p.parameters) ? control_variate_mean(s.*q.score, s.*q.moments)
-                                                       : controlled_mean{};
-    j.key(q.summary_name);
-    j.begin_object();
-    j.member("mean", c.mean.value);
-    j.member("std_error", c.mean.std_error);
-    emit_interval(j, c.mean);
-    j.member("variance_reduction", c.variance_reduction);
-    j.end_object();
-  }
-  j.end_object();
+}
+
+// The derivative estimates, each only where it applies.
+void emit_score_estimates(json_emitter& j, const point_result& p) {
+  if (has_poisson_switching(p.parameters)) emit_lambda_estimates(j, p);
+  emit_belt_estimates(j, p);
 }
 
 // "crn_slopes": per axis, the common-random-number slope of each
@@ -169,11 +172,11 @@ void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
 // the counters that belong to no group, the sample counts of the quantities
 // not sampled once per realization ("samples"), then each group of counters
 // ("events") as an object, the derivative estimates and the joint histograms.
-void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p,
-                const std::vector<precision::crn_slope>* slopes) {
+void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::string>& symbols,
+                const point_result& p, const std::vector<precision::crn_slope>* slopes) {
   const auto& s = p.stats;
   j.begin_object();
-  for (const auto& sym : point_parameter_symbols(spec))
+  for (const auto& sym : symbols)
     j.member(sym, parameter_value(p.parameters, sym));
   j.member("realizations", s.realizations);
   for (const auto& q : quantities()) {
@@ -227,8 +230,9 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const point_result& p,
 void emit_points(json_emitter& j, const result_set& rs) {
   j.begin_array(layout::multi_line);
   const auto slopes = precision::crn_slopes(rs);  // empty without CRN and records
+  const auto symbols = point_parameter_symbols(rs);
   for (std::size_t i = 0; i < rs.points.size(); ++i)
-    emit_point(j, rs.spec, rs.points[i], slopes.empty() ? nullptr : &slopes[i]);
+    emit_point(j, rs.spec, symbols, rs.points[i], slopes.empty() ? nullptr : &slopes[i]);
   j.end_array();
 }
 
@@ -239,7 +243,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   const auto swept = swept_symbols(s);
   j.key("base");
   j.begin_object();
-  emit_model_members(j, s.base, swept);
+  emit_model_members(j, resolved_base(rs), swept, meaningless_parameters(rs));
   j.end_object();
   j.key("swept");
   j.begin_array();

@@ -169,9 +169,12 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
 }
 
 void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  // Every recorded scalar, then the swept belt levels and rates (vI, rI).
-  std::vector<std::string> symbols(std::begin(recorded_parameter_names),
-                                   std::end(recorded_parameter_names));
+  // Every recorded scalar that defines the model (meaningless_parameters),
+  // then the swept belt levels and rates (vI, rI).
+  const auto omitted = meaningless_parameters(rs);
+  std::vector<std::string> symbols;
+  for (const char* sym : recorded_parameter_names)
+    if (std::find(omitted.begin(), omitted.end(), sym) == omitted.end()) symbols.emplace_back(sym);
   for (const auto& sym : swept_symbols(rs.spec))
     if (std::find(symbols.begin(), symbols.end(), sym) == symbols.end()) symbols.push_back(sym);
   for (const auto& sym : symbols) {
@@ -245,7 +248,15 @@ void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
 // derivative of its mean over lambda and the control-variate mean with the
 // belt switch count as control (accumulators/score_moments.hpp,
 // docs/precision.md), each with its 95% CI.
+// Each family of variables only when it applies at some point of the grid:
+// the lambda derivative and the control variate with Poisson switching, the
+// r1/r2 derivatives on a two-level belt given its own rates.
 void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  bool poisson = false, rates = false;
+  for (const auto& p : rs.points) {
+    poisson = poisson || has_poisson_switching(p.parameters);
+    rates = rates || p.stats.belt_rates[0] > 0.0;
+  }
   for (const auto& q : quantities()) {
     if (!q.score) continue;
     const std::string n = q.name, sym = q.symbol;
@@ -263,38 +274,41 @@ void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set
     const std::string lr = "likelihood-ratio (score) estimate of d E[" + sym +
                            "]/d lambda: mean of (X - mean X)(N/lambda - t_a), N the belt "
                            "switches of the realization in [0, t_a]";
-    auto d = add_double(f, n + "_dmean_dlambda", l.grid, units, "slope " + sym, "d mean/d lambda: " + lr);
-    put_grid<double>(d, rs, [&](const point_result& p) { return deriv(p).value; });
-    auto dlo = add_double(f, n + "_dmean_dlambda_ci95_low", l.grid, units,
-                          "slope low " + sym,
-                          "value - 1.96 x its delta-method standard error; " + lr);
-    put_grid<double>(dlo, rs, [&](const point_result& p) {
-      return deriv(p).value - deriv(p).ci95_half_width();
-    });
-    auto dhi = add_double(f, n + "_dmean_dlambda_ci95_high", l.grid, units,
-                          "slope high " + sym,
-                          "value + 1.96 x its delta-method standard error; " + lr);
-    put_grid<double>(dhi, rs, [&](const point_result& p) {
-      return deriv(p).value + deriv(p).ci95_half_width();
-    });
-    const std::string cvd = "control-variate mean of " + sym +
-                            ": mean X - beta (mean N - lambda t_a), beta = Cov(X, N)/Var(N) "
-                            "(N the belt switches, known mean lambda t_a)";
-    auto m = add_double(f, n + "_cv_mean", l.grid, q.units, "CV mean " + sym, cvd);
-    put_grid<double>(m, rs, [&](const point_result& p) { return cv(p).mean.value; });
-    auto mlo = add_double(f, n + "_cv_ci95_low", l.grid, q.units,
-                          "CV mean low " + sym,
-                          "mean - 1.96 x the residual standard error; " + cvd);
-    put_grid<double>(mlo, rs, [&](const point_result& p) {
-      return cv(p).mean.value - cv(p).mean.ci95_half_width();
-    });
-    auto mhi = add_double(f, n + "_cv_ci95_high", l.grid, q.units,
-                          "CV mean high " + sym,
-                          "mean + 1.96 x the residual standard error; " + cvd);
-    put_grid<double>(mhi, rs, [&](const point_result& p) {
-      return cv(p).mean.value + cv(p).mean.ci95_half_width();
-    });
-    for (std::size_t r = 0; r < 2; ++r) {
+    if (poisson) {
+      auto d = add_double(f, n + "_dmean_dlambda", l.grid, units, "slope " + sym,
+                          "d mean/d lambda: " + lr);
+      put_grid<double>(d, rs, [&](const point_result& p) { return deriv(p).value; });
+      auto dlo = add_double(f, n + "_dmean_dlambda_ci95_low", l.grid, units,
+                            "slope low " + sym,
+                            "value - 1.96 x its delta-method standard error; " + lr);
+      put_grid<double>(dlo, rs, [&](const point_result& p) {
+        return deriv(p).value - deriv(p).ci95_half_width();
+      });
+      auto dhi = add_double(f, n + "_dmean_dlambda_ci95_high", l.grid, units,
+                            "slope high " + sym,
+                            "value + 1.96 x its delta-method standard error; " + lr);
+      put_grid<double>(dhi, rs, [&](const point_result& p) {
+        return deriv(p).value + deriv(p).ci95_half_width();
+      });
+      const std::string cvd = "control-variate mean of " + sym +
+                              ": mean X - beta (mean N - lambda t_a), beta = Cov(X, N)/Var(N) "
+                              "(N the belt switches, known mean lambda t_a)";
+      auto m = add_double(f, n + "_cv_mean", l.grid, q.units, "CV mean " + sym, cvd);
+      put_grid<double>(m, rs, [&](const point_result& p) { return cv(p).mean.value; });
+      auto mlo = add_double(f, n + "_cv_ci95_low", l.grid, q.units,
+                            "CV mean low " + sym,
+                            "mean - 1.96 x the residual standard error; " + cvd);
+      put_grid<double>(mlo, rs, [&](const point_result& p) {
+        return cv(p).mean.value - cv(p).mean.ci95_half_width();
+      });
+      auto mhi = add_double(f, n + "_cv_ci95_high", l.grid, q.units,
+                            "CV mean high " + sym,
+                            "mean + 1.96 x the residual standard error; " + cvd);
+      put_grid<double>(mhi, rs, [&](const point_result& p) {
+        return cv(p).mean.value + cv(p).mean.ci95_half_width();
+      });
+    }
+    for (std::size_t r = 0; rates && r < 2; ++r) {
       const std::string rn = r == 0 ? "r1" : "r2";
       const std::string lrr = "likelihood-ratio (score) estimate of d E[" + sym + "]/d " + rn +
                               " for a two-level belt given its own rates: mean of (X - mean "
@@ -321,6 +335,7 @@ void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set
         return rate_deriv(p).value + rate_deriv(p).ci95_half_width();
       });
     }
+    if (!poisson) continue;
     auto vr = add_double(f, n + "_cv_variance_reduction", l.grid, "1",
                          "CV gain " + sym,
                          "Var(X) / residual variance = 1/(1 - rho^2), rho = corr(X, N): how "
@@ -636,7 +651,10 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
                        "{}; histograms (densities) of {} over dimension bin, with bin "
                        "coordinates and bounds; convergence traces over dimension trace. "
                        "Parameters that are not swept are global attributes named by their "
-                       "symbol; every parameter is also a variable over the grid.",
+                       "symbol; every parameter is also a variable over the grid. Only the "
+                       "parameters that define the model are written (mu only when mu_s = "
+                       "mu_k = mu, V only on a (+V, -V) belt, lambda only with Poisson "
+                       "switching), and only the derivatives that apply to it.",
                        symbols, binned));
   f.putAtt("version", meta.version);
   f.putAtt("git_revision", meta.git_revision);
@@ -666,9 +684,11 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   for (const auto& sym : swept_symbols(s)) swept += (swept.empty() ? "" : " ") + sym;
   f.putAtt("swept_parameters", swept);
   const auto sw = swept_symbols(s);
+  const auto omitted = meaningless_parameters(rs);
   for (const char* sym : recorded_parameter_names)
-    if (std::find(sw.begin(), sw.end(), sym) == sw.end())
-      f.putAtt(sym, nc::ncDouble, parameter_value(s.base, sym));
+    if (std::find(sw.begin(), sw.end(), sym) == sw.end() &&
+        std::find(omitted.begin(), omitted.end(), sym) == omitted.end())
+      f.putAtt(sym, nc::ncDouble, parameter_value(resolved_base(rs), sym));
   // The resolved belt of the base (a swept vI or rI is a coordinate instead):
   // levels v_i [m/s] and the generator Q, row-major [1/s].
   const auto levels = s.base.levels();

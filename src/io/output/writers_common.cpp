@@ -13,9 +13,37 @@ std::vector<std::string> swept_symbols(const sweep_spec& s) {
   return out;
 }
 
-std::vector<std::string> point_parameter_symbols(const sweep_spec& s) {
-  std::vector<std::string> out{"lambda", "mu"};
-  for (auto& sym : swept_symbols(s))
+bool defines_model(const model_parameters& p, std::string_view symbol) {
+  const std::string sym = canonical_symbol(symbol);
+  if (sym == "mu")
+    return p.mu_s() == p.friction_coefficient && p.mu_k() == p.friction_coefficient;
+  if (sym == "V") return p.belt_levels.empty();
+  if (sym == "lambda") return has_poisson_switching(p);
+  return true;
+}
+
+std::vector<std::string> meaningless_parameters(const result_set& rs) {
+  const auto swept = swept_symbols(rs.spec);
+  std::vector<std::string> out;
+  for (const char* sym : recorded_parameter_names) {
+    if (std::find(swept.begin(), swept.end(), sym) != swept.end()) continue;
+    bool everywhere = rs.points.empty() ? defines_model(rs.spec.base, sym) : true;
+    for (const auto& p : rs.points) everywhere = everywhere && defines_model(p.parameters, sym);
+    if (!everywhere) out.emplace_back(sym);
+  }
+  return out;
+}
+
+const model_parameters& resolved_base(const result_set& rs) {
+  return rs.points.empty() ? rs.spec.base : rs.points.front().parameters;
+}
+
+std::vector<std::string> point_parameter_symbols(const result_set& rs) {
+  const auto omitted = meaningless_parameters(rs);
+  std::vector<std::string> out;
+  for (const char* sym : {"lambda", "mu"})
+    if (std::find(omitted.begin(), omitted.end(), sym) == omitted.end()) out.emplace_back(sym);
+  for (auto& sym : swept_symbols(rs.spec))
     if (sym != "lambda" && sym != "mu") out.push_back(sym);
   return out;
 }

@@ -5,6 +5,7 @@
 // results.nc, summary.json and summary.csv name things the same way.
 #pragma once
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stickslip/io/atomic_file.hpp"
@@ -17,9 +18,24 @@ namespace stickslip::io::detail {
 
 // The canonical symbols of the swept axes, in the spec's axis order.
 [[nodiscard]] std::vector<std::string> swept_symbols(const sweep_spec& s);
-// The parameters every summary point carries: lambda and mu always (swept or
-// not), then the other swept symbols in axis order.
-[[nodiscard]] std::vector<std::string> point_parameter_symbols(const sweep_spec& s);
+// Whether the recorded parameter `symbol` defines the model `p`: mu only when
+// the friction is that one coefficient (mu_s = mu_k = mu), V only on the
+// default belt (+V, -V), lambda only with Poisson switching (no rates and no
+// generator of the belt's own); every other recorded parameter always.
+[[nodiscard]] bool defines_model(const model_parameters& p, std::string_view symbol);
+// The recorded parameters that do not define the model at some grid point of
+// `rs` and are not swept: they are written nowhere (no variable, attribute,
+// JSON member or CSV column), since their value means nothing there (issue
+// 23: a "mu" of 5 in a mu_s sweep at mu_k = 4).
+[[nodiscard]] std::vector<std::string> meaningless_parameters(const result_set& rs);
+// The model of the first grid point as the engines resolve it (the paper's
+// model in its paper form, point_parameters): where the parameters that are
+// not swept are read from, so that "mu" of --mu-s 2 --mu-k 2 is 2, not the
+// unused default 5. The spec's base when there are no points.
+[[nodiscard]] const model_parameters& resolved_base(const result_set& rs);
+// The parameters every summary point carries: lambda and mu (swept or not,
+// unless meaningless_parameters), then the other swept symbols in axis order.
+[[nodiscard]] std::vector<std::string> point_parameter_symbols(const result_set& rs);
 // A parameter's NetCDF variable name: its long alias with '_' ("switch_rate").
 [[nodiscard]] std::string parameter_variable_name(const std::string& symbol);
 
