@@ -106,6 +106,14 @@ int belt_start_from(const std::string& text, const model_parameters& p) {
   return io::parse_belt_start("--belt-start", text, p.levels().size());
 }
 
+// The closed-form pieces of one realization, kept whole as the library's
+// `segment` structs: Python holds them opaquely and hands them back to the
+// sampler, so no field (decay_rate was once dropped by a copy into tuples,
+// issue 23) can be lost on the way.
+struct trace_segments {
+  std::vector<segment> items;
+};
+
 py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
@@ -143,19 +151,16 @@ py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t real
     py::gil_scoped_release release;
     t = replay(r);
   }
-  py::list episodes, events, segments;
+  py::list episodes, events;
   for (const auto& e : t.episodes)
     episodes.append(py::make_tuple(to_string(e.kind), e.start, e.end, e.position_at_start,
                                    e.belt_velocity, e.censored));
   for (const auto& e : t.events)
     events.append(py::make_tuple(to_string(e.kind), e.time, e.position, e.velocity, e.belt_velocity));
-  for (const auto& s : t.segments)
-    segments.append(py::make_tuple(to_string(s.kind), s.start, s.end, s.position, s.velocity,
-                                   s.belt_velocity, s.center, s.omega));
   py::dict out;
   out["episodes"] = episodes;
   out["events"] = events;
-  out["segments"] = segments;
+  out["segments"] = trace_segments{std::move(t.segments)};
   out["x0"] = t.initial.position;
   out["xdot0"] = t.initial.velocity;
   out["belt_start"] = t.initial.belt_direction;
@@ -178,20 +183,9 @@ py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t real
 
 // x, x', v every dt and at both ends of every closed-form piece: the one
 // trajectory sampler (trajectory.hpp), as `simulate --trajectory` uses it.
-// `rows` holds replay()'s segment tuples.
-py::list sample_trajectory_py(const py::list& rows, double dt) {
-  std::vector<segment> segments;
-  segments.reserve(rows.size());
-  for (const auto& row : rows) {
-    const auto r = py::cast<py::tuple>(row);
-    segments.push_back(segment{py::cast<std::string>(r[0]) == "stick" ? mode::stick : mode::slip,
-                               py::cast<double>(r[1]), py::cast<double>(r[2]),
-                               py::cast<double>(r[3]), py::cast<double>(r[4]),
-                               py::cast<double>(r[5]), py::cast<double>(r[6]),
-                               py::cast<double>(r[7])});
-  }
+py::list sample_trajectory_py(const trace_segments& segments, double dt) {
   py::list out;
-  for (const auto& p : sample_trajectory(segments, dt))
+  for (const auto& p : sample_trajectory(segments.items, dt))
     out.append(py::make_tuple(p.time, p.position, p.velocity, p.belt_velocity));
   return out;
 }
@@ -457,6 +451,9 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
         py::arg("min_realizations") = 1000);
+  py::class_<trace_segments>(m, "Segments",
+                             "one realization's closed-form pieces (stickslip::segment), whole")
+      .def("__len__", [](const trace_segments& s) { return s.items.size(); });
   m.def("sample_trajectory", &sample_trajectory_py, py::arg("segments"), py::arg("dt"));
   m.def("peak", &peak_py, py::arg("model"), py::arg("over"), py::arg("statistic"), py::arg("lo"),
         py::arg("hi"), py::arg("target_halfwidth"), py::arg("method"), py::arg("seed"),
