@@ -21,6 +21,8 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/io/journal.hpp"
+#include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/precision/peak_sweep.hpp"
 #include "stickslip/replay.hpp"
@@ -114,7 +116,9 @@ struct trace_segments {
   std::vector<segment> items;
 };
 
-py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
+// The replay of stickslip.simulate() (and of each of simulate_many()'s
+// realizations) from its keyword arguments, read as `simulate` reads its flags.
+replay_request request_from(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
                    std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
@@ -146,15 +150,29 @@ py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t real
     if (!schedule.levels.empty()) r.switch_levels = std::move(schedule.levels);
   }
   r.max_events = max_events;
+  return r;
+}
+
+py::tuple episode_row(const episode& e) {
+  return py::make_tuple(to_string(e.kind), e.start, e.end, e.position_at_start, e.belt_velocity,
+                        e.censored);
+}
+
+py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
+                   std::optional<double> x0, std::optional<double> xdot0,
+                   std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
+                   std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
+                   bool common_random_numbers) {
+  const replay_request r = request_from(model, seed, realization, x0, xdot0, belt_start,
+                                        switch_times, switch_levels, max_events,
+                                        common_random_numbers);
   realization_trace t;
   {
     py::gil_scoped_release release;
     t = replay(r);
   }
   py::list episodes, events;
-  for (const auto& e : t.episodes)
-    episodes.append(py::make_tuple(to_string(e.kind), e.start, e.end, e.position_at_start,
-                                   e.belt_velocity, e.censored));
+  for (const auto& e : t.episodes) episodes.append(episode_row(e));
   for (const auto& e : t.events)
     events.append(py::make_tuple(to_string(e.kind), e.time, e.position, e.velocity, e.belt_velocity));
   py::dict out;
@@ -251,6 +269,66 @@ bool run_interruptibly(Work&& work, run::stop_token& stop, const py::object& pro
   return false;
 }
 
+// stickslip.simulate_many(): replay() of each of `realizations` with the same
+// arguments, on `threads` worker threads (0 = all cores) without the GIL.
+// Each realization is computed alone, exactly as simulate() computes it, so
+// the rows (in the order of `realizations`, each episode row led by its
+// realization index) do not depend on the thread count. Ctrl-C starts no
+// further realization and raises KeyboardInterrupt.
+py::list replay_many_py(const py::dict& model, std::uint64_t seed,
+                        const std::vector<std::uint64_t>& realizations, std::optional<double> x0,
+                        std::optional<double> xdot0, std::optional<std::string> belt_start,
+                        std::optional<std::vector<double>> switch_times,
+                        std::optional<std::vector<std::int64_t>> switch_levels,
+                        std::int64_t max_events, bool common_random_numbers, unsigned threads) {
+  replay_request base = request_from(model, seed, 0, x0, xdot0, belt_start, switch_times,
+                                     switch_levels, max_events, common_random_numbers);
+  base.keep_events = false;
+  base.keep_segments = false;
+  const std::size_t n = realizations.size();
+  std::vector<std::vector<episode>> episodes(n);
+  run::stop_token stop;
+  std::atomic<std::uint64_t> done{0}, total{n};
+  const bool interrupted = run_interruptibly(
+      [&] {
+        std::atomic<std::size_t> next{0};
+        std::mutex failure_mutex;
+        std::exception_ptr failure;
+        auto work = [&] {
+          while (true) {
+            const std::size_t i = next.fetch_add(1);
+            if (i >= n || stop.requested()) return;
+            try {
+              replay_request r = base;
+              r.realization = realizations[i];
+              episodes[i] = replay(r).episodes;
+              done.fetch_add(1);
+            } catch (...) {
+              std::lock_guard lock(failure_mutex);
+              if (!failure) failure = std::current_exception();
+              stop.request(SIGINT);  // no further realization starts
+              return;
+            }
+          }
+        };
+        const auto count =
+            static_cast<std::size_t>(std::min<std::uint64_t>(run::resolve_threads(threads), n));
+        std::vector<std::thread> pool;
+        for (std::size_t t = 1; t < count; ++t) pool.emplace_back(work);
+        work();
+        for (auto& t : pool) t.join();
+        if (failure) std::rethrow_exception(failure);
+      },
+      stop, py::none(), done, total);
+  if (interrupted) throw py::error_already_set();
+  py::list rows;
+  for (std::size_t i = 0; i < n; ++i)
+    for (const auto& e : episodes[i])
+      rows.append(py::make_tuple(realizations[i], to_string(e.kind), e.start, e.end,
+                                 e.position_at_start, e.belt_velocity, e.censored));
+  return rows;
+}
+
 sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::string, std::vector<double>>>& axes,
                      std::uint64_t realizations, std::uint64_t seed, std::uint64_t block_size,
                      std::size_t bins, bool records, const std::string& engine,
@@ -291,7 +369,7 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
                   double checkpoint_interval, const std::string& netcdf_path, const std::string& command_line,
                   const py::object& progress, const std::optional<std::string>& belt_start,
                   bool common_random_numbers, const std::string& target_ci,
-                  std::uint64_t min_realizations) {
+                  std::uint64_t min_realizations, bool overwrite) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
@@ -304,6 +382,21 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
   validate(spec);
   if (!(checkpoint_interval >= 0) || checkpoint_interval > 86400)
     throw invalid_parameter("checkpoint_interval", checkpoint_interval, "0 .. 86400 seconds");
+  // The command line's rule for an output directory (stickslip sweep -o DIR,
+  // with the same checks of the library): without resume or overwrite,
+  // finished results there are never replaced; a resume into DIR without a
+  // journal continues nothing: its finished outputs must be this
+  // configuration's (then nothing runs and they are read back as they are).
+  bool already_complete = false;
+  if (!output.empty() && !overwrite) {
+    if (!resume)
+      io::refuse_to_replace(io::existing_sweep_results(output), "the results of an earlier run",
+                            "pass overwrite=True to replace them, resume=True to continue an "
+                            "interrupted sweep, or choose another output folder");
+    else if (!io::journal_exists(output))
+      already_complete = run::finished_outputs_of(spec, output).has_value();
+  }
+  if (already_complete) return;
   io::run_metadata meta = io::make_metadata(0, nullptr, io::to_toml(spec));
   meta.command_line = command_line;
   run::stop_token stop;
@@ -326,6 +419,7 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
             run::run_plan plan;
             plan.dir = output;
             plan.resume = resume;
+            plan.overwrite = overwrite;
             plan.checkpoint_interval = std::chrono::duration<double>(checkpoint_interval);
             plan.stop = &stop;
             plan.progress = [&](std::uint64_t d, std::uint64_t t, double) { count(d, t); };
@@ -440,6 +534,9 @@ PYBIND11_MODULE(_stickslip, m) {
       PyErr_SetObject(error_type.ptr(), err.ptr());
     }
   });
+  py::class_<trace_segments>(m, "Segments",
+                             "one realization's closed-form pieces (stickslip::segment), whole")
+      .def("__len__", [](const trace_segments& s) { return s.items.size(); });
   m.def("replay", &replay_py, py::arg("parameters"), py::arg("seed"), py::arg("realization"),
         py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"), py::arg("switch_times"),
         py::arg("switch_levels"), py::arg("max_events"), py::arg("common_random_numbers") = false);
@@ -450,10 +547,22 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("netcdf_path"),
         py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
-        py::arg("min_realizations") = 1000);
-  py::class_<trace_segments>(m, "Segments",
-                             "one realization's closed-form pieces (stickslip::segment), whole")
-      .def("__len__", [](const trace_segments& s) { return s.items.size(); });
+        py::arg("min_realizations") = 1000, py::arg("overwrite") = false);
+  m.def("replay_many", &replay_many_py, py::arg("parameters"), py::arg("seed"),
+        py::arg("realizations"), py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"),
+        py::arg("switch_times"), py::arg("switch_levels"), py::arg("max_events"),
+        py::arg("common_random_numbers"), py::arg("threads"));
+  // The command line's parser of whole numbers, for the Python layer's one
+  // coercion of integer arguments (stickslip/_parameters.py): its rule and
+  // its message.
+  m.def("parse_unsigned",
+        [](const std::string& name, const std::string& text, std::uint64_t lo, std::uint64_t hi) {
+          return io::parse_unsigned(name, text, lo, hi);
+        },
+        py::arg("name"), py::arg("text"), py::arg("lo"), py::arg("hi"));
+  m.attr("max_realizations") = stickslip::max_realizations;
+  m.attr("max_block_size") = stickslip::max_block_size;
+  m.attr("max_histogram_bins") = stickslip::max_histogram_bins;
   m.def("sample_trajectory", &sample_trajectory_py, py::arg("segments"), py::arg("dt"));
   m.def("peak", &peak_py, py::arg("model"), py::arg("over"), py::arg("statistic"), py::arg("lo"),
         py::arg("hi"), py::arg("target_halfwidth"), py::arg("method"), py::arg("seed"),

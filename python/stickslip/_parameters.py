@@ -4,9 +4,12 @@ flags: the paper's symbols (--m, --k, --g, --mu, --V, --lambda, --ta), with
 family's scalars (--c, --mu-s, --mu-k), the belt (--belt-levels,
 --belt-rates, --belt-generator), and a belt level vI or a rate rI of a
 two-level belt by its symbol (as a sweep axis of a TOML config)."""
+import numbers
 import re
 
 import numpy as np
+
+from . import _stickslip
 
 # symbol used by the library -> (keyword, default, unit, meaning)
 PARAMETERS = {
@@ -33,9 +36,131 @@ BELT = {
 INDEXED = re.compile(r"^(v[1-9][0-9]*|r[12])$")  # a belt level vI, a two-level rate rI
 
 
-def model_arguments(kwargs):
+# ---------------------------------------------------------------------------
+# The one coercion of arguments (issue 23): every public function reads its
+# numbers, whole numbers, sequences and flags through these, so that every
+# refusal is a stickslip.Error (a ValueError) with exit_code 2 whose message
+# names the parameter, the value and what is allowed, as the CLI's do:
+#   a number        int, float or a numpy number (or a 0-d array of one),
+#                   finite; never a bool, never text
+#   a whole number  int or a numpy integer (or a 0-d integer array) in the
+#                   CLI's range; a float is refused even when integral (the
+#                   CLI refuses "2.0" too): no value is ever truncated. The
+#                   range check and its message are the CLI's own parser's
+#                   (io::parse_unsigned through the extension).
+#   a sequence      a list, tuple, range or 1-D array (Series, DataArray) of
+#                   numbers; text and arrays of 2 or more dimensions are refused,
+#                   never flattened
+#   a flag          True or False (numpy's bool too)
+# ---------------------------------------------------------------------------
+UINT64_MAX = 2**64 - 1
+INT64_MAX = 2**63 - 1
+
+
+def error(message):
+    """A stickslip.Error for bad input: exit_code 2, as the CLI's."""
+    e = _stickslip.Error(message)
+    e.exit_code = 2
+    return e
+
+
+def _kind(value):
+    return type(value).__name__
+
+
+def _is_bool(value):
+    return isinstance(value, (bool, np.bool_)) or (
+        isinstance(value, np.ndarray) and value.dtype == np.bool_)
+
+
+def _is_array(value):
+    return isinstance(value, np.ndarray) or (hasattr(value, "ndim") and hasattr(value, "shape")
+                                             and hasattr(value, "__array__"))
+
+
+def number(name, value):
+    """One finite number, as a float."""
+    allowed = "a finite number"
+    if _is_array(value) and np.ndim(value) == 0 and not _is_bool(value):
+        value = np.asarray(value).item()
+    if isinstance(value, (str, bytes)):
+        raise error(f"invalid {name}: {value!r} (allowed: {allowed}; got text, not a number)")
+    if _is_bool(value):
+        raise error(f"invalid {name}: {value} (allowed: {allowed}; a bool is not a number)")
+    if not isinstance(value, numbers.Real):
+        raise error(f"invalid {name}: {value!r} (allowed: {allowed}; got a {_kind(value)})")
+    x = float(value)
+    if not np.isfinite(x):
+        raise error(f"invalid {name}: {x} (allowed: {allowed})")
+    return x
+
+
+def whole(name, value, lo=0, hi=UINT64_MAX):
+    """One whole number in [lo, hi], read by the CLI's parser of whole numbers
+    (its rule, its message "invalid NAME: 'V' (allowed: a whole number from lo
+    to hi)")."""
+    if _is_array(value) and np.ndim(value) == 0 and np.asarray(value).dtype.kind in "iu":
+        value = np.asarray(value).item()
+    if isinstance(value, (numbers.Integral, np.integer)) and not _is_bool(value):
+        text = str(int(value))
+    elif isinstance(value, (str, bytes)):
+        text = repr(value)  # quoted: text is never a number here
+    else:
+        text = str(value)   # a float, a bool, ...: never a whole number's text
+    return _stickslip.parse_unsigned(name, text, lo, hi)
+
+
+def flag(name, value):
+    """True or False."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise error(f"invalid {name}: {value!r} (allowed: True or False)")
+
+
+def text(name, value):
+    """A str (or a path, for names of files and folders)."""
+    if isinstance(value, str):
+        return value
+    raise error(f"invalid {name}: {value!r} (allowed: text (a str); got a {_kind(value)})")
+
+
+def _is_sequence(value):
+    if isinstance(value, (str, bytes)):
+        return False
+    if isinstance(value, (list, tuple, range)):
+        return True
+    return _is_array(value) and np.ndim(value) > 0
+
+
+def sequence(name, value, allowed="a sequence of finite numbers", item=number):
+    """A 1-D sequence of numbers (or of whole numbers with item=whole), as a
+    list; entry i is named "NAME entry #i" in a message."""
+    if isinstance(value, (str, bytes)):
+        raise error(f"invalid {name}: {value!r} (allowed: {allowed}; got text)")
+    if not _is_sequence(value):
+        raise error(f"invalid {name}: {value!r} (allowed: {allowed})")
+    if _is_array(value):
+        if np.ndim(value) != 1:
+            raise error(f"invalid {name}: an array of {np.ndim(value)} dimensions, shape "
+                        f"{tuple(np.shape(value))} (allowed: {allowed}, 1-D: it is never "
+                        "flattened)")
+        value = np.asarray(value).tolist()
+    return [item(f"{name} entry #{i}", v) for i, v in enumerate(value, start=1)]
+
+
+def number_or_axis(name, value):
+    """A sweep's model parameter: a number fixes it, a 1-D sequence makes an
+    axis (a float or a list of floats)."""
+    if _is_sequence(value):
+        return sequence(name, value, "a number or a 1-D sequence of finite numbers")
+    return number(name, value)
+
+
+def model_arguments(kwargs, axes=False):
     """Pops the scalar model parameters out of `kwargs` (in the order given)
-    and returns {symbol: value} with only the given ones."""
+    and returns {symbol: value} with only the given ones: numbers, or with
+    axes=True a number or a list of numbers (number_or_axis), each read under
+    the keyword the caller used."""
     by_keyword = {kw: sym for sym, (kw, *_rest) in PARAMETERS.items()}
     given = {}
     for key in list(kwargs):
@@ -44,7 +169,8 @@ def model_arguments(kwargs):
             sym = by_keyword.get(kw, kw)
             if sym in given:
                 raise TypeError(f"{key}: {sym} given twice (an alias names the same parameter)")
-            given[sym] = kwargs.pop(key)
+            value = kwargs.pop(key)
+            given[sym] = number_or_axis(key, value) if axes else number(key, value)
     return given
 
 
@@ -54,14 +180,30 @@ def belt_arguments(belt_levels, belt_rates, belt_generator):
     message)."""
     belt = {}
     if belt_levels is not None:
-        belt["belt_levels"] = [float(v) for v in np.asarray(belt_levels, dtype=float).ravel()]
+        belt["belt_levels"] = sequence("belt_levels", belt_levels)
     if belt_rates is not None:
-        belt["belt_rates"] = [float(v) for v in np.asarray(belt_rates, dtype=float).ravel()]
+        belt["belt_rates"] = sequence("belt_rates", belt_rates)
     if belt_generator is not None:
-        rows = belt_generator.tolist() if isinstance(belt_generator, np.ndarray) else belt_generator
-        belt["belt_generator"] = [[float(q) for q in np.ravel(np.asarray(row, dtype=float))]
-                                  for row in rows]
+        allowed = "an n x n nested sequence or array of rates"
+        if isinstance(belt_generator, (str, bytes)) or not _is_sequence(belt_generator):
+            raise error(f"invalid belt_generator: {belt_generator!r} (allowed: {allowed})")
+        rows = (np.asarray(belt_generator).tolist() if _is_array(belt_generator)
+                else list(belt_generator))
+        belt["belt_generator"] = [sequence(f"belt_generator row {i}", row, allowed)
+                                  for i, row in enumerate(rows, start=1)]
     return belt
+
+
+def optional(read, name, value, *args):
+    """read(name, value, *args), or None for None."""
+    return None if value is None else read(name, value, *args)
+
+
+def max_events_of(value):
+    """max_events: None for the default (1e8), else 1 .. 2^63 - 1 (the CLI's --max-events)."""
+    if value is None:
+        return _stickslip.default_max_events
+    return whole("max_events", value, 1, INT64_MAX)
 
 
 def belt_start_text(belt_start):

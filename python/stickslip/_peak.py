@@ -1,7 +1,8 @@
 """stickslip.peak(): the maximizer of a mean statistic over one parameter,
 exactly as `stickslip peak` computes it (docs/precision.md)."""
 from . import _stickslip
-from ._parameters import belt_arguments, describe, model_arguments
+from ._parameters import (belt_arguments, describe, error, max_events_of, model_arguments, number,
+                          text, whole)
 
 
 def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # noqa: A002
@@ -34,23 +35,27 @@ def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # 
     params = model_arguments(model)
     if model:
         raise TypeError(f"peak() got unexpected keyword arguments: {', '.join(model)}")
-    params = {k: float(v) for k, v in params.items()}
     params.update(belt_arguments(belt_levels, belt_rates, belt_generator))
+    over = text("over", over)
     if over in params:
-        raise _stickslip.Error(f"invalid {over}: {params[over]} (allowed: not given: over={over!r} "
-                               "sweeps it over range)")
+        raise error(f"invalid {over}: {params[over]} (allowed: not given: over={over!r} "
+                    "sweeps it over range)")
     if range is None:
         if over != "lambda":
-            raise _stickslip.Error("invalid range: None (allowed: (lo, hi), required unless "
-                                   "over='lambda')")
+            raise error("invalid range: None (allowed: (lo, hi), required unless over='lambda')")
         range = (0.1, 100.0)
-    lo, hi = (float(v) for v in range)
+    if isinstance(range, (str, bytes)) or not hasattr(range, "__len__") or len(range) != 2:
+        raise error(f"invalid range: {range!r} (allowed: (lo, hi) with 0 < lo < hi)")
+    lo, hi = number("range lo", range[0]), number("range hi", range[1])
     if not (lo > 0 and hi > lo):
-        raise _stickslip.Error(f"invalid range: {range!r} (allowed: (lo, hi) with 0 < lo < hi)")
-    return _stickslip.peak(params, str(over), str(statistic), lo, hi, float(target_halfwidth),
-                           str(method), int(seed), int(threads), int(initial_realizations),
-                           int(max_realizations),
-                           _stickslip.default_max_events if max_events is None else int(max_events))
+        raise error(f"invalid range: {tuple(range)!r} (allowed: (lo, hi) with 0 < lo < hi)")
+    return _stickslip.peak(params, over, text("statistic", statistic), lo, hi,
+                           number("target_halfwidth", target_halfwidth), text("method", method),
+                           whole("seed", seed), whole("threads", threads, 0, 2**16),
+                           whole("initial_realizations", initial_realizations, 2, 2**24),
+                           whole("max_realizations", max_realizations, 2,
+                                 _stickslip.max_realizations),
+                           max_events_of(max_events))
 
 
 peak.__doc__ = peak.__doc__.format(params=describe())

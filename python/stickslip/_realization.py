@@ -3,7 +3,10 @@ import numpy as np
 import pandas as pd
 
 from . import _stickslip
-from ._parameters import belt_arguments, belt_start_text, describe, model_arguments
+from ._parameters import (belt_arguments, belt_start_text, describe, error, flag, max_events_of,
+                          model_arguments, number, optional, sequence, whole)
+
+EPISODE_COLUMNS = ["mode", "start", "end", "x_start", "belt_velocity", "censored"]
 
 
 class Realization:
@@ -31,10 +34,9 @@ class Realization:
         self.realization = realization
         self.x0, self.xdot0, self.belt_start = raw["x0"], raw["xdot0"], raw["belt_start"]
         self.record = dict(raw["record"])
-        self.episodes = pd.DataFrame(
-            raw["episodes"], columns=["mode", "start", "end", "x_start", "belt_velocity", "censored"])
+        self.episodes = pd.DataFrame(raw["episodes"], columns=EPISODE_COLUMNS)
         self.events = pd.DataFrame(raw["events"], columns=["kind", "time", "x", "xdot", "belt_velocity"])
-        self._segments = raw["segments"]
+        self._segments = raw["segments"]  # the library's segments, whole (every field)
 
     def __repr__(self):
         r = self.record
@@ -45,9 +47,10 @@ class Realization:
         """x, x' and v sampled every `dt` seconds and at every event instant:
         a pandas.DataFrame with columns t [s], x [m], xdot [m/s], v [m/s],
         evaluated from the exact closed form of each piece of motion."""
-        if not (dt > 0 and np.isfinite(dt)):
-            raise _stickslip.Error(f"dt = {dt} is not allowed (allowed: a finite number > 0 s)")
-        rows = _stickslip.sample_trajectory(self._segments, float(dt))
+        dt = number("dt", dt)
+        if not dt > 0:
+            raise error(f"invalid dt: {dt} (allowed: a finite number > 0 s)")
+        rows = _stickslip.sample_trajectory(self._segments, dt)
         return pd.DataFrame(rows, columns=["t", "x", "xdot", "v"])
 
     def plot(self, dt=0.01, ax=None):
@@ -96,20 +99,63 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
 
     Returns a Realization. Raises stickslip.Error for bad input.
     """
+    arguments = _replay_arguments("simulate", model, seed, x0, xdot0, belt_start, switch_times,
+                                  switch_levels, belt_levels, belt_rates, belt_generator,
+                                  max_events, common_random_numbers)
+    realization = whole("realization", realization)
+    raw = _stickslip.replay(**arguments, realization=realization)
+    return Realization(arguments["seed"], realization, raw)
+
+
+def _replay_arguments(function, model, seed, x0, xdot0, belt_start, switch_times, switch_levels,
+                      belt_levels, belt_rates, belt_generator, max_events, common_random_numbers):
+    """The arguments of one replay, read through the one coercion
+    (_parameters.py), shared by simulate() and simulate_many()."""
     params = model_arguments(model)
     if model:
-        raise TypeError(f"simulate() got unexpected keyword arguments: {', '.join(model)}")
-    params = {k: float(v) for k, v in params.items()}
+        raise TypeError(f"{function}() got unexpected keyword arguments: {', '.join(model)}")
     params.update(belt_arguments(belt_levels, belt_rates, belt_generator))
-    times = None if switch_times is None else [float(t) for t in switch_times]
-    levels = None if switch_levels is None else [int(v) for v in switch_levels]
-    raw = _stickslip.replay(params, int(seed), int(realization),
-                            None if x0 is None else float(x0),
-                            None if xdot0 is None else float(xdot0),
-                            belt_start_text(belt_start), times, levels,
-                            _stickslip.default_max_events if max_events is None else int(max_events),
-                            common_random_numbers=bool(common_random_numbers))
-    return Realization(seed, realization, raw)
+    return dict(parameters=params, seed=whole("seed", seed), x0=optional(number, "x0", x0),
+                xdot0=optional(number, "xdot0", xdot0), belt_start=belt_start_text(belt_start),
+                switch_times=optional(sequence, "switch_times", switch_times,
+                                      "a sequence of switch times [s]"),
+                switch_levels=optional(sequence, "switch_levels", switch_levels,
+                                       "a sequence of level numbers 1..n", _level),
+                max_events=max_events_of(max_events),
+                common_random_numbers=flag("common_random_numbers", common_random_numbers))
+
+
+def _level(name, value):
+    return whole(name, value, 1, 2**31 - 1)
 
 
 simulate.__doc__ = simulate.__doc__.format(params=describe())
+
+
+def simulate_many(*, realizations, seed=1, threads=0, x0=None, xdot0=None, belt_start=None,
+                  switch_times=None, switch_levels=None, belt_levels=None, belt_rates=None,
+                  belt_generator=None, max_events=None, common_random_numbers=False, **model):
+    """Many realizations of one model at once: the episodes of
+    simulate(realization=r, ...) for every r in `realizations` (a range or a
+    sequence of whole numbers, in any order), computed on `threads` worker
+    threads (0 = all cores) with the GIL released.
+
+    Every other argument is simulate()'s. Each realization is computed alone,
+    exactly as simulate() computes it, so the result is bit for bit the
+    single calls' and does not depend on `threads`.
+
+    Returns one pandas.DataFrame: realization, then the columns of
+    Realization.episodes (mode, start, end, x_start, belt_velocity,
+    censored), realizations in the order given. Raises stickslip.Error for
+    bad input; Ctrl-C starts no further realization (KeyboardInterrupt).
+    """
+    arguments = _replay_arguments("simulate_many", model, seed, x0, xdot0, belt_start,
+                                  switch_times, switch_levels, belt_levels, belt_rates,
+                                  belt_generator, max_events, common_random_numbers)
+    indices = sequence("realizations", realizations, "a range or sequence of realization indices",
+                       whole)
+    rows = _stickslip.replay_many(**arguments, realizations=indices,
+                                  threads=whole("threads", threads, 0, 2**16))
+    frame = pd.DataFrame(rows, columns=["realization", *EPISODE_COLUMNS])
+    frame["realization"] = frame["realization"].astype(np.int64)
+    return frame

@@ -1,23 +1,22 @@
 """stickslip.sweep() and stickslip.open(): the CLI's `sweep`, as xarray."""
-import builtins
 import os
 import tempfile
 
-import numpy as np
 import xarray as xr
 
 from . import _stickslip
-from ._parameters import belt_arguments, belt_start_text, describe, model_arguments
+from ._parameters import (belt_arguments, belt_start_text, describe, error, flag, max_events_of,
+                          model_arguments, number, text, whole)
 
 
 def _axes_and_base(params):
+    """Fixed parameters and axes (in the order given)."""
     base, axes = {}, []
     for sym, value in params.items():
-        if np.ndim(value) == 0:
-            base[sym] = float(value)
+        if isinstance(value, list):
+            axes.append((sym, value))
         else:
-            values = [float(v) for v in np.asarray(value, dtype=float).ravel()]
-            axes.append((sym, values))
+            base[sym] = value
     return base, axes
 
 
@@ -37,20 +36,29 @@ def _progress_bar(enabled):
 
 def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
     """Reads a results.nc written by `stickslip sweep` (or by sweep(output=...))
-    into memory as an xarray.Dataset; `path` may be the file or its folder."""
+    into memory as an xarray.Dataset; `path` may be the file or its folder.
+    Anything else (a truncated file, a
+    summary.json) raises stickslip.Error (exit_code 2)."""
+    path = os.fspath(path)
     if os.path.isdir(path):
         path = os.path.join(path, "results.nc")
     if not os.path.exists(path):
-        raise _stickslip.Error(f"{path} does not exist (expected a results.nc or a folder holding one)")
-    with xr.open_dataset(path) as ds:
-        return ds.load()
+        raise error(f"{path} does not exist (expected a results.nc or a folder holding one)")
+    try:
+        with xr.open_dataset(path) as ds:
+            ds = ds.load()
+    except Exception as e:  # noqa: BLE001 (netCDF, HDF5 and xarray raise many kinds)
+        reason = " ".join(str(e).split()) or type(e).__name__
+        raise error(f"invalid results file: '{path}' (allowed: a results.nc written by stickslip "
+                    f"sweep or stickslip.sweep(output=...); reading it failed: {reason})") from e
+    return ds
 
 
 def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50, bins=50,
           records=False, engine="fast", max_events=None, output=None, resume=False,
           keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
           belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
-          min_realizations=1000, **model):
+          min_realizations=1000, overwrite=False, **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
 
@@ -72,8 +80,13 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     engine: "fast" (default) or "reference"; the results are identical.
     max_events: bound on the events of one realization (default 1e8).
     output: a folder: also write results.nc, summary.json, summary.csv
-        (records.csv) there, journaling every finished unit.
-    resume: with output, continue an interrupted sweep from its journal.
+        (records.csv) there, journaling every finished unit. Finished
+        results already there are never replaced unless overwrite=True
+        (stickslip.Error, exit_code 2, as `stickslip sweep -o`).
+    overwrite: with output, replace the results of an earlier run.
+    resume: with output, continue an interrupted sweep from its journal; with
+        no journal, the folder's finished results must be this
+        configuration's (then they are read back untouched), else refused.
     keep_journal: with output, keep the journal after the outputs are written.
     checkpoint_interval: with output, seconds between journal segments
         (default 2; 0 = after every unit).
@@ -89,27 +102,37 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     a second (KeyboardInterrupt); with output the journal stays resumable.
     Raises stickslip.Error for bad input.
     """
-    params = model_arguments(model)
+    params = model_arguments(model, axes=True)
     if model:
         raise TypeError(f"sweep() got unexpected keyword arguments: {', '.join(model)}")
     base, axes = _axes_and_base(params)
     belt = belt_arguments(belt_levels, belt_rates, belt_generator)
+    realizations = whole("realizations", realizations, 1, _stickslip.max_realizations)
+    seed = whole("seed", seed)
     given = ", ".join(f"{k}={v!r}" for k, v in {**params, **belt}.items())
     base.update(belt)
     command = f"python: stickslip.sweep({given}, realizations={realizations}, seed={seed})"
-    update, bar = _progress_bar(progress)
-    max_events = _stickslip.default_max_events if max_events is None else int(max_events)
+    arguments = dict(
+        realizations=realizations, seed=seed,
+        block_size=whole("block_size", block_size, 1, _stickslip.max_block_size),
+        bins=whole("bins", bins, 1, _stickslip.max_histogram_bins),
+        records=flag("records", records), engine=text("engine", engine),
+        max_events=max_events_of(max_events), threads=whole("threads", threads, 0, 2**16),
+        output="" if output is None else text("output", os.fspath(output)),
+        resume=flag("resume", resume), keep_journal=flag("keep_journal", keep_journal),
+        checkpoint_interval=number("checkpoint_interval", checkpoint_interval),
+        belt_start=belt_start_text(belt_start),
+        common_random_numbers=flag("common_random_numbers", common_random_numbers),
+        target_ci="" if target_ci is None else text("target_ci", target_ci),
+        min_realizations=whole("min_realizations", min_realizations, 2,
+                               _stickslip.max_realizations),
+        overwrite=flag("overwrite", overwrite))
+    update, bar = _progress_bar(flag("progress", progress))
     try:
         with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:
             nc = os.path.join(tmp, "results.nc")
-            _stickslip.run_sweep(base, axes, int(realizations), int(seed), int(block_size), int(bins),
-                                 bool(records), str(engine), max_events, int(threads),
-                                 "" if output is None else builtins.str(output), bool(resume),
-                                 bool(keep_journal), float(checkpoint_interval), nc, command, update,
-                                 belt_start_text(belt_start),
-                                 common_random_numbers=bool(common_random_numbers),
-                                 target_ci="" if target_ci is None else builtins.str(target_ci),
-                                 min_realizations=int(min_realizations))
+            _stickslip.run_sweep(base, axes, netcdf_path=nc, command_line=command, progress=update,
+                                 **arguments)
             return open(output if output is not None else nc)
     finally:
         if bar is not None:
