@@ -173,8 +173,8 @@ void add_peak_command(CLI::App& app, const invocation&) {
       "half-width; the interval counts both the sampling error and the bias of the local "
       "model (docs/precision.md).");
   cmd->add_option("--statistic", f->statistic,
-                  "the statistic whose mean is maximized: R, sticks_per_time, slips_per_time "
-                  "or first_stick_duration (default R)");
+                  fmt::format("the statistic whose mean is maximized: {} (default R)",
+                              mean_statistic_names()));
   cmd->add_option("--over", f->over, "the parameter to maximize over (default lambda)");
   cmd->add_option("--range", f->range,
                   "LO:HI, the search range (default 0.1:100 for lambda; scanned geometrically "

@@ -321,8 +321,9 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                             "curves, low-variance differences; points are then correlated")
                   ->group(precision);
   o.target_opt = cmd->add_option("--target-ci", o.target_ci,
-                                 "run blocks at each point until the 95% half-width of the mean "
-                                 "of STAT (R, sticks_per_time, slips_per_time) is <= HALFWIDTH")
+                                 fmt::format("run blocks at each point until the 95% half-width "
+                                             "of the mean of STAT ({}) is <= HALFWIDTH",
+                                             mean_statistic_names()))
                      ->type_name("STAT:HALFWIDTH")
                      ->group(precision);
   o.max_real_opt = cmd->add_option("--max-realizations", o.max_realizations,

@@ -23,6 +23,8 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "stickslip/statistics.hpp"
@@ -236,6 +238,16 @@ static_assert(quantity_table[3].sampled == sampling::per_stick &&
 [[nodiscard]] inline std::span<const joint_histogram_info> joint_histograms() noexcept {
   return joint_table;
 }
+
+// The statistics whose mean the precision tools aim at (`sweep --target-ci
+// STAT:H`, `peak --statistic STAT`, Python's target_ci and statistic): the
+// quantities with one value per realization (per_realization), in table
+// order. One list, so that every command's help and errors name the same
+// statistics: mean_statistic_names() is their summary names joined by ", "
+// ("R, sticks_per_time, ..."), and find_mean_statistic() finds one by its
+// summary name, name or symbol (nullptr if it is not in the list).
+[[nodiscard]] std::string mean_statistic_names();
+[[nodiscard]] const quantity_info* find_mean_statistic(std::string_view name) noexcept;
 
 // A 64-bit identity of the schema (FNV-1a over every row's names, sampling
 // and range, in order). Serialized data carries it (in serialize.hpp's

@@ -71,7 +71,7 @@ struct sweep_spec {
   // is empty: each point stops after the first block, in block order, at
   // which at least min_realizations are merged and the 95 % half-width of
   // the mean of target_statistic (a per-realization quantity of the schema,
-  // by its summary name: R, sticks_per_time, slips_per_time) is <=
+  // find_mean_statistic: R, sticks_per_time, ...) is <=
   // target_halfwidth; `realizations` is then the cap per point. The rule
   // sees only the ordered merge, so results do not depend on threads,
   // ranks or resume; later blocks computed ahead are dropped.

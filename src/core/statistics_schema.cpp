@@ -54,6 +54,21 @@ std::uint64_t statistics_schema_id() noexcept {
   return id;
 }
 
+std::string mean_statistic_names() {
+  std::string out;
+  for (const auto& q : quantities())
+    if (per_realization(q.sampled)) out += (out.empty() ? "" : ", ") + std::string(q.summary_name);
+  return out;
+}
+
+const quantity_info* find_mean_statistic(std::string_view name) noexcept {
+  for (const auto& q : quantities())
+    if (per_realization(q.sampled) &&
+        (name == q.summary_name || name == q.name || name == q.symbol))
+      return &q;
+  return nullptr;
+}
+
 estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
                               std::size_t j) noexcept {
   if (!q.rate_score || !(s.belt_rates[j] > 0.0)) return {};

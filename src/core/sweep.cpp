@@ -314,14 +314,9 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
 
 const quantity_info* target_quantity(const sweep_spec& s) {
   if (s.target_statistic.empty()) return nullptr;
-  std::string allowed;
-  for (const auto& q : quantities()) {
-    if (q.sampled != sampling::per_realization) continue;
-    if (s.target_statistic == q.summary_name || s.target_statistic == q.name) return &q;
-    allowed += (allowed.empty() ? "" : ", ") + std::string(q.summary_name);
-  }
+  if (const auto* q = find_mean_statistic(s.target_statistic)) return q;
   throw invalid_value("target CI statistic", s.target_statistic,
-                      "a statistic with one value per realization: " + allowed);
+                      "a statistic with one value per realization: " + mean_statistic_names());
 }
 
 bool meets_target(const sweep_spec& s, const point_statistics& p) {

@@ -43,7 +43,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                           const io::run_metadata& fresh, runner& r) {
   const auto t0 = std::chrono::steady_clock::now();
   if (plan.slice && !spec.target_statistic.empty())
-    throw invalid_value("--shard", plan.slice->tag(),
+    throw invalid_value("--shard", fmt::format("{}/{}", plan.slice->index, plan.slice->count),
                         "no shards with a precision target (--target-ci): the stop rule "
                         "needs every block of a point in one run");
   run_outcome out;

@@ -12,13 +12,9 @@
 namespace stickslip::precision {
 
 const quantity_info& peak_statistic(const std::string& key, const std::string& name) {
-  std::string names;
-  for (const auto& q : quantities()) {
-    if (!per_realization(q.sampled)) continue;
-    if (name == q.summary_name || name == q.name || name == q.symbol) return q;
-    names += fmt::format("{}{}", names.empty() ? "" : ", ", q.summary_name);
-  }
-  throw invalid_value(key, name, "one of the per-realization statistics: " + names);
+  if (const auto* q = find_mean_statistic(name)) return *q;
+  throw invalid_value(key, name, "a statistic with one value per realization: " +
+                                     mean_statistic_names());
 }
 
 const char* to_string(peak_method m) noexcept {
