@@ -346,6 +346,12 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
     std::replace(key.begin(), key.end(), '_', '-');
     s.axes.push_back(axis{sym, flag ? io::parse_grid(key, list_text(values), io::grid_domain_of(sym)) : values});
   }
+  // The command line's axis order (docs/cli.md, apps/stickslip/cmd_sweep.cpp
+  // axis_rank): lambda first, then mu, then the others in the order given.
+  std::stable_sort(s.axes.begin(), s.axes.end(), [](const axis& a, const axis& b) {
+    const auto rank = [](const std::string& sym) { return sym == "lambda" ? 0 : sym == "mu" ? 1 : 2; };
+    return rank(a.name) < rank(b.name);
+  });
   s.realizations = realizations;
   s.seed = seed;
   s.block_size = block_size;

@@ -55,9 +55,11 @@ class Realization:
 
     def plot(self, dt=0.01, ax=None):
         """x, x' and the belt velocity against time, with sticks shaded
-        (matplotlib). Returns the Axes."""
+        (matplotlib); the legend sits below the axes, off the trace. Returns
+        the Axes."""
         import matplotlib.pyplot as plt
-        if ax is None:
+        own_figure = ax is None
+        if own_figure:
             _, ax = plt.subplots(figsize=(9, 4))
         tr = self.trajectory(dt)
         ax.plot(tr.t, tr.x, label="x [m]")
@@ -67,8 +69,11 @@ class Realization:
             if e.mode == "stick":
                 ax.axvspan(e.start, e.end, color="tab:green", alpha=0.15, lw=0)
         ax.set_xlabel("t [s]")
-        ax.legend(loc="upper right")
+        # Below the axes, outside the data: the legend never covers the trace.
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3, frameon=False)
         ax.set_title(f"seed {self.seed}, realization {self.realization} (sticks shaded)")
+        if own_figure:
+            ax.figure.tight_layout()  # room for the legend below and the title above
         return ax
 
 

@@ -10,7 +10,8 @@ from ._parameters import (belt_arguments, belt_start_text, describe, error, flag
 
 
 def _axes_and_base(params):
-    """Fixed parameters and axes (in the order given)."""
+    """Fixed parameters and axes (in the order given; the extension puts
+    lambda and mu first, as the CLI does)."""
     base, axes = {}, []
     for sym, value in params.items():
         if isinstance(value, list):
@@ -18,6 +19,17 @@ def _axes_and_base(params):
         else:
             base[sym] = value
     return base, axes
+
+
+def _python_names(ds):
+    """The Dataset as Python shows it: the lambda dimension is named `lam`,
+    the keyword's name (`lambda` is a Python keyword, so ds.sel(lambda=...)
+    cannot be written), with `lambda` kept as a coordinate along it; nothing
+    else differs from results.nc."""
+    if "lambda" not in ds.dims or "lam" in ds.variables:
+        return ds
+    lam = ds["lambda"]
+    return ds.assign_coords(lam=("lambda", lam.values, dict(lam.attrs))).swap_dims({"lambda": "lam"})
 
 
 def _progress_bar(enabled):
@@ -37,7 +49,8 @@ def _progress_bar(enabled):
 def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
     """Reads a results.nc written by `stickslip sweep` (or by sweep(output=...))
     into memory as an xarray.Dataset; `path` may be the file or its folder.
-    Anything else (a truncated file, a
+    The lambda dimension is named `lam` (ds.sel(lam=3.8)), with the
+    coordinate `lambda` along it. Anything else (a truncated file, a
     summary.json) raises stickslip.Error (exit_code 2)."""
     path = os.fspath(path)
     if os.path.isdir(path):
@@ -51,7 +64,7 @@ def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
         reason = " ".join(str(e).split()) or type(e).__name__
         raise error(f"invalid results file: '{path}' (allowed: a results.nc written by stickslip "
                     f"sweep or stickslip.sweep(output=...); reading it failed: {reason})") from e
-    return ds
+    return _python_names(ds)
 
 
 def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50, bins=50,
@@ -64,8 +77,9 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
 
     Model parameters: a number fixes the parameter; a list or array of a
     scalar parameter (m, k, g, mu, V, lam, ta, c, mu_s, mu_k, v1..vN, r1, r2)
-    makes it a dimension of the grid, in the order the keywords are given
-    (e.g. lam=np.logspace(-1, np.log10(30), 40), mu=[0.5, 5]); belt_levels,
+    makes it a dimension of the grid (e.g. lam=np.logspace(-1, np.log10(30),
+    40), mu=[0.5, 5]); the CLI's axis order: lambda first, then mu, then the
+    others in the order the keywords are given; belt_levels,
     belt_rates and belt_generator describe the belt of every point.
 {params}
     belt_start: the initial level of every realization: "stationary"
@@ -98,8 +112,10 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         the cap per point, min_realizations (default 1000) the minimum.
 
     Returns an xarray.Dataset with the variables, coordinates and attributes of
-    the results.nc the CLI writes for the same arguments. Ctrl-C stops within
-    a second (KeyboardInterrupt); with output the journal stays resumable.
+    the results.nc the CLI writes for the same arguments; the lambda dimension
+    is named `lam` (ds.sel(lam=3.8)), with the coordinate `lambda` along it.
+    Ctrl-C stops within a second (KeyboardInterrupt); with output the
+    journal stays resumable.
     Raises stickslip.Error for bad input.
     """
     params = model_arguments(model, axes=True)
