@@ -20,6 +20,7 @@
 #include "stickslip/io/journal.hpp"
 #include "stickslip/run/merge.hpp"
 #include "stickslip/io/output_files.hpp"
+#include "stickslip/io/output_lock.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 
@@ -42,10 +43,22 @@ void run_merge(const merge_options& o) {
     if (std::filesystem::exists(st) && !std::filesystem::is_directory(st))
       throw invalid_value("-o (output directory)", o.out_dir, "a directory or a new path");
   }
-  if (!o.overwrite)
-    io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
-                          "add --overwrite to replace them, or choose another -o OUT");
-  auto merged = run::merge_shards(o.inputs, print_problem);
+  // One writer of OUT until the outputs are written; a failed merge leaves
+  // no OUT that it created.
+  const bool existed = std::filesystem::exists(o.out_dir);
+  const io::output_lock lock(o.out_dir, "stickslip merge");
+  auto merged = [&] {
+    try {
+      if (!o.overwrite)
+        io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
+                              "add --overwrite to replace them, or choose another -o OUT");
+      return run::merge_shards(o.inputs, print_problem);
+    } catch (const error&) {
+      std::error_code ec;
+      if (!existed) std::filesystem::remove_all(o.out_dir, ec);
+      throw;
+    }
+  }();
   if (merged.duplicates)
     fmt::print(stderr, "stickslip: merge: {} units were in more than one journal (identical; "
                        "used once)\n", merged.duplicates);

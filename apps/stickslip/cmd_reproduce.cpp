@@ -30,6 +30,7 @@
 #include "stickslip/study/figures.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/output_files.hpp"
+#include "stickslip/io/output_lock.hpp"
 #include "stickslip/study/report.hpp"
 #include "stickslip/run/journaled_run.hpp"
 
@@ -225,6 +226,10 @@ void run(const reproduce_flags& f, const invocation& inv) {
     log("--quick: a DEMO on a small design, not the study; the report is marked as a demo");
   if (!(f.checkpoint_interval >= 0) || f.checkpoint_interval > 86400)
     throw invalid_parameter("--checkpoint-interval", f.checkpoint_interval, "0 .. 86400 seconds");
+  // One writer of OUT until the report is written (shards: one each).
+  const io::output_lock lock(f.out_dir, slice ? "stickslip reproduce --shard " + f.shard
+                                              : std::string("stickslip reproduce"),
+                             slice ? slice->tag() : "");
   if (slice)
     return run_shard(options, *slice, f.out_dir, plan_for("", stop, f.checkpoint_interval),
                      exec.runner(), inv);

@@ -246,6 +246,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   run::run_plan plan;
   plan.dir = o.out_dir;
   plan.slice = run::parse_shard(o.shard);
+  plan.writer = plan.slice ? "stickslip sweep --shard " + o.shard : std::string("stickslip sweep");
   plan.resume = o.resume;
   plan.overwrite = o.overwrite;
   const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);

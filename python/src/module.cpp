@@ -17,12 +17,14 @@
 #include <condition_variable>
 #include <csignal>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/output_files.hpp"
+#include "stickslip/io/output_lock.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/precision/peak_sweep.hpp"
 #include "stickslip/replay.hpp"
@@ -393,6 +395,11 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
   // finished results there are never replaced; a resume into DIR without a
   // journal continues nothing: its finished outputs must be this
   // configuration's (then nothing runs and they are read back as they are).
+  // One writer of the folder until its outputs are written
+  // (io/output_lock.hpp): a second writer, CLI or Python, is refused.
+  const auto before = run::directory_state::of(output);
+  std::optional<io::output_lock> lock;
+  if (!output.empty()) lock.emplace(output, "stickslip.sweep (Python)");
   bool already_complete = false;
   if (!output.empty() && !overwrite) {
     if (!resume)
@@ -417,7 +424,6 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
   // only on the first thread that uses it, so files written from a worker
   // would make xarray's later reads on this thread print HDF5 diagnostics.
   run::run_outcome outcome;
-  const auto before = run::directory_state::of(output);
   const bool interrupted = run_interruptibly(
       [&] {
         try {

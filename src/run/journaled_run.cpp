@@ -8,6 +8,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/output_files.hpp"
+#include "stickslip/io/output_lock.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/run/work_meter.hpp"
@@ -170,6 +171,11 @@ void clean_up_after_failure(const error& e, const std::string& dir, const direct
 
 run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::run_metadata& fresh,
                        runner& r, bool keep_journal) {
+  // What DIR held before this run (for the clean-up of a failure), then one
+  // writer at a time from here until the outputs are written. A refusal
+  // throws before the try below: it cleans up nothing of the other writer's.
+  const auto before = directory_state::of(plan.dir);
+  const io::output_lock lock(plan.dir, plan.writer, plan.slice ? plan.slice->tag() : "");
   if (plan.resume && !plan.overwrite && !io::journal_exists(plan.dir)) {
     if (auto finished = finished_outputs_of(spec, plan.dir)) {
       run_outcome out;
@@ -178,7 +184,6 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
       return out;
     }
   }
-  const auto before = directory_state::of(plan.dir);
   try {
     auto out = run_journaled(spec, plan, fresh, r);
     if (out.results) write_outputs(out, plan.dir, keep_journal);

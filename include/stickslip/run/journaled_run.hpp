@@ -8,8 +8,9 @@
 //   run_journaled   journal + resume + shard + stop around a runner
 //   write_outputs   io::write_all with the first run's metadata, then the
 //                   journal is removed (unless kept)
-//   sweep_into      both, and on a deterministic failure (bad input, work
-//                   bound) removes what this run created
+//   sweep_into      both, holding DIR's writer lock (io/output_lock.hpp)
+//                   throughout, and on a deterministic failure (bad input,
+//                   work bound) removes what this run created
 #pragma once
 #include <chrono>
 #include <cstdint>
@@ -35,6 +36,9 @@ struct run_plan {
   // nothing when they are this spec's and is refused when they are not
   // (finished_outputs_of).
   bool overwrite = false;
+  // Who writes DIR, for the message that refuses a second writer
+  // (io/output_lock.hpp): "stickslip sweep", "stickslip.sweep (Python)".
+  std::string writer = "stickslip";
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
