@@ -112,8 +112,8 @@ int belt_start_from(const std::string& text, const model_parameters& p) {
 
 // The closed-form pieces of one realization, kept whole as the library's
 // `segment` structs: Python holds them opaquely and hands them back to the
-// sampler, so no field (decay_rate was once dropped by a copy into tuples,
-// issue 23) can be lost on the way.
+// sampler, so no field (decay_rate was once dropped by a copy into tuples)
+// can be lost on the way.
 struct trace_segments {
   std::vector<segment> items;
 };

@@ -37,7 +37,7 @@ INDEXED = re.compile(r"^(v[1-9][0-9]*|r[12])$")  # a belt level vI, a two-level 
 
 
 # ---------------------------------------------------------------------------
-# The one coercion of arguments (issue 23): every public function reads its
+# The one coercion of arguments: every public function reads its
 # numbers, whole numbers, sequences and flags through these, so that every
 # refusal is a stickslip.Error (a ValueError) with exit_code 2 whose message
 # names the parameter, the value and what is allowed, as the CLI's do:

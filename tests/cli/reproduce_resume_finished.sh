@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 23, item 3a: `reproduce --resume` onto a folder that holds a finished
+# `reproduce --resume` onto a folder that holds a finished
 # reproduction and no journals (OUT/.runs) never replaces it. Other settings
 # are refused (exit 2, naming the folder, the difference and what to do); the
 # same settings are "already complete" and the folder is left byte-identical

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 23, item 5: the statistics a precision tool accepts are one list
+# The statistics a precision tool accepts are one list
 # from the schema, with the same names in every command's help and errors
 # (`sweep --target-ci`, `peak --statistic`); every name in it is accepted;
 # and a refused --shard is named as the user typed it.

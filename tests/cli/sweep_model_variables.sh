@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 23, item 5: results.nc and summary.json hold the parameters that
+# results.nc and summary.json hold the parameters that
 # define the model swept and nothing meaningless for it, and no variable that
 # does not apply to it (no all-NaN variable). Checked with netCDF4.
 source "$(dirname "$0")/lib.sh" "$@"

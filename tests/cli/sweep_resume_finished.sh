@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 23, item 3a: `--resume` on a directory that holds finished outputs and
+# `--resume` on a directory that holds finished outputs and
 # no journal never replaces them. Another configuration's results are refused
 # (exit 2, naming the directory, saying it holds a finished run of another
 # configuration and what to do); this configuration's are "already complete"

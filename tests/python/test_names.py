@@ -1,4 +1,4 @@
-"""Names and layout in Python (issue 23, item 5): the lambda axis is
+"""Names and layout in Python: the lambda axis is
 selectable by the keyword's name (`ds.sel(lam=...)`; `lambda` is a Python
 keyword), the axes come in the command line's order, the docs say what `c`
 accepts, and Realization.plot()'s legend does not cover the trace."""

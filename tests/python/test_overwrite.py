@@ -1,6 +1,6 @@
-"""sweep(output=DIR) never replaces finished results by accident (issue 23,
-item 3b): the command line's rule and message, with the Python keywords in
-place of the flags. Without overwrite=True or resume=True a sweep into a
+"""sweep(output=DIR) never replaces finished results by accident: the
+command line's rule and message, with the Python keywords in place of the
+flags. Without overwrite=True or resume=True a sweep into a
 folder that holds results is refused (exit code 2) and the files stay as they
 are; overwrite=True replaces them; resume=True into a folder without a
 journal accepts only this configuration's finished results (and leaves them

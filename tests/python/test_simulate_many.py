@@ -1,4 +1,4 @@
-"""stickslip.simulate_many() (issue 23, item 6): many realizations in one
+"""stickslip.simulate_many(): many realizations in one
 call, on threads, as one episodes DataFrame with a `realization` column --
 bit for bit the single simulate() calls, whatever the thread count."""
 import numpy as np

@@ -1,4 +1,4 @@
-"""Realization.trajectory() across the model family (issue 23, item 2): the
+"""Realization.trajectory() across the model family: the
 Python samples are the CLI's `simulate --trajectory` samples, bit for bit,
 and the sampled motion is continuous. A damped slip once lost its decay
 rate on the way through the extension (the segments were copied field by

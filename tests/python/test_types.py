@@ -1,4 +1,4 @@
-"""Python's argument types (issue 23, item 4): a number is a number, a whole
+"""Python's argument types: a number is a number, a whole
 number is a whole number, a bool is neither, a parameter is a scalar or a 1-D
 sequence, and text is not a number. Every refusal is a stickslip.Error (a
 ValueError) naming the parameter, the value and what is allowed, with the
