@@ -89,7 +89,11 @@ TEST(OutputLock, ShardsShareADirectoryButNotWithAWholeRun) {
     EXPECT_NE(shard->find("stickslip merge (pid"), std::string::npos) << *shard;
   }
   EXPECT_FALSE(refusal(dir, "shard-0-of-2").has_value());
+  EXPECT_TRUE(std::filesystem::exists(output_lock::path_of(dir, "shard-0-of-2")));
   EXPECT_FALSE(refusal(dir).has_value());
+  // a whole run removes the shards' stale lock files, never its own
+  EXPECT_FALSE(std::filesystem::exists(output_lock::path_of(dir, "shard-0-of-2")));
+  EXPECT_TRUE(std::filesystem::exists(output_lock::path_of(dir)));
   std::filesystem::remove_all(dir);
 }
 

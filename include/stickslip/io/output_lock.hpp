@@ -4,15 +4,18 @@
 // naming the holder: its command, pid, host and start time, which the holder
 // writes into its lock file. The kernel releases a flock when its process
 // dies, so a lock left by a killed run (kill -9, a node failure) never
-// blocks: the file may stay, the lock does not. Lock files are never removed
-// (removing one would let two writers lock two different files of one name).
+// blocks: the file may stay, the lock does not. The directory's lock file is
+// never removed (that would let two writers lock two different files of one
+// name).
 //
 // A whole run (sweep, merge, reproduce, peak -o, Python's sweep(output=))
 // holds DIR/.stickslip.lock exclusively. The shards of a job array (--shard
 // i/n) write their own journal segments into one DIR: each holds
 // .stickslip.lock shared (so no whole run can start beside them) and its own
 // .stickslip-shard-i-of-n.lock exclusively (so the same shard cannot run
-// twice), and shards do not block each other.
+// twice), and shards do not block each other. A whole run, once it holds
+// the directory, removes the shards' lock files: no shard can hold or take
+// one then.
 #pragma once
 #include <string>
 

@@ -81,6 +81,18 @@ std::vector<std::string> running_shards(const std::string& dir) {
   return out;
 }
 
+// Held exclusively, DIR has no shard running, and none can start (a shard
+// takes the directory's lock shared before its own): the shards' lock files
+// are stale and can go, so that a finished directory keeps only its own.
+void remove_shard_lock_files(const std::string& dir) {
+  std::error_code ec;
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.path().filename().string().rfind(".stickslip-shard-", 0) == 0)
+      stale.push_back(entry.path());
+  for (const auto& p : stale) std::filesystem::remove(p, ec);
+}
+
 [[noreturn]] void refuse(const std::string& dir, const std::string& holder) {
   throw error(exit_code::invalid_input,
               fmt::format("output directory '{}' is in use by {}: one writer at a time; wait for "
@@ -123,6 +135,7 @@ output_lock::output_lock(const std::string& dir, const std::string& command,
       refuse(dir, holder);
     }
     describe_holder(run_fd_, command);
+    remove_shard_lock_files(dir);
     return;
   }
   if (!try_lock(run_fd_, LOCK_SH, run_path)) {
