@@ -32,7 +32,7 @@ namespace stickslip {
 // Bumped whenever the layout of anything below changes. Readers refuse other
 // versions (a journal from another version is recomputed, never misread).
 // Version 2: the layout id follows the version.
-inline constexpr std::uint32_t serial_format_version = 6;  // 6: causal score, switch times
+inline constexpr std::uint32_t serial_format_version = 7;  // 7: merged prefixes in journals
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.
 [[nodiscard]] std::uint64_t layout_id() noexcept;
@@ -150,6 +150,18 @@ class byte_reader {
 // One finished unit: the unit and its block result.
 [[nodiscard]] bytes serialize(const work_unit& u, const block_result& r);
 [[nodiscard]] std::pair<work_unit, block_result> deserialize_unit_result(std::string_view in);
+
+// A point's merged prefix (sweep.hpp), the journal's compact record.
+[[nodiscard]] bytes serialize(const merged_prefix& p);
+[[nodiscard]] bytes serialize_merged_prefix(std::size_t point, std::uint64_t blocks,
+                                            const point_statistics& stats);
+[[nodiscard]] merged_prefix deserialize_merged_prefix(std::string_view in);
+// Whether serialized bytes hold a merged prefix (else a unit's result).
+[[nodiscard]] bool is_merged_prefix(std::string_view in) noexcept;
+// Throws stickslip::error (io_failure) unless `p` has the shape of the
+// merged prefix of a point of `s`: the point in the grid, 1 .. blocks per
+// point blocks, their realization count, the point's binning and levels.
+void check_prefix_shape(const sweep_spec& s, const merged_prefix& p);
 
 // Throws stickslip::error (io_failure) unless `r` is exactly what
 // simulate_block(s, u) has the shape of: the unit lies in the grid, the

@@ -167,6 +167,17 @@ event_counts simulate_realization(const sweep_spec& s, const model_parameters& p
 // (false without one).
 [[nodiscard]] bool meets_target(const sweep_spec& s, const point_statistics& p);
 
+// The statistics of a point's first `blocks` blocks merged in block order,
+// convergence trace included: what ordered_merger holds for the point then.
+// The journal keeps finished work in this form (io/journal.hpp), so that its
+// size and a resume's memory do not grow with the realizations; restoring it
+// continues the merge with the same bits as merging the blocks one by one.
+struct merged_prefix {
+  std::size_t point = 0;
+  std::uint64_t blocks = 0;
+  point_statistics stats;
+};
+
 // Accepts block results in any order; merges each point's blocks in block
 // order and records a convergence point after the blocks that
 // records_convergence_after() selects. With a precision target a point
@@ -176,6 +187,20 @@ class ordered_merger {
  public:
   explicit ordered_merger(const sweep_spec& s);
   void add(const work_unit& u, block_result r);
+  // Continues from a journaled prefix. Precondition: nothing merged for the
+  // point yet, and no raw records kept (spec.keep_records is false).
+  void restore(merged_prefix p);
+  // The point's blocks merged so far (in order, from block 0), and their
+  // statistics; the blocks waiting for an earlier one.
+  [[nodiscard]] std::uint64_t merged_blocks(std::size_t point) const noexcept {
+    return next_block_[point];
+  }
+  [[nodiscard]] const point_statistics& merged(std::size_t point) const noexcept {
+    return points_[point];
+  }
+  [[nodiscard]] const std::map<work_unit, block_result>& waiting() const noexcept {
+    return pending_;
+  }
   // Count units without keeping them (a --shard run only journals its units;
   // holding them until the missing blocks of other shards arrive would grow
   // memory with the shard's size).

@@ -19,7 +19,8 @@ error detail::corrupt(std::string_view what) {
 
 namespace {
 
-constexpr std::string_view spec_tag = "SSPC", unit_tag = "SSWU", result_tag = "SSBR";
+constexpr std::string_view spec_tag = "SSPC", unit_tag = "SSWU", result_tag = "SSBR",
+                           prefix_tag = "SSMP";
 
 using detail::corrupt;
 using writer = detail::byte_writer;
@@ -455,6 +456,57 @@ std::pair<work_unit, block_result> deserialize_unit_result(std::string_view in) 
   for (auto& x : out.second.records) x = get_record(r);
   r.finish("block result");
   return out;
+}
+
+// ---- merged prefix ----
+bytes serialize_merged_prefix(std::size_t point, std::uint64_t blocks,
+                              const point_statistics& stats) {
+  writer w;
+  w.header(prefix_tag);
+  w.u64(point);
+  w.u64(blocks);
+  put(w, stats);
+  return w.take();
+}
+
+bytes serialize(const merged_prefix& p) { return serialize_merged_prefix(p.point, p.blocks, p.stats); }
+
+merged_prefix deserialize_merged_prefix(std::string_view in) {
+  reader r(in);
+  r.header(prefix_tag);
+  merged_prefix p;
+  p.point = static_cast<std::size_t>(r.u64("prefix point"));
+  p.blocks = r.u64("prefix blocks");
+  p.stats = get_statistics(r);
+  r.finish("merged prefix");
+  return p;
+}
+
+bool is_merged_prefix(std::string_view in) noexcept { return in.starts_with(prefix_tag); }
+
+void check_prefix_shape(const sweep_spec& s, const merged_prefix& p) {
+  auto bad = [&](const std::string& what) {
+    return error(exit_code::io_failure,
+                 fmt::format("merged blocks of point {} do not fit this sweep: {}", p.point, what));
+  };
+  if (p.point >= point_count(s)) throw bad(fmt::format("only {} grid points", point_count(s)));
+  const auto nb = blocks_per_point(s);
+  if (p.blocks == 0 || p.blocks > nb)
+    throw bad(fmt::format("{} blocks, the point has {}", p.blocks, nb));
+  const std::uint64_t expected = std::min(s.realizations, p.blocks * s.block_size);
+  if (p.stats.realizations != expected)
+    throw bad(fmt::format("{} realizations, expected {}", p.stats.realizations, expected));
+  const point_statistics fresh(point_parameters(s, p.point), s.histograms, s.family_statistics);
+  for (const auto& q : quantities())
+    if (q.density && !(p.stats.*q.density).same_binning(fresh.*q.density))
+      throw bad(fmt::format("histogram binning of {} differs", q.name));
+  for (const auto& l : level_quantities())
+    if ((p.stats.*l.moments).size() != (fresh.*l.moments).size())
+      throw bad(fmt::format("{} values of {}, the point has {} belt levels",
+                            (p.stats.*l.moments).size(), l.name, (fresh.*l.moments).size()));
+  if (p.stats.family_statistics != fresh.family_statistics)
+    throw bad("another selection of statistics");
+  if (s.keep_records) throw bad("a sweep that keeps raw records journals every block");
 }
 
 void check_block_shape(const sweep_spec& s, const work_unit& u, const block_result& b) {

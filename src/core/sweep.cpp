@@ -376,6 +376,17 @@ void ordered_merger::add(const work_unit& u, block_result r) {
   }
 }
 
+void ordered_merger::restore(merged_prefix p) {
+  const auto nb = blocks_per_point(*spec_);
+  points_[p.point] = std::move(p.stats);
+  next_block_[p.point] = p.blocks;
+  merged_ += p.blocks;
+  // The stop rule as add() applied it after the prefix's last block.
+  const bool stop = p.blocks < nb && meets_target(*spec_, points_[p.point]);
+  if (stop) merged_ += nb - p.blocks;
+  if (stop || p.blocks >= nb) finished_[p.point].store(1, std::memory_order_relaxed);
+}
+
 bool ordered_merger::complete() const noexcept { return merged_ == unit_count(*spec_); }
 
 result_set make_result_set(const sweep_spec& s, ordered_merger&& m) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <set>
 #include <vector>
 
 #include "stickslip/error.hpp"
@@ -38,6 +39,40 @@ io::journal_contents load_journal(const sweep_spec& spec, const run_plan& plan) 
   return loaded;
 }
 
+// One checkpoint of a whole run: the merged prefix of every point that
+// advanced since the last one, the blocks waiting for an earlier block (each
+// once), and the unit just finished (not merged yet), then a segment.
+// Called from the runner's serialized unit_done hook, where the merger is
+// not being changed.
+class prefix_checkpoint {
+ public:
+  prefix_checkpoint(const sweep_spec& spec, const ordered_merger& merger, io::journal_writer& journal)
+      : merger_(merger), journal_(journal), written_(point_count(spec)) {
+    for (std::size_t p = 0; p < written_.size(); ++p) written_[p] = merger.merged_blocks(p);
+  }
+  void write(const work_unit* just_done, const block_result* result) {
+    for (std::size_t p = 0; p < written_.size(); ++p) {
+      const auto blocks = merger_.merged_blocks(p);
+      if (blocks == written_[p]) continue;
+      journal_.add_prefix(p, blocks, merger_.merged(p));
+      written_[p] = blocks;
+    }
+    std::erase_if(waiting_written_, [&](const work_unit& u) {
+      return u.block < merger_.merged_blocks(u.point);
+    });
+    for (const auto& [u, r] : merger_.waiting())
+      if (waiting_written_.insert(u).second) journal_.add(u, r);
+    if (just_done) journal_.add(*just_done, *result);
+    journal_.flush();
+  }
+
+ private:
+  const ordered_merger& merger_;
+  io::journal_writer& journal_;
+  std::vector<std::uint64_t> written_;  // blocks in the last prefix written, per point
+  std::set<work_unit> waiting_written_;
+};
+
 }  // namespace
 
 run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
@@ -55,6 +90,12 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   if (plan.slice) merger.discard_results();  // a shard only journals (merge combines them)
   const std::uint64_t nb = blocks_per_point(spec);
   std::vector<char> done(unit_count(spec), 0);
+  for (auto& [point, prefix] : loaded.prefixes) {
+    std::fill_n(done.begin() + static_cast<std::ptrdiff_t>(point * nb), prefix.blocks, 1);
+    out.resumed_units += prefix.blocks;
+    if (!plan.slice) merger.restore(std::move(prefix));
+  }
+  loaded.prefixes.clear();
   for (auto& [u, res] : loaded.units) {
     done[u.point * nb + u.block] = 1;
     merger.add(u, std::move(res));
@@ -64,6 +105,11 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
 
   io::journal_writer journal(plan.dir, spec, out.metadata, plan.slice ? plan.slice->tag() : "run",
                              plan.checkpoint_interval);
+  // A whole run journals merged prefixes (io/journal.hpp); a shard, whose
+  // blocks of a point are not contiguous, and a sweep that keeps raw
+  // records journal every unit.
+  const bool journal_prefixes = !plan.slice && !spec.keep_records;
+  prefix_checkpoint checkpoint(spec, merger, journal);
   auto to_run = [&](const work_unit& u) {
     return !done[u.point * nb + u.block] && (!plan.slice || plan.slice->owns(spec, u));
   };
@@ -76,15 +122,19 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     };
   }
   hooks.unit_done = [&](const work_unit& u, const block_result& res) {
-    journal.add(u, res);
+    ++out.computed_units;
     if (work) work->add(u);
+    if (!journal_prefixes)
+      journal.add(u, res);
+    else if (journal.due())
+      checkpoint.write(&u, &res);  // u is merged right after this hook
   };
   hooks.wanted = [&](const work_unit& u) {
     return !(plan.stop && plan.stop->requested()) && to_run(u);
   };
   r.run(spec, merger, hooks);
+  if (journal_prefixes) checkpoint.write(nullptr, nullptr);
   journal.flush();
-  out.computed_units = journal.units_written();
   out.elapsed_this_run = seconds_since(t0);
   if (plan.stop && plan.stop->requested()) {
     const int sig = plan.stop->reason();
@@ -174,8 +224,11 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
   // What DIR held before this run (for the clean-up of a failure), then one
   // writer at a time from here until the outputs are written. A refusal
   // throws before the try below: it cleans up nothing of the other writer's.
-  const auto before = directory_state::of(plan.dir);
+  auto before = directory_state::of(plan.dir);
   const io::output_lock lock(plan.dir, plan.writer, plan.slice ? plan.slice->tag() : "");
+  // Under the lock: no writer that finished in between can have left a
+  // journal this run would take for its own.
+  before.journal_existed = io::journal_exists(plan.dir);
   if (plan.resume && !plan.overwrite && !io::journal_exists(plan.dir)) {
     if (auto finished = finished_outputs_of(spec, plan.dir)) {
       run_outcome out;
@@ -189,7 +242,9 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
     if (out.results) write_outputs(out, plan.dir, keep_journal);
     return out;
   } catch (const error& e) {
-    clean_up_after_failure(e, plan.dir, before);
+    // The shards of one directory share it and its journal: a failed shard
+    // removes nothing (the others' work is in the same files).
+    if (!plan.slice) clean_up_after_failure(e, plan.dir, before);
     throw;
   }
 }

@@ -29,6 +29,7 @@ sweep_spec configuration_of(const std::vector<std::string>& dirs, const io::jour
 
 struct combined {
   std::map<work_unit, block_result> units;
+  std::map<std::size_t, merged_prefix> prefixes;  // the longest per point
   std::optional<io::run_metadata> metadata;
   double elapsed = 0;
   std::uint64_t duplicates = 0;
@@ -41,6 +42,19 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
     auto j = io::read_journal(d, &spec, report);  // throws resume_mismatch on another config
     if (!all.metadata && j.metadata) all.metadata = j.metadata;
     all.elapsed += j.elapsed_seconds;
+    for (auto& [point, p] : j.prefixes) {  // from a whole run's journal in the inputs
+      auto [it, fresh] = all.prefixes.emplace(point, p);
+      if (fresh || it->second.blocks > p.blocks) continue;
+      if (it->second.blocks < p.blocks) {
+        it->second = std::move(p);
+      } else if (serialize(it->second) != serialize(p)) {
+        throw error(exit_code::io_failure,
+                    fmt::format("merge: the merged first {} blocks of point {} differ between "
+                                "two journals (one of them is from another program version or "
+                                "damaged); '{}'",
+                                p.blocks, point, d));
+      }
+    }
     for (auto& [u, r] : j.units) {
       auto [it, fresh] = all.units.emplace(u, std::move(r));
       if (fresh) continue;
@@ -55,18 +69,27 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
   return all;
 }
 
-void check_coverage(const sweep_spec& spec, const combined& all) {
+// Units a prefix covers are dropped first; every other unit must be there.
+void check_coverage(const sweep_spec& spec, combined& all) {
+  std::erase_if(all.units, [&](const auto& kv) {
+    const auto it = all.prefixes.find(kv.first.point);
+    return it != all.prefixes.end() && kv.first.block < it->second.blocks;
+  });
   const auto total = unit_count(spec);
-  if (all.units.size() == total) return;
+  const auto covered = [&](const work_unit& u) {
+    const auto it = all.prefixes.find(u.point);
+    return (it != all.prefixes.end() && u.block < it->second.blocks) || all.units.count(u) > 0;
+  };
+  std::uint64_t missing = 0;
   std::vector<std::string> first;
-  for (std::uint64_t i = 0; i < total && first.size() < 5; ++i)
-    if (!all.units.count(unit_at(spec, i))) first.push_back(std::to_string(i));
+  for (std::uint64_t i = 0; i < total; ++i)
+    if (!covered(unit_at(spec, i)) && ++missing <= 5) first.push_back(std::to_string(i));
+  if (missing == 0) return;
   throw error(exit_code::invalid_input,
               fmt::format("merge: {} of {} work units are missing (unit indices {}{}); run the "
                           "missing shards (`stickslip sweep ... --shard i/n --resume -o DIR`) "
                           "and merge again",
-                          total - all.units.size(), total, fmt::join(first, ", "),
-                          total - all.units.size() > first.size() ? ", ..." : ""));
+                          missing, total, fmt::join(first, ", "), missing > first.size() ? ", ..." : ""));
 }
 
 }  // namespace
@@ -77,6 +100,7 @@ merged_shards merge_shards(const std::vector<std::string>& dirs, const io::journ
   combined all = combine(spec, dirs, report);
   check_coverage(spec, all);
   ordered_merger merger(spec);
+  for (auto& [point, p] : all.prefixes) merger.restore(std::move(p));
   for (auto& [u, r] : all.units) merger.add(u, std::move(r));
   if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
   merged_shards out{make_result_set(spec, std::move(merger)), *all.metadata, all.duplicates};

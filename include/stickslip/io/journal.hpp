@@ -8,7 +8,17 @@
 //                                first run's metadata; CRC-32
 //   DIR/.journal/seg-<run>-<n>.bin  a segment: the spec's fingerprint, the
 //                                run's elapsed time, then records
-//                                [length u32][crc32 u32][serialized unit+block]
+//                                [length u32][crc32 u32][serialized record],
+//                                a record being a unit's block result or a
+//                                point's merged prefix (sweep.hpp)
+//
+// A whole run journals merged prefixes: every checkpoint writes, for each
+// point that advanced, its blocks merged so far (one record, whatever their
+// number), plus the few blocks that wait for an earlier one; a segment whose
+// records are all superseded by later ones of the same writer is removed.
+// So the journal's size and a resume's memory grow with the grid, not with
+// the realizations. Shards and sweeps that keep raw records journal every
+// block as it is.
 //
 // Every file is written to a unique temporary name, fsynced, and renamed
 // (then the directory is fsynced), so a completed segment is never lost or
@@ -42,6 +52,7 @@ struct journal_contents {
   std::optional<sweep_spec> spec;             // from the header (absent if unreadable)
   std::optional<run_metadata> metadata;       // the first run's metadata
   std::map<work_unit, block_result> units;    // every valid journaled unit, once
+  std::map<std::size_t, merged_prefix> prefixes;  // the longest valid one per point
   double elapsed_seconds = 0.0;  // sum over earlier runs of their last journaled time
   std::size_t segments = 0;      // segment files read
   std::size_t damaged = 0;       // files or records skipped as truncated/corrupt/foreign
@@ -78,11 +89,34 @@ class journal_writer {
   ~journal_writer();  // commits what is buffered (errors are swallowed)
 
   void add(const work_unit& u, const block_result& r);
-  void flush();  // commits the buffered units as one segment; throws io_failure
+  // A point's blocks [0, blocks) merged in order; never flushes by itself.
+  void add_prefix(std::size_t point, std::uint64_t blocks, const point_statistics& merged);
+  // Whether the checkpoint interval has passed since the last segment.
+  [[nodiscard]] bool due() const noexcept;
+  // Commits the buffered records as one segment, then removes this writer's
+  // earlier segments whose every record a later one supersedes (a prefix of
+  // the same point as long or longer). Throws io_failure.
+  void flush();
   [[nodiscard]] std::uint64_t units_written() const noexcept { return written_; }
   [[nodiscard]] std::size_t segments_written() const noexcept { return segment_seq_; }
+  [[nodiscard]] std::size_t segments_kept() const noexcept { return own_.size(); }
 
  private:
+  // What one of this writer's segments covers: per record, the point and
+  // the end of the blocks it holds (a prefix's length, a unit's block + 1).
+  struct own_segment {
+    std::string path;
+    std::size_t seq = 0;
+    std::vector<std::pair<std::size_t, std::uint64_t>> covers;
+  };
+  void remove_superseded();
+  std::vector<std::pair<std::size_t, std::uint64_t>> buffered_covers_, buffered_prefixes_;
+  std::size_t buffered_units_ = 0;
+  std::vector<own_segment> own_;
+  // The longest prefix per point in this writer's segments, and which
+  // segment (its sequence number) holds it.
+  std::map<std::size_t, std::pair<std::uint64_t, std::size_t>> longest_;
+
   std::string journal_dir_;
   std::uint64_t fingerprint_;
   std::string run_id_;

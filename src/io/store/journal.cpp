@@ -169,15 +169,59 @@ journal_writer::~journal_writer() {
   }
 }
 
-void journal_writer::add(const work_unit& u, const block_result& r) {
-  const bytes rec = serialize(u, r);
+namespace {
+// [length u32][crc32 u32][record]
+void append_record(std::string& buffer, const bytes& rec) {
   detail::byte_writer w;
   w.u32(static_cast<std::uint32_t>(rec.size()));
   w.u32(crc32(rec));
-  buffer_ += w.take();
-  buffer_ += rec;
+  buffer += w.take();
+  buffer += rec;
+}
+}  // namespace
+
+void journal_writer::add(const work_unit& u, const block_result& r) {
+  append_record(buffer_, serialize(u, r));
+  buffered_covers_.emplace_back(u.point, u.block + 1);
   ++buffered_;
-  if (std::chrono::steady_clock::now() - last_flush_ >= interval_) flush();
+  ++buffered_units_;
+  if (due()) flush();
+}
+
+void journal_writer::add_prefix(std::size_t point, std::uint64_t blocks,
+                                const point_statistics& merged) {
+  // Serialized from the merger's own statistics: no copy of them is kept.
+  append_record(buffer_, serialize_merged_prefix(point, blocks, merged));
+  buffered_covers_.emplace_back(point, blocks);
+  buffered_prefixes_.emplace_back(point, blocks);
+  ++buffered_;
+}
+
+bool journal_writer::due() const noexcept {
+  return std::chrono::steady_clock::now() - last_flush_ >= interval_;
+}
+
+// A segment can go when a later segment of this writer holds, for every
+// point it covers, a prefix at least as long. The newest segment always
+// stays (it holds the run's latest elapsed time). Removing is not made
+// durable: a segment that reappears after a crash is superseded again.
+void journal_writer::remove_superseded() {
+  auto superseded = [&](const own_segment& seg) {
+    for (const auto& [point, end] : seg.covers) {
+      const auto it = longest_.find(point);
+      if (it == longest_.end() || it->second.first < end || it->second.second == seg.seq)
+        return false;
+    }
+    return true;
+  };
+  std::vector<own_segment> kept;
+  for (std::size_t i = 0; i < own_.size(); ++i) {
+    if (i + 1 < own_.size() && superseded(own_[i]))
+      ::unlink(own_[i].path.c_str());
+    else
+      kept.push_back(std::move(own_[i]));
+  }
+  own_ = std::move(kept);
 }
 
 void journal_writer::flush() {
@@ -189,11 +233,19 @@ void journal_writer::flush() {
   bytes data = detail::encode_segment_header(fingerprint_, elapsed, run_id_, buffered_);
   data += buffer_;
   detail::write_file_durably((fs::path(journal_dir_) / (".tmp-" + name)).string(), path, data);
-  written_ += buffered_;
+  written_ += buffered_units_;
+  own_.push_back({path, segment_seq_, std::move(buffered_covers_)});
+  for (const auto& [point, blocks] : buffered_prefixes_) {
+    auto& longest = longest_[point];
+    if (blocks >= longest.first) longest = {blocks, segment_seq_};
+  }
   buffer_.clear();
-  buffered_ = 0;
+  buffered_covers_.clear();
+  buffered_prefixes_.clear();
+  buffered_ = buffered_units_ = 0;
   ++segment_seq_;
   last_flush_ = now;
+  remove_superseded();
 }
 
 }  // namespace stickslip::io

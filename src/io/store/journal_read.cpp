@@ -110,6 +110,8 @@ struct segment_reader {
   std::map<std::string, double> run_elapsed;  // run id -> latest elapsed
   std::map<work_unit, std::string> payloads;  // to tell identical duplicates apart
   std::set<work_unit> conflicting;
+  std::map<std::size_t, std::string> prefix_payloads;
+  std::set<std::size_t> conflicting_points;
 
   void note(const std::string& msg) {
     ++out.damaged;
@@ -146,6 +148,12 @@ struct segment_reader {
         const auto crc = outer.u32("record CRC");
         const auto payload = outer.raw(len, "record");
         if (crc32(payload) != crc) throw detail::corrupt("CRC mismatch");
+        if (is_merged_prefix(payload)) {
+          auto prefix = deserialize_merged_prefix(payload);
+          check_prefix_shape(spec, prefix);
+          add(std::move(prefix), payload);
+          continue;
+        }
         auto [unit, block] = deserialize_unit_result(payload);
         check_block_shape(spec, unit, block);
         add(unit, std::move(block), payload);
@@ -157,6 +165,25 @@ struct segment_reader {
     }
     if (outer.remaining() != 0)
       note(fmt::format("{}: {} unexpected trailing bytes ignored", path, outer.remaining()));
+  }
+
+  // The longest prefix of each point wins; two of one length must be the
+  // same bytes (they are the same merge), else the point is recomputed.
+  void add(merged_prefix&& p, std::string_view payload) {
+    if (conflicting_points.count(p.point)) return;
+    auto it = out.prefixes.find(p.point);
+    if (it != out.prefixes.end() && it->second.blocks > p.blocks) return;
+    if (it != out.prefixes.end() && it->second.blocks == p.blocks) {
+      if (prefix_payloads[p.point] == payload) return;
+      conflicting_points.insert(p.point);
+      out.prefixes.erase(it);
+      return note(fmt::format("point {}: two journaled merges of its first {} blocks differ; "
+                              "they will be recomputed",
+                              p.point, p.blocks));
+    }
+    prefix_payloads[p.point] = std::string(payload);
+    const std::size_t point = p.point;
+    out.prefixes.insert_or_assign(point, std::move(p));
   }
 
   void add(const work_unit& u, block_result&& b, std::string_view payload) {
@@ -212,8 +239,13 @@ journal_contents read_journal(const std::string& dir, const sweep_spec* expected
   if (ec) throw io_error(jdir, "cannot list the journal: " + ec.message());
   std::sort(segments.begin(), segments.end());
 
-  segment_reader reader{spec, fingerprint(spec), report, out, {}, {}, {}};
+  segment_reader reader{spec, fingerprint(spec), report, out, {}, {}, {}, {}, {}};
   for (const auto& path : segments) reader.read(path);
+  // Units that a point's prefix covers are not needed.
+  std::erase_if(out.units, [&](const auto& kv) {
+    const auto it = out.prefixes.find(kv.first.point);
+    return it != out.prefixes.end() && kv.first.block < it->second.blocks;
+  });
   for (const auto& [run, seconds] : reader.run_elapsed) out.elapsed_seconds += seconds;
   return out;
 }

@@ -1,0 +1,137 @@
+// The journal's merged prefixes (io/journal.hpp, sweep.hpp merged_prefix): a
+// point's blocks merged in order, stored as one record, restore the merge
+// with the same bits as merging the blocks one by one; a whole run's journal
+// keeps at most a segment per point however many units it ran; a damaged prefix is
+// reported and its point recomputed, never misread.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "stickslip/io/journal.hpp"
+#include "stickslip/run/journaled_run.hpp"
+#include "stickslip/run/runner.hpp"
+#include "stickslip/serialize.hpp"
+
+using namespace stickslip;
+namespace fs = std::filesystem;
+
+namespace {
+
+sweep_spec many_blocks() {
+  sweep_spec s;
+  s.axes = {{"lambda", {0.5, 3.8}}};
+  s.base.window = 10.0;
+  s.realizations = 600;
+  s.block_size = 10;
+  s.histograms.bins = 8;
+  return s;
+}
+
+fs::path fresh(const std::string& name) {
+  const auto p = fs::temp_directory_path() / ("stickslip-prefix-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  return p;
+}
+
+bytes bits(const point_statistics& s) { return serialize(work_unit{}, block_result{s, {}}); }
+
+std::vector<bytes> merged_in_order(const sweep_spec& s) {
+  ordered_merger m(s);
+  for (std::uint64_t i = 0; i < unit_count(s); ++i) m.add(unit_at(s, i), simulate_block(s, unit_at(s, i)));
+  std::vector<bytes> out;
+  for (std::size_t p = 0; p < point_count(s); ++p) out.push_back(bits(m.merged(p)));
+  return out;
+}
+
+}  // namespace
+
+TEST(JournalPrefixes, RestoredPrefixContinuesWithTheSameBits) {
+  const auto s = many_blocks();
+  const auto whole = merged_in_order(s);
+  for (const std::uint64_t cut : {1u, 7u, 37u, 59u}) {
+    ordered_merger first(s);
+    for (std::size_t p = 0; p < point_count(s); ++p)
+      for (std::uint64_t b = 0; b < cut; ++b) first.add({p, b}, simulate_block(s, {p, b}));
+    ordered_merger second(s);
+    for (std::size_t p = 0; p < point_count(s); ++p) {
+      const auto rec = serialize_merged_prefix(p, first.merged_blocks(p), first.merged(p));
+      auto prefix = deserialize_merged_prefix(rec);
+      check_prefix_shape(s, prefix);
+      second.restore(std::move(prefix));
+    }
+    for (std::size_t p = 0; p < point_count(s); ++p)
+      for (std::uint64_t b = cut; b < blocks_per_point(s); ++b) second.add({p, b}, simulate_block(s, {p, b}));
+    ASSERT_TRUE(second.complete());
+    for (std::size_t p = 0; p < point_count(s); ++p)
+      EXPECT_EQ(bits(second.merged(p)), whole[p]) << "cut after " << cut << " blocks, point " << p;
+  }
+}
+
+TEST(JournalPrefixes, AWholeRunKeepsItsPrefixesInFewSegments) {
+  const auto s = many_blocks();
+  const auto dir = fresh("one-segment");
+  run::run_plan plan;
+  plan.dir = dir.string();
+  plan.checkpoint_interval = std::chrono::duration<double>(0);  // a checkpoint after every unit
+  run::thread_runner runner(2);
+  const auto out = run::run_journaled(s, plan, io::run_metadata{"cmd", "cfg", "v", "g", "t"}, runner);
+  ASSERT_TRUE(out.results);
+  EXPECT_EQ(out.computed_units, unit_count(s));
+  std::size_t segment_files = 0;
+  for (const auto& e : fs::directory_iterator(dir / io::journal_directory))
+    segment_files += e.path().filename().string().starts_with("seg-");
+  // Superseded segments are removed: what stays is at most one segment per
+  // point (the one with its longest prefix), after 120 checkpoints.
+  EXPECT_LE(segment_files, point_count(s));
+  const auto j = io::read_journal(dir.string(), &s);
+  EXPECT_EQ(j.damaged, 0u);
+  EXPECT_TRUE(j.units.empty());
+  ASSERT_EQ(j.prefixes.size(), point_count(s));
+  const auto whole = merged_in_order(s);
+  for (const auto& [p, prefix] : j.prefixes) {
+    EXPECT_EQ(prefix.blocks, blocks_per_point(s));
+    EXPECT_EQ(bits(prefix.stats), whole[p]);
+  }
+  // A resume with everything journaled computes nothing and gives the same bits.
+  plan.resume = true;
+  const auto again = run::run_journaled(s, plan, io::run_metadata{}, runner);
+  EXPECT_EQ(again.computed_units, 0u);
+  EXPECT_EQ(again.resumed_units, unit_count(s));
+  for (std::size_t p = 0; p < point_count(s); ++p)
+    EXPECT_EQ(bits(again.results->points[p].stats), whole[p]);
+  fs::remove_all(dir);
+}
+
+TEST(JournalPrefixes, ADamagedPrefixIsReportedAndItsPointRecomputed) {
+  const auto s = many_blocks();
+  const auto dir = fresh("damaged");
+  run::run_plan plan;
+  plan.dir = dir.string();
+  run::thread_runner runner(1);
+  (void)run::run_journaled(s, plan, io::run_metadata{"cmd", "cfg", "v", "g", "t"}, runner);
+  fs::path seg;
+  for (const auto& e : fs::directory_iterator(dir / io::journal_directory))
+    if (e.path().filename().string().starts_with("seg-")) seg = e.path();
+  ASSERT_FALSE(seg.empty());
+  std::string data;
+  {
+    std::ifstream in(seg, std::ios::binary);
+    data.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  data[data.size() - 100] ^= 0x10;  // inside the last record (a prefix)
+  std::ofstream(seg, std::ios::binary | std::ios::trunc) << data;
+  std::vector<std::string> notes;
+  const auto j = io::read_journal(dir.string(), &s, [&](const std::string& n) { notes.push_back(n); });
+  EXPECT_GE(j.damaged, 1u);
+  EXPECT_FALSE(notes.empty());
+  EXPECT_LT(j.prefixes.size(), point_count(s));
+  plan.resume = true;
+  const auto again = run::run_journaled(s, plan, io::run_metadata{}, runner);
+  EXPECT_GT(again.computed_units, 0u);
+  const auto whole = merged_in_order(s);
+  for (std::size_t p = 0; p < point_count(s); ++p)
+    EXPECT_EQ(bits(again.results->points[p].stats), whole[p]);
+  fs::remove_all(dir);
+}
