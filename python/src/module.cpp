@@ -397,9 +397,12 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
   // configuration's (then nothing runs and they are read back as they are).
   // One writer of the folder until its outputs are written
   // (io/output_lock.hpp): a second writer, CLI or Python, is refused.
-  const auto before = run::directory_state::of(output);
+  auto before = run::directory_state::of(output);
   std::optional<io::output_lock> lock;
-  if (!output.empty()) lock.emplace(output, "stickslip.sweep (Python)");
+  if (!output.empty()) {
+    lock.emplace(output, "stickslip.sweep (Python)");
+    before.journal_existed = io::journal_exists(output);  // under the lock
+  }
   bool already_complete = false;
   if (!output.empty() && !overwrite) {
     if (!resume)

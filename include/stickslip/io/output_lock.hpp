@@ -4,11 +4,13 @@
 // naming the holder: its command, pid, host and start time, which the holder
 // writes into its lock file. The kernel releases a flock when its process
 // dies, so a lock left by a killed run (kill -9, a node failure) never
-// blocks: the file may stay, the lock does not. The directory's lock file is
-// never removed (that would let two writers lock two different files of one
-// name).
+// blocks: the file may stay, the lock does not. On a file system without
+// locks (flock fails with ENOSYS, ENOLCK, EOPNOTSUPP or EINVAL: some
+// network file systems) a warning is printed and the run goes on unguarded.
+// The directory's lock file is never removed (that would let two writers
+// lock two different files of one name).
 //
-// A whole run (sweep, merge, reproduce, peak -o, Python's sweep(output=))
+// A whole run (sweep, merge, reproduce, Python's sweep(output=))
 // holds DIR/.stickslip.lock exclusively. The shards of a job array (--shard
 // i/n) write their own journal segments into one DIR: each holds
 // .stickslip.lock shared (so no whole run can start beside them) and its own
@@ -38,6 +40,7 @@ class output_lock {
   [[nodiscard]] static std::string path_of(const std::string& dir, const std::string& shard = "");
 
  private:
+  void take(const std::string& dir, const std::string& command, const std::string& shard);
   int run_fd_ = -1, shard_fd_ = -1;
 };
 

@@ -100,12 +100,20 @@ void remove_shard_lock_files(const std::string& dir) {
                           dir, holder.empty() ? std::string("another stickslip process") : holder));
 }
 
-// flock(fd, how | LOCK_NB): true when taken, false when another holds it.
+// flock(fd, how | LOCK_NB): true when taken (or when the file system has no
+// locks: a warning, and the run goes on unguarded, as before locks),
+// false when another process holds it. Throws io_error otherwise.
 bool try_lock(int fd, int how, const std::string& path) {
   if (::flock(fd, how | LOCK_NB) == 0) return true;
   const int e = errno;
   if (e == EWOULDBLOCK) return false;
-  ::close(fd);
+  if (e == ENOSYS || e == ENOLCK || e == EOPNOTSUPP || e == EINVAL) {
+    fmt::print(stderr,
+               "stickslip: warning: '{}': this file system does not lock files ({}); nothing "
+               "stops a second writer of this directory: run one at a time\n",
+               path, std::strerror(e));
+    return true;
+  }
   throw io_error(path, fmt::format("cannot lock: {}", std::strerror(e)));
 }
 
@@ -120,6 +128,17 @@ std::string output_lock::path_of(const std::string& dir, const std::string& shar
 output_lock::output_lock(const std::string& dir, const std::string& command,
                          const std::string& shard) {
   (void)detail::create_directories(dir);
+  try {
+    take(dir, command, shard);
+  } catch (...) {
+    if (shard_fd_ >= 0) ::close(shard_fd_);
+    if (run_fd_ >= 0) ::close(run_fd_);
+    throw;
+  }
+}
+
+void output_lock::take(const std::string& dir, const std::string& command,
+                       const std::string& shard) {
   const std::string run_path = path_of(dir);
   run_fd_ = open_lock_file(run_path);
   if (shard.empty()) {
@@ -131,29 +150,19 @@ output_lock::output_lock(const std::string& dir, const std::string& command,
         const auto shards = running_shards(dir);
         if (!shards.empty()) holder = fmt::format("{}", fmt::join(shards, "; "));
       }
-      ::close(run_fd_);
       refuse(dir, holder);
     }
     describe_holder(run_fd_, command);
     remove_shard_lock_files(dir);
     return;
   }
-  if (!try_lock(run_fd_, LOCK_SH, run_path)) {
-    const std::string holder = line_of(run_fd_);
-    ::close(run_fd_);
-    refuse(dir, holder);
-  }
+  if (!try_lock(run_fd_, LOCK_SH, run_path)) refuse(dir, line_of(run_fd_));
   // Held shared, nobody holds it exclusively: any line in it is stale (a
   // whole run that was killed); clear it so that it is never named.
   (void)!::ftruncate(run_fd_, 0);
   const std::string shard_path = path_of(dir, shard);
   shard_fd_ = open_lock_file(shard_path);
-  if (!try_lock(shard_fd_, LOCK_EX, shard_path)) {
-    const std::string holder = line_of(shard_fd_);
-    ::close(shard_fd_);
-    ::close(run_fd_);
-    refuse(dir, holder);
-  }
+  if (!try_lock(shard_fd_, LOCK_EX, shard_path)) refuse(dir, line_of(shard_fd_));
   describe_holder(shard_fd_, command);
 }
 
