@@ -43,7 +43,23 @@ struct simulate_options {
   bool common_random_numbers = false;
   CLI::Option *x0_opt = nullptr, *xdot0_opt = nullptr, *belt_opt = nullptr;
   CLI::Option *times_opt = nullptr, *times_file_opt = nullptr, *trajectory_opt = nullptr;
+  CLI::Option *events_file_opt = nullptr, *trajectory_file_opt = nullptr;
 };
+
+// A file flag without the output it names would write nothing: refused
+// before the run, naming both flags, instead of silently ignored.
+void check_file_flags(const simulate_options& o) {
+  if (o.events_file_opt->count() > 0 && !o.events)
+    throw invalid_value("--events-file", o.events_file,
+                        "only together with --events, which writes the events to it");
+  if (o.events_file_opt->count() > 0 && o.format == "json")
+    throw invalid_value("--events-file", o.events_file,
+                        "only with --format csv: with --format json, --events puts the events "
+                        "in the JSON output (its key \"events\")");
+  if (o.trajectory_file_opt->count() > 0 && o.trajectory_opt->count() == 0)
+    throw invalid_value("--trajectory-file", o.trajectory_file,
+                        "only together with --trajectory DT, which writes the samples to it");
+}
 
 // The given belt switches: times, and with `t level` lines the levels.
 void set_given_switches(const simulate_options& o, replay_request& req) {
@@ -112,6 +128,7 @@ std::vector<io::text_output> planned_files(const simulate_options& o,
 }
 
 void run_simulate(const CLI::App& cmd, const simulate_options& o) {
+  check_file_flags(o);
   // Check the trajectory step before the run.
   double dt = 0;
   if (o.trajectory_opt->count() > 0) {
@@ -192,22 +209,24 @@ void add_simulate_command(CLI::App& app, const invocation&) {
                 "also output the events (kind,time,x,xdot,v): a key \"events\" in JSON, "
                 "the --events-file in CSV")
       ->group(output);
-  cmd->add_option("--events-file", o.events_file,
-                  "CSV file for --events in CSV format (default events.csv next to -o, or in "
-                  "the current directory)")
-      ->type_name("FILE")
-      ->group(output);
+  o.events_file_opt =
+      cmd->add_option("--events-file", o.events_file,
+                      "CSV file for --events in CSV format (default events.csv next to -o, or "
+                      "in the current directory); only with --events")
+          ->type_name("FILE")
+          ->group(output);
   o.trajectory_opt =
       cmd->add_option("--trajectory", o.trajectory_step,
                       "sample t,x,x',v every DT seconds plus at every event, into "
                       "--trajectory-file")
           ->type_name("DT")
           ->group(output);
-  cmd->add_option("--trajectory-file", o.trajectory_file,
-                  "CSV file for --trajectory (default trajectory.csv next to -o, or in the "
-                  "current directory)")
-      ->type_name("FILE")
-      ->group(output);
+  o.trajectory_file_opt =
+      cmd->add_option("--trajectory-file", o.trajectory_file,
+                      "CSV file for --trajectory (default trajectory.csv next to -o, or in the "
+                      "current directory); only with --trajectory")
+          ->type_name("FILE")
+          ->group(output);
   cmd->add_flag("--overwrite", o.overwrite,
                 "replace output files that already exist (default: refuse and say which)")
       ->group(output);
