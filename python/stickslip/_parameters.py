@@ -1,10 +1,13 @@
 """The model parameters as keyword arguments, named as the command line's
 flags: the paper's symbols (--m, --k, --g, --mu, --V, --lambda, --ta), with
-`lam` (or `switch_rate`) for lambda, which is a Python keyword; the model
+`lam` (or its aliases `switch_rate` and `lambda_`, PEP 8's spelling) for
+lambda, which is a Python keyword; the model
 family's scalars (--c, --mu-s, --mu-k), the belt (--belt-levels,
 --belt-rates, --belt-generator), and a belt level vI or a rate rI of a
 two-level belt by its symbol (as a sweep axis of a TOML config)."""
+import functools
 import numbers
+import os
 import re
 
 import numpy as np
@@ -52,6 +55,8 @@ INDEXED = re.compile(r"^(v[1-9][0-9]*|r[12])$")  # a belt level vI, a two-level 
 #                   numbers; text and arrays of 2 or more dimensions are refused,
 #                   never flattened
 #   a flag          True or False (numpy's bool too)
+#   text            a str; a path (output=, open()) is a str or an os.PathLike
+#   a belt start    an int level or the text "stationary" (belt_start_text)
 # ---------------------------------------------------------------------------
 UINT64_MAX = 2**64 - 1
 INT64_MAX = 2**63 - 1
@@ -65,7 +70,9 @@ def error(message):
 
 
 def _kind(value):
-    return type(value).__name__
+    """"an int", "a float", ...: the type of a refused value, with its article."""
+    name = type(value).__name__
+    return ("an " if name[:1].lower() in "aeiou" else "a ") + name
 
 
 def _is_bool(value):
@@ -88,7 +95,7 @@ def number(name, value):
     if _is_bool(value):
         raise error(f"invalid {name}: {value} (allowed: {allowed}; a bool is not a number)")
     if not isinstance(value, numbers.Real):
-        raise error(f"invalid {name}: {value!r} (allowed: {allowed}; got a {_kind(value)})")
+        raise error(f"invalid {name}: {value!r} (allowed: {allowed}; got {_kind(value)})")
     x = float(value)
     if not np.isfinite(x):
         raise error(f"invalid {name}: {x} (allowed: {allowed})")
@@ -107,7 +114,7 @@ def whole(name, value, lo=0, hi=UINT64_MAX):
         text = repr(value)  # quoted: text is never a number here
     else:
         text = str(value)   # a float, a bool, ...: never a whole number's text
-    return _stickslip.parse_unsigned(name, text, lo, hi)
+    return extension.parse_unsigned(name, text, lo, hi)
 
 
 def flag(name, value):
@@ -118,10 +125,22 @@ def flag(name, value):
 
 
 def text(name, value):
-    """A str (or a path, for names of files and folders)."""
+    """A str."""
     if isinstance(value, str):
         return value
-    raise error(f"invalid {name}: {value!r} (allowed: text (a str); got a {_kind(value)})")
+    raise error(f"invalid {name}: {value!r} (allowed: text (a str); got {_kind(value)})")
+
+
+def path(name, value):
+    """The name of a file or folder: a str or an os.PathLike (pathlib.Path),
+    not empty, as a str."""
+    allowed = "a path: a str or an os.PathLike such as pathlib.Path"
+    if isinstance(value, str) or (isinstance(value, os.PathLike) and not isinstance(value, bytes)):
+        p = os.fspath(value)
+        if isinstance(p, str) and p:
+            return p
+        raise error(f"invalid {name}: {value!r} (allowed: {allowed}, not empty)")
+    raise error(f"invalid {name}: {value!r} (allowed: {allowed}; got {_kind(value)})")
 
 
 def _is_sequence(value):
@@ -207,22 +226,93 @@ def max_events_of(value):
 
 
 def belt_start_text(belt_start):
-    """belt_start as --belt-start reads it: "stationary", "+1", "-1", "3"."""
+    """belt_start as --belt-start reads it. Allowed: an int level (+1 / -1
+    on two levels, a level number 1..n on more; int or numpy integer) or the
+    text "stationary". Anything else is handed to the CLI's parser as text it
+    refuses, so that the refusal is the CLI's message with the levels of this
+    belt: a float as its digits ("2.0": the CLI refuses --belt-start 2.0 too,
+    no value is truncated), other text quoted ("'1'": text is never a level),
+    a bool as "True"."""
     if belt_start is None:
         return None
-    if isinstance(belt_start, str):
-        return belt_start.strip()
-    if isinstance(belt_start, (bool, np.bool_)) or not float(belt_start).is_integer():
+    if _is_array(belt_start) and np.ndim(belt_start) == 0 and np.asarray(belt_start).dtype.kind in "iu":
+        belt_start = np.asarray(belt_start).item()
+    if isinstance(belt_start, str) and belt_start == "stationary":
+        return belt_start
+    if isinstance(belt_start, (numbers.Integral, np.integer)) and not _is_bool(belt_start):
+        b = int(belt_start)
+        return "+1" if b == 1 else str(b)
+    if isinstance(belt_start, (float, np.floating)) or _is_bool(belt_start):
         return str(belt_start)
-    b = int(belt_start)
-    return "+1" if b == 1 else str(b)
+    return repr(belt_start)
 
 
 def describe():
     """One line per parameter for docstrings."""
     lines = [f"    {kw}: {meaning} [{unit}], default {default}"
              for kw, default, unit, meaning in PARAMETERS.values()]
+    aliases = ", ".join(f"{alias} for {kw}" for alias, kw in ALIASES.items())
+    lines.append(f"    (aliases: {aliases})")
     lines += [f"    {kw}: {meaning} [{unit}] ({shape})" for kw, (shape, unit, meaning) in BELT.items()]
     lines.append("    v1, v2, ...: one belt level [m/s]; r1, r2: the rate of leaving level 1 / 2 "
                  "of a two-level belt [1/s]")
     return "\n".join(lines)
+
+
+# ---------------------------------------------------------------------------
+# The extension's messages are the command line's, which name its flags
+# (--belt-start, -o, --resume); a Python user passes keywords. One mapping,
+# flag -> keyword, rewrites every stickslip.Error the extension raises
+# (`extension` below), so that C++ messages stay the CLI's.
+# ---------------------------------------------------------------------------
+KEYWORD_OF_FLAG = {
+    **{"--" + sym.replace("_", "-"): kw for sym, (kw, *_rest) in PARAMETERS.items()},  # --lambda: lam
+    **{"--" + kw.replace("_", "-"): kw for kw in BELT},
+    "--belt-start": "belt_start", "--switch-times": "switch_times",
+    "--max-events": "max_events", "--target-ci": "target_ci",
+    "-o": "output", "--resume": "resume=True", "--overwrite": "overwrite=True",
+    "--records": "records=True", "--keep-journal": "keep_journal=True",
+    "--common-random-numbers": "common_random_numbers=True",
+}
+# Phrases around a flag that read wrong with a keyword, first.
+PHRASES = [
+    ("-o (output directory)", "output"),
+    ("choose another -o DIR", "choose another output folder"),
+    ("add --resume", "pass --resume"),
+    ("add --overwrite", "pass --overwrite"),
+    ("vs this command", "vs this call"),
+    ("the same command and", "the same call and"),
+    (" (--belt-generator, or belt_generator in TOML [model])", " (belt_generator)"),
+]
+FLAG = re.compile(r"(?<![\w-])(--[A-Za-z][\w-]*|-o)(?![\w-])")
+
+
+def python_message(message):
+    """A message of the command line's with the Python keywords in place of
+    its flags ("--belt-start" -> "belt_start", "--resume" -> "resume=True")."""
+    for cli, python in PHRASES:
+        message = message.replace(cli, python)
+    return FLAG.sub(lambda m: KEYWORD_OF_FLAG.get(m.group(0), m.group(0)), message)
+
+
+class _Extension:
+    """The compiled module (_stickslip), whose functions raise
+    stickslip.Error with python_message's wording and the same exit_code."""
+
+    def __getattr__(self, name):
+        value = getattr(_stickslip, name)
+        if not callable(value) or isinstance(value, type):
+            return value
+
+        @functools.wraps(value)
+        def call(*args, **kwargs):
+            try:
+                return value(*args, **kwargs)
+            except _stickslip.Error as e:
+                python = _stickslip.Error(python_message(str(e)))
+                python.exit_code = getattr(e, "exit_code", 2)
+                raise python from None
+        return call
+
+
+extension = _Extension()

@@ -1,8 +1,8 @@
 """stickslip.peak(): the maximizer of a mean statistic over one parameter,
 exactly as `stickslip peak` computes it (docs/precision.md)."""
 from . import _stickslip
-from ._parameters import (belt_arguments, describe, error, max_events_of, model_arguments, number,
-                          text, whole)
+from ._parameters import (belt_arguments, describe, error, extension, max_events_of, model_arguments,
+                          number, text, whole)
 
 
 def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # noqa: A002
@@ -49,7 +49,7 @@ def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # 
     lo, hi = number("range lo", range[0]), number("range hi", range[1])
     if not (lo > 0 and hi > lo):
         raise error(f"invalid range: {tuple(range)!r} (allowed: (lo, hi) with 0 < lo < hi)")
-    return _stickslip.peak(params, over, text("statistic", statistic), lo, hi,
+    return extension.peak(params, over, text("statistic", statistic), lo, hi,
                            number("target_halfwidth", target_halfwidth), text("method", method),
                            whole("seed", seed), whole("threads", threads, 0, 2**16),
                            whole("initial_realizations", initial_realizations, 2, 2**24),

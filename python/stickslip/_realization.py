@@ -2,9 +2,8 @@
 import numpy as np
 import pandas as pd
 
-from . import _stickslip
-from ._parameters import (belt_arguments, belt_start_text, describe, error, flag, max_events_of,
-                          model_arguments, number, optional, sequence, whole)
+from ._parameters import (belt_arguments, belt_start_text, describe, error, extension, flag,
+                          max_events_of, model_arguments, number, optional, sequence, whole)
 
 EPISODE_COLUMNS = ["mode", "start", "end", "x_start", "belt_velocity", "censored"]
 
@@ -14,8 +13,10 @@ class Realization:
 
     Attributes:
       episodes    pandas.DataFrame: mode ("stick"/"slip"), start, end [s],
-                  x_start [m], belt_velocity [m/s], censored (cut off by t_a);
-                  the very numbers of `stickslip simulate`'s episodes.csv.
+                  x_start [m], belt_velocity [m/s] at the episode's start (a
+                  slip can span belt switches: they are the events of kind
+                  "belt_switch"), censored (cut off by t_a); the very numbers
+                  of `stickslip simulate`'s episodes.csv.
       events      pandas.DataFrame: kind (belt_switch, stick_onset,
                   stick_break, slip_reversal), time [s], x [m], xdot [m/s],
                   belt_velocity [m/s] just after the event.
@@ -50,7 +51,7 @@ class Realization:
         dt = number("dt", dt)
         if not dt > 0:
             raise error(f"invalid dt: {dt} (allowed: a finite number > 0 s)")
-        rows = _stickslip.sample_trajectory(self._segments, dt)
+        rows = extension.sample_trajectory(self._segments, dt)
         return pd.DataFrame(rows, columns=["t", "x", "xdot", "v"])
 
     def plot(self, dt=0.01, ax=None):
@@ -90,9 +91,11 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
     seed: master seed (default 1); realization: index of the realization (default 0).
     x0: initial position [m]; xdot0: initial velocity [m/s]; default: drawn
         from U[-1, 1] as in the sweep.
-    belt_start: the level at t = 0: +1 or -1 (first / second of two levels,
-        v(0) = +V or -V), a level number 1..n, or "stationary" (default:
-        drawn from the belt's stationary law, equal odds for the paper's belt).
+    belt_start: the level at t = 0, an int: +1 or -1 (first / second of two
+        levels, v(0) = +V or -V) or a level number 1..n; or the text
+        "stationary" (default: drawn from the belt's stationary law, equal
+        odds for the paper's belt). A float (1.0) or other text ("1") is
+        refused, as `--belt-start 1.0` is.
     switch_times: belt switch times [s], sorted, >= 0, replacing the random
         switches (then lam, belt_rates and the generator play no role).
     switch_levels: with switch_times, the level number (1..n) each switch
@@ -108,7 +111,7 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
                                   switch_levels, belt_levels, belt_rates, belt_generator,
                                   max_events, common_random_numbers)
     realization = whole("realization", realization)
-    raw = _stickslip.replay(**arguments, realization=realization)
+    raw = extension.replay(**arguments, realization=realization)
     return Realization(arguments["seed"], realization, raw)
 
 
@@ -159,7 +162,7 @@ def simulate_many(*, realizations, seed=1, threads=0, x0=None, xdot0=None, belt_
                                   belt_generator, max_events, common_random_numbers)
     indices = sequence("realizations", realizations, "a range or sequence of realization indices",
                        whole)
-    rows = _stickslip.replay_many(**arguments, realizations=indices,
+    rows = extension.replay_many(**arguments, realizations=indices,
                                   threads=whole("threads", threads, 0, 2**16))
     frame = pd.DataFrame(rows, columns=["realization", *EPISODE_COLUMNS])
     frame["realization"] = frame["realization"].astype(np.int64)

@@ -5,8 +5,9 @@ import tempfile
 import xarray as xr
 
 from . import _stickslip
-from ._parameters import (belt_arguments, belt_start_text, describe, error, flag, max_events_of,
-                          model_arguments, number, text, whole)
+from ._parameters import (belt_arguments, belt_start_text, describe, error, extension, flag,
+                          max_events_of, model_arguments, number, text, whole)
+from ._parameters import path as _path  # `path` is open()'s argument
 
 
 def _axes_and_base(params):
@@ -48,11 +49,12 @@ def _progress_bar(enabled):
 
 def open(path):  # noqa: A001 (stickslip.open, like xarray.open_dataset)
     """Reads a results.nc written by `stickslip sweep` (or by sweep(output=...))
-    into memory as an xarray.Dataset; `path` may be the file or its folder.
+    into memory as an xarray.Dataset; `path` (a str or an os.PathLike) may be
+    the file or its folder.
     The lambda dimension is named `lam` (ds.sel(lam=3.8)), with the
     coordinate `lambda` along it. Anything else (a truncated file, a
     summary.json) raises stickslip.Error (exit_code 2)."""
-    path = os.fspath(path)
+    path = _path("path", path)
     if os.path.isdir(path):
         path = os.path.join(path, "results.nc")
     if not os.path.exists(path):
@@ -82,9 +84,9 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     others in the order the keywords are given; belt_levels,
     belt_rates and belt_generator describe the belt of every point.
 {params}
-    belt_start: the initial level of every realization: "stationary"
-        (default: drawn from the belt's stationary law), +1 / -1 (first /
-        second of two levels) or a level number 1..n.
+    belt_start: the initial level of every realization: the text
+        "stationary" (default: drawn from the belt's stationary law) or an
+        int, +1 / -1 (first / second of two levels) or a level number 1..n.
     realizations: realizations per grid point (default 2000).
     seed: master seed (default 1). threads: worker threads, 0 = all cores.
     progress: show a tqdm progress bar.
@@ -93,7 +95,8 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     records: keep per-realization records (records.csv with output=).
     engine: "fast" (default) or "reference"; the results are identical.
     max_events: bound on the events of one realization (default 1e8).
-    output: a folder: also write results.nc, summary.json, summary.csv
+    output: a folder (a str or an os.PathLike such as pathlib.Path): also
+        write results.nc, summary.json, summary.csv
         (records.csv) there, journaling every finished unit. Finished
         results already there are never replaced unless overwrite=True
         (stickslip.Error, exit_code 2, as `stickslip sweep -o`).
@@ -134,7 +137,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         bins=whole("bins", bins, 1, _stickslip.max_histogram_bins),
         records=flag("records", records), engine=text("engine", engine),
         max_events=max_events_of(max_events), threads=whole("threads", threads, 0, 2**16),
-        output="" if output is None else text("output", os.fspath(output)),
+        output="" if output is None else _path("output", output),
         resume=flag("resume", resume), keep_journal=flag("keep_journal", keep_journal),
         checkpoint_interval=number("checkpoint_interval", checkpoint_interval),
         belt_start=belt_start_text(belt_start),
@@ -147,9 +150,9 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     try:
         with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:
             nc = os.path.join(tmp, "results.nc")
-            _stickslip.run_sweep(base, axes, netcdf_path=nc, command_line=command, progress=update,
+            extension.run_sweep(base, axes, netcdf_path=nc, command_line=command, progress=update,
                                  **arguments)
-            return open(output if output is not None else nc)
+            return open(arguments["output"] or nc)
     finally:
         if bar is not None:
             bar.close()

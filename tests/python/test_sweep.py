@@ -106,7 +106,7 @@ def test_bad_input_raises_error_with_the_cli_message(cli, tmp_path):
     with pytest.raises(stickslip.Error) as e:
         stickslip.sweep(lam=-2.0, mu=[0.5, 5], realizations=10)
     assert p.stderr.strip() == f"stickslip: error: {e.value}"
-    with pytest.raises(stickslip.Error, match="lambda"):
+    with pytest.raises(stickslip.Error, match="^invalid lam: "):  # the keyword, not --lambda
         stickslip.sweep(lam=[0.1, -2.0], realizations=10)
     with pytest.raises(stickslip.Error):
         stickslip.sweep(lam=1, realizations=0)

@@ -1,0 +1,221 @@
+"""Python's keywords, not the command line's flags: belt_start follows the
+argument rules (an int level or "stationary"), a path is a str or an
+os.PathLike, every message names the Python keyword (switch_times,
+belt_start, output, overwrite=True, resume=True), and lambda_ is a
+documented alias of lam."""
+import pathlib
+
+import numpy as np
+import pytest
+
+import stickslip
+from stickslip._parameters import python_message
+
+DOCS = pathlib.Path(__file__).resolve().parents[2] / "docs"
+THREE = dict(belt_levels=[1.0, 0.0, -2.0], belt_generator=[[-2, 1, 1], [1, -1, 0], [0.5, 0.5, -1]])
+TWO_LEVELS = "(allowed: +1 (first level), -1 (second level) or stationary)"
+THREE_LEVELS = "(allowed: a level number 1..3, or stationary)"
+
+
+def refused(call):
+    with pytest.raises(stickslip.Error) as e:
+        call()
+    assert isinstance(e.value, ValueError) and not isinstance(e.value, TypeError)
+    assert e.value.exit_code == 2, (str(e.value), e.value.exit_code)
+    assert "--" not in str(e.value), str(e.value)
+    return str(e.value)
+
+
+# --- belt_start: an int level or "stationary" --------------------------------
+
+@pytest.mark.parametrize("value, belt, message", [
+    (1.0, {}, f"invalid belt_start: '1.0' {TWO_LEVELS}"),
+    (-1.0, {}, f"invalid belt_start: '-1.0' {TWO_LEVELS}"),
+    (np.float64(1.0), {}, f"invalid belt_start: '1.0' {TWO_LEVELS}"),
+    (2.0, THREE, f"invalid belt_start: '2.0' {THREE_LEVELS}"),
+    ("1", {}, f"invalid belt_start: ''1'' {TWO_LEVELS}"),
+    ("-1", {}, f"invalid belt_start: ''-1'' {TWO_LEVELS}"),
+    ("+1", {}, f"invalid belt_start: ''+1'' {TWO_LEVELS}"),
+    ("2", THREE, f"invalid belt_start: ''2'' {THREE_LEVELS}"),
+    (" stationary", {}, f"invalid belt_start: '' stationary'' {TWO_LEVELS}"),
+    (True, {}, f"invalid belt_start: 'True' {TWO_LEVELS}"),
+    (2, {}, f"invalid belt_start: '2' {TWO_LEVELS}"),
+    (0, THREE, f"invalid belt_start: '0' {THREE_LEVELS}"),
+    (-1, THREE, f"invalid belt_start: '-1' {THREE_LEVELS}"),
+])
+def test_belt_start_refuses_floats_and_text_with_the_clis_message(value, belt, message):
+    assert refused(lambda: stickslip.simulate(belt_start=value, ta=2, **belt)) == message
+    assert refused(lambda: stickslip.simulate_many(belt_start=value, ta=2, realizations=[0],
+                                                   **belt)) == message
+    assert refused(lambda: stickslip.sweep(belt_start=value, ta=2, realizations=10,
+                                           **belt)) == message
+
+
+def test_a_refused_float_is_refused_by_the_cli_too(cli, tmp_path):
+    p = cli("simulate", "--belt-start", "1.0", "--ta", 2, "-o", tmp_path / "x.csv", check=False)
+    assert p.returncode == 2
+    ours = refused(lambda: stickslip.simulate(belt_start=1.0, ta=2))
+    assert p.stderr.strip() == "stickslip: error: " + ours.replace("belt_start", "--belt-start")
+
+
+@pytest.mark.parametrize("value, belt, level", [
+    (1, {}, 1), (-1, {}, -1), (np.int64(-1), {}, -1), (np.array(1), {}, 1),
+    (3, THREE, 3), (np.uint8(2), THREE, 2),
+])
+def test_belt_start_accepts_int_levels(value, belt, level):
+    r = stickslip.simulate(belt_start=value, ta=2, **belt)
+    assert r.belt_start == level
+    assert r.episodes.equals(stickslip.simulate(belt_start=level, ta=2, **belt).episodes)
+
+
+def test_belt_start_stationary_is_the_default_draw():
+    for belt in ({}, THREE):
+        a = stickslip.simulate(belt_start="stationary", seed=4, ta=3, **belt)
+        b = stickslip.simulate(seed=4, ta=3, **belt)
+        assert a.episodes.equals(b.episodes) and a.belt_start == b.belt_start
+
+
+# --- paths and text ------------------------------------------------------------
+
+@pytest.mark.parametrize("value, kind", [(5, "an int"), (2.5, "a float"), (b"out", "a bytes"),
+                                         (["out"], "a list"), (True, "a bool")])
+def test_sweep_output_must_be_a_path(value, kind):
+    message = refused(lambda: stickslip.sweep(lam=1, realizations=10, ta=1, output=value))
+    assert message == (f"invalid output: {value!r} (allowed: a path: a str or an os.PathLike such "
+                       f"as pathlib.Path; got {kind})")
+
+
+def test_sweep_output_refuses_an_empty_path():
+    message = refused(lambda: stickslip.sweep(lam=1, realizations=10, ta=1, output=""))
+    assert message.startswith("invalid output: '' (allowed: a path")
+
+
+def test_sweep_output_takes_a_pathlib_path(tmp_path):
+    out = tmp_path / "p"
+    ds = stickslip.sweep(lam=[1, 2], realizations=10, ta=1, output=out)
+    assert (out / "results.nc").exists() and dict(ds.sizes)["lam"] == 2
+
+
+@pytest.mark.parametrize("value", [5, None, b"results.nc", 1.5])
+def test_open_path_must_be_a_path(value):
+    message = refused(lambda: stickslip.open(value))
+    assert message.startswith(f"invalid path: {value!r} (allowed: a path: a str or an os.PathLike")
+
+
+@pytest.mark.parametrize("call, keyword", [
+    (lambda: stickslip.sweep(lam=1, realizations=10, engine=5), "engine"),
+    (lambda: stickslip.sweep(lam=1, realizations=10, target_ci=5), "target_ci"),
+    (lambda: stickslip.peak(statistic=5), "statistic"),
+    (lambda: stickslip.peak(over=5), "over"),
+    (lambda: stickslip.peak(method=5), "method"),
+])
+def test_every_text_keyword_is_checked(call, keyword):
+    assert refused(call) == f"invalid {keyword}: 5 (allowed: text (a str); got an int)"
+
+
+# --- messages name the Python keywords -----------------------------------------
+
+def test_switch_times_message_names_the_keyword():
+    assert refused(lambda: stickslip.simulate(switch_times=[2, 1])) == (
+        "invalid switch_times entry #2: 1 (allowed: strictly greater than the previous time 2: "
+        "switch times must be sorted and distinct)")
+
+
+def test_belt_start_message_names_the_keyword():
+    assert refused(lambda: stickslip.simulate(belt_start=2)) == f"invalid belt_start: '2' {TWO_LEVELS}"
+    assert refused(lambda: stickslip.sweep(belt_start=4, realizations=10, **THREE)).startswith(
+        "invalid belt_start: '4'")
+
+
+def test_axis_and_belt_messages_name_the_keywords():
+    assert refused(lambda: stickslip.sweep(lam=[0.1, -2.0], realizations=10)).startswith(
+        "invalid lam: '0.1,-2'")
+    assert refused(lambda: stickslip.sweep(mu_s=[3.0, -1.0], realizations=10)).startswith(
+        "invalid mu_s: '3,-1'")
+    assert refused(lambda: stickslip.simulate(belt_levels=[1, 0, -1])).endswith(
+        "(allowed: a 3 x 3 rate matrix for 3 belt levels (belt_generator))")
+    assert refused(lambda: stickslip.simulate(belt_generator=[[1.0, 2.0], [3.0]])).startswith(
+        "invalid belt_generator: '1,2;3'")
+    assert refused(lambda: stickslip.simulate(belt_levels=[1.0])).startswith(
+        "invalid belt_levels (count): 1")
+
+
+def test_resume_refusal_names_the_keywords(tmp_path):
+    out = tmp_path / "ow"
+    stickslip.sweep(lam=[1, 2], realizations=20, seed=1, output=out)
+    message = refused(lambda: stickslip.sweep(lam=[1, 3], realizations=20, seed=1, output=out,
+                                              resume=True))
+    assert message == (
+        f"output '{out}' holds the finished run of another configuration (grid axis lambda value "
+        "#2: 2 vs 3; those results vs this call); there is no journal, so resume=True has nothing "
+        "to continue: choose another output folder for this configuration, or pass overwrite=True "
+        "to replace those results")
+    (out / "summary.csv").unlink()
+    message = refused(lambda: stickslip.sweep(lam=[1, 2], realizations=20, seed=1, output=out,
+                                              resume=True))
+    assert message.startswith(f"output '{out}' holds an incomplete set of finished outputs")
+    assert "resume=True" in message and "overwrite=True" in message and " -o " not in message
+
+
+@pytest.mark.parametrize("cli_message, python", [
+    ("invalid --switch-times entry #2: 1 (allowed: x)", "invalid switch_times entry #2: 1 (allowed: x)"),
+    ("invalid --belt-start: '2' (allowed: y)", "invalid belt_start: '2' (allowed: y)"),
+    ("invalid --lambda: '0.1,-2' (allowed: z)", "invalid lam: '0.1,-2' (allowed: z)"),
+    ("invalid --mu-k: '-1'", "invalid mu_k: '-1'"),
+    # the run layer's (src/run/journaled_run.cpp) and the writer lock's
+    ("invalid -o (output directory): 'd' (allowed: a directory without the journal of an "
+     "unfinished run (found d/.journal): add --resume to continue that run, or remove the journal)",
+     "invalid output: 'd' (allowed: a directory without the journal of an unfinished run (found "
+     "d/.journal): pass resume=True to continue that run, or remove the journal)"),
+    ("interrupted by signal 2: 3 finished units are journaled in d/.journal; continue with the "
+     "same command and --resume", "interrupted by signal 2: 3 finished units are journaled in "
+     "d/.journal; continue with the same call and resume=True"),
+    ("x; the finished units stay in the journal: rerun with --resume to write the outputs",
+     "x; the finished units stay in the journal: rerun with resume=True to write the outputs"),
+    ("output directory 'd' is in use by stickslip sweep: one writer at a time; wait for it to "
+     "finish (or stop it), or choose another -o DIR", "output directory 'd' is in use by "
+     "stickslip sweep: one writer at a time; wait for it to finish (or stop it), or choose "
+     "another output folder"),
+    ("the bound on events per realization was hit (raise --max-events, or check that ...)",
+     "the bound on events per realization was hit (raise max_events, or check that ...)"),
+    # values are never rewritten: negative numbers, text that is no known flag, paths
+    ("invalid mu: -1 (allowed: > 0)", "invalid mu: -1 (allowed: > 0)"),
+    ("invalid x0: -inf", "invalid x0: -inf"),
+    ("cannot write or read '/tmp/a--resume/x-o': y", "cannot write or read '/tmp/a--resume/x-o': y"),
+    ("invalid --unknown-flag: 1", "invalid --unknown-flag: 1"),
+])
+def test_python_message_maps_flags_to_keywords(cli_message, python):
+    assert python_message(cli_message) == python
+
+
+# --- lambda_: a documented alias of lam ----------------------------------------
+
+def test_lambda_underscore_is_lam():
+    a = stickslip.simulate(lambda_=3, seed=5, ta=5)
+    assert a.parameters["lambda"] == 3.0
+    assert a.episodes.equals(stickslip.simulate(lam=3, seed=5, ta=5).episodes)
+    ds = stickslip.sweep(lambda_=[1, 3], realizations=20, ta=2)
+    assert "lam" in ds.dims and list(ds["lambda"].values) == [1.0, 3.0]
+    with pytest.raises(TypeError, match="given twice"):
+        stickslip.simulate(lam=1, lambda_=2)
+
+
+def test_lambda_underscore_is_documented():
+    for fn in (stickslip.simulate, stickslip.sweep, stickslip.peak):
+        assert "lambda_ for lam" in fn.__doc__, fn.__name__
+    assert "`lambda_`" in (DOCS / "python.md").read_text()
+
+
+# --- docs: belt_velocity and the Realization's attributes ----------------------
+
+def test_docs_define_the_episodes_belt_velocity_and_the_realization_attributes():
+    python, outputs = (" ".join((DOCS / name).read_text().split())
+                       for name in ("python.md", "outputs.md"))
+    for text in (python, outputs):
+        assert "belt velocity at the episode's start" in text
+        assert "belt_switch" in text and "a slip can span belt switches" in text.lower()
+    for attribute in ("`x0`, `xdot0`", "`belt_start`", "`episodes`", "`events`", "`record`",
+                      "`parameters`"):
+        assert f"| {attribute} |" in python, attribute
+    doc = stickslip.Realization.__doc__
+    assert "at the episode's start" in doc and "x0, xdot0, belt_start" in doc
