@@ -204,6 +204,13 @@ void run(const reproduce_flags& f, const invocation& inv) {
   auto options = resolve(f);
   const auto slice = run::parse_shard(f.shard);
   const std::string runs = runs_dir(f.out_dir);
+  if (!(f.checkpoint_interval >= 0) || f.checkpoint_interval > 86400)
+    throw invalid_parameter("--checkpoint-interval", f.checkpoint_interval, "0 .. 86400 seconds");
+  // One writer of OUT from here until the report is written (shards: one
+  // each), so that the checks below see what no other writer is changing.
+  const io::output_lock lock(f.out_dir, slice ? "stickslip reproduce --shard " + f.shard
+                                              : std::string("stickslip reproduce"),
+                             slice ? slice->tag() : "");
   if (std::filesystem::exists(runs) && !f.resume && !slice)
     throw invalid_value("-o (output folder)", f.out_dir,
                         "a folder without the journals of an unfinished reproduce (found " + runs +
@@ -224,12 +231,6 @@ void run(const reproduce_flags& f, const invocation& inv) {
   };
   if (f.quick)
     log("--quick: a DEMO on a small design, not the study; the report is marked as a demo");
-  if (!(f.checkpoint_interval >= 0) || f.checkpoint_interval > 86400)
-    throw invalid_parameter("--checkpoint-interval", f.checkpoint_interval, "0 .. 86400 seconds");
-  // One writer of OUT until the report is written (shards: one each).
-  const io::output_lock lock(f.out_dir, slice ? "stickslip reproduce --shard " + f.shard
-                                              : std::string("stickslip reproduce"),
-                             slice ? slice->tag() : "");
   if (slice)
     return run_shard(options, *slice, f.out_dir, plan_for("", stop, f.checkpoint_interval),
                      exec.runner(), inv);

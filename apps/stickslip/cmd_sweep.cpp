@@ -239,11 +239,10 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   const sweep_spec spec = build_sweep_spec(cmd, o);
   check_result_memory(spec);
   check_output_dir(o.out_dir);
-  if (!o.resume && !o.overwrite)
-    io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
-                          "add --overwrite to replace them, --resume to continue an "
-                          "interrupted sweep, or choose another -o DIR");
   run::run_plan plan;
+  plan.replace_advice =
+      "add --overwrite to replace them, --resume to continue an interrupted sweep, or choose "
+      "another -o DIR";
   plan.dir = o.out_dir;
   plan.slice = run::parse_shard(o.shard);
   plan.writer = plan.slice ? "stickslip sweep --shard " + o.shard : std::string("stickslip sweep");

@@ -229,6 +229,9 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
   // Under the lock: no writer that finished in between can have left a
   // journal this run would take for its own.
   before.journal_existed = io::journal_exists(plan.dir);
+  if (!plan.resume && !plan.overwrite && !plan.replace_advice.empty())
+    io::refuse_to_replace(io::existing_sweep_results(plan.dir), "the results of an earlier run",
+                          plan.replace_advice);
   if (plan.resume && !plan.overwrite && !io::journal_exists(plan.dir)) {
     if (auto finished = finished_outputs_of(spec, plan.dir)) {
       run_outcome out;

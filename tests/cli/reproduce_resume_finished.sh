@@ -8,8 +8,8 @@ source "$(dirname "$0")/lib.sh" "$@"
 A=(reproduce --quick --no-figures --no-candidates --realizations 40 --refine-realizations 40
    --peak-halfwidth 1 --threads 2)
 
-snapshot() {  # names, mtimes and contents of every file under $1
-  (cd "$1" && find . -type f | sort | while read -r f; do
+snapshot() {  # names, mtimes and contents of every file under $1 (but the writer lock's)
+  (cd "$1" && find . -type f ! -name '.stickslip*.lock' | sort | while read -r f; do
      printf '%s %s %s\n' "$f" "$(stat -c %Y.%y "$f")" "$(cksum <"$f")"; done)
 }
 

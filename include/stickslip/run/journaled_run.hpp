@@ -39,6 +39,9 @@ struct run_plan {
   // Who writes DIR, for the message that refuses a second writer
   // (io/output_lock.hpp): "stickslip sweep", "stickslip.sweep (Python)".
   std::string writer = "stickslip";
+  // Without resume or overwrite, finished results in DIR are refused under
+  // the lock (io::refuse_to_replace) with this advice, when it is set.
+  std::string replace_advice;
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
