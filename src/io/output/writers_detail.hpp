@@ -25,8 +25,8 @@ namespace stickslip::io::detail {
 [[nodiscard]] bool defines_model(const model_parameters& p, std::string_view symbol);
 // The recorded parameters that do not define the model at some grid point of
 // `rs` and are not swept: they are written nowhere (no variable, attribute,
-// JSON member or CSV column), since their value means nothing there (issue
-// 23: a "mu" of 5 in a mu_s sweep at mu_k = 4).
+// JSON member or CSV column), since their value means nothing there (a "mu"
+// of 5 in a mu_s sweep at mu_k = 4).
 [[nodiscard]] std::vector<std::string> meaningless_parameters(const result_set& rs);
 // The model of the first grid point as the engines resolve it (the paper's
 // model in its paper form, point_parameters): where the parameters that are
