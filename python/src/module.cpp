@@ -16,9 +16,11 @@
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
+#include <cstring>
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <type_traits>
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
@@ -551,7 +553,35 @@ PYBIND11_MODULE(_stickslip, m) {
   });
   py::class_<trace_segments>(m, "Segments",
                              "one realization's closed-form pieces (stickslip::segment), whole")
-      .def("__len__", [](const trace_segments& s) { return s.items.size(); });
+      .def("__len__", [](const trace_segments& s) { return s.items.size(); })
+      // Pickled whole, as the structs' bytes (so a Realization goes through
+      // pickle, copy.deepcopy and multiprocessing); the state starts with
+      // sizeof(segment), and another layout is refused.
+      .def(py::pickle(
+          [](const trace_segments& s) {
+            static_assert(std::is_trivially_copyable_v<segment>);
+            std::string state(sizeof(std::uint64_t) + s.items.size() * sizeof(segment), '\0');
+            const std::uint64_t size = sizeof(segment);
+            std::memcpy(state.data(), &size, sizeof size);
+            if (!s.items.empty())
+              std::memcpy(state.data() + sizeof size, s.items.data(), s.items.size() * sizeof(segment));
+            return py::bytes(state);
+          },
+          [](const py::bytes& b) {
+            const std::string state = b;
+            std::uint64_t size = 0;
+            if (state.size() >= sizeof size) std::memcpy(&size, state.data(), sizeof size);
+            if (state.size() < sizeof size || size != sizeof(segment) ||
+                (state.size() - sizeof size) % sizeof(segment) != 0)
+              throw error(exit_code::invalid_input,
+                          "cannot unpickle the segments of a Realization made by another build "
+                          "of stickslip: recompute it with stickslip.simulate()");
+            trace_segments s;
+            s.items.resize((state.size() - sizeof size) / sizeof(segment));
+            if (!s.items.empty())
+              std::memcpy(s.items.data(), state.data() + sizeof size, s.items.size() * sizeof(segment));
+            return s;
+          }));
   m.def("replay", &replay_py, py::arg("parameters"), py::arg("seed"), py::arg("realization"),
         py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"), py::arg("switch_times"),
         py::arg("switch_levels"), py::arg("max_events"), py::arg("common_random_numbers") = false);

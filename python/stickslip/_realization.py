@@ -165,5 +165,5 @@ def simulate_many(*, realizations, seed=1, threads=0, x0=None, xdot0=None, belt_
     rows = extension.replay_many(**arguments, realizations=indices,
                                   threads=whole("threads", threads, 0, 2**16))
     frame = pd.DataFrame(rows, columns=["realization", *EPISODE_COLUMNS])
-    frame["realization"] = frame["realization"].astype(np.int64)
+    frame["realization"] = frame["realization"].astype(np.uint64)  # indices reach 2^64 - 1
     return frame
