@@ -216,9 +216,10 @@ class model_reference {
         }
       }
     } else if (g(s0) == 0.0 && g_rate(s0) > 0.0 && tau > 0.0 && g(s1) <= 0.0) {
-      // A slip that leaves x' = v (a reversal just beyond the band edge, or
-      // a departure from the edge with mu_s > mu_k) and comes back within
-      // this one step: the return lies after the maximum of g.
+      // A slip that leaves x' = v at a reversal just beyond the band edge
+      // and comes back within this one step: the return lies after the
+      // maximum of g. (A departure from the edge with mu_s > mu_k returns
+      // after an arc of at least pi, never within one step.)
       const double dt_max = bisect(0.0, tau, [&](double dt) { return g_rate(rk4(s0, dt)) <= 0.0; });
       dt_contact = bisect(dt_max, tau, contact_by);
     }

@@ -10,8 +10,8 @@
 //   - the relative velocity reaching zero during a slip (g = sigma (v - x') > 0
 //     while slipping; a hidden double crossing inside one step is found by
 //     bisecting g' = -sigma x'' to the step's minimum of g first; a slip that
-//     leaves g = 0 (a reversal, an edge departure) and returns within its
-//     first step is found after the step's maximum of g);
+//     leaves g = 0 at a reversal and returns within its first step is found
+//     after the step's maximum of g);
 //   - the band edge |k x + c v| = mu_s m g during a stick at v != 0;
 //   - the belt switches (given (t, level) pairs), hit exactly.
 // At a contact the mass sticks if |k x + c v| <= mu_s m g, else it slips on

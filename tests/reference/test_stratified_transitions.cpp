@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -174,29 +175,36 @@ TEST(StratifiedTransitions, EveryTransitionAtThePapersScaleAgreesWithTheOracle) 
               paper_scale, regenerated);
   for (const auto& [name, n] : count) std::printf("  %6d  %s\n", n, name.c_str());
   EXPECT_LE(regenerated, accepted / 10);
-  // Every transition the engine can take, undamped and damped. Impossible
-  // ones are left out on purpose: a graze after an equal-friction break
-  // never returns to x' = v (only a switch or t_a ends it); a half turn
-  // needs an undamped symmetric belt.
+  // Every transition seen must be seen >= 50 times, except these, which the
+  // physics makes rare at this scale (the window ending during a rare kind
+  // of slip, a reversal right after a switch out of a stick; counts of the
+  // k >= 20 half): listed so that a new label, or one that fades, fails the
+  // test instead of passing unnoticed.
+  const std::set<std::string> rare = {
+      "undamped slip(switch from stick) -> reversal",  // 17 of 10,000 scenarios
+      "undamped slip(half turn) -> t_a",               // 32
+      "undamped slip(reversal) -> t_a",                // 30
+      "undamped slip(switch from rest) -> t_a",        // 11
+      "damped slip(reversal) -> t_a",                  // 10
+      "damped slip(switch from rest) -> t_a",          // 18
+  };
+
+  for (const auto& [name, n] : count) {
+    if (!rare.count(name)) {
+      EXPECT_GE(n, 50) << name;
+    }
+  }
+  // And the ones that matter most must be there at all: the transitions of
+  // each kind of slip start, undamped and damped, and the half turn.
   const char* required[] = {
-      "undamped slip(start) -> onset",          "undamped slip(start) -> switch",
-      "undamped slip(start) -> reversal",       "undamped stick(onset) -> switch",
-      "undamped stick(onset) -> break",         "undamped stick(onset) -> t_a",
-      "undamped slip(mirror) -> onset",         "undamped slip(mirror) -> switch",
       "undamped slip(half turn) -> onset",      "undamped slip(half turn) -> switch",
-      "undamped slip(switch from stick) -> onset", "undamped slip(switch from stick) -> switch",
-      "undamped slip(switch from rest) -> onset",  "undamped slip(switch in slip) -> onset",
-      "undamped slip(switch in slip) -> switch", "undamped slip(switch in slip) -> reversal",
-      "undamped slip(break, graze) -> switch",  "undamped slip(break, return) -> onset",
-      "undamped slip(reversal) -> onset",       "undamped slip(switch in slip) -> t_a",
-      "damped slip(start) -> onset",            "damped stick(onset) -> switch",
-      "damped stick(onset) -> break",           "damped slip(switch from stick) -> onset",
-      "damped slip(switch from stick) -> switch", "damped slip(switch in slip) -> onset",
-      "damped slip(break, return) -> onset",    "damped slip(break, graze) -> switch",
-      "damped slip(reversal) -> onset",         "damped slip(switch from rest) -> onset",
-      "undamped stick(start) -> switch",        "undamped stick(start) -> break",
-      "damped stick(start) -> switch",          "damped slip(start) -> reversal",
-      "damped slip(switch in slip) -> reversal",
+      "undamped slip(mirror) -> onset",         "undamped slip(switch from stick) -> onset",
+      "undamped slip(switch from rest) -> onset", "undamped slip(break, graze) -> switch",
+      "undamped slip(break, return) -> onset",  "undamped slip(reversal) -> onset",
+      "undamped stick(onset) -> break",         "undamped stick(start) -> switch",
+      "damped slip(switch from stick) -> onset", "damped slip(break, return) -> onset",
+      "damped slip(break, graze) -> switch",    "damped slip(reversal) -> onset",
+      "damped stick(onset) -> break",           "damped slip(start) -> reversal",
   };
   for (const char* name : required) EXPECT_GE(count[name], 50) << name;
 }
