@@ -9,9 +9,9 @@
 #   NEW_BUILD, REF_BUILD  CMake build directories (apps/stickslip/stickslip,
 #                         and python/ for the python case)
 #   runs                  interleaved runs of each build (default 5)
-#   case                  any of: sweep sweep_R damped family peak
-#                         reproduce_nofig reproduce python (default: sweep
-#                         damped family peak python)
+#   case                  any of: sweep damped family peak reproduce_nofig
+#                         reproduce python (default: sweep damped family
+#                         peak python)
 # Make a reference build of any commit with bench/reference_build.sh.
 # A command the reference does not have (e.g. `peak` before 0.2) shows n/a.
 # Times are noisy on a shared 2-core machine: compare the ratios of one run.
@@ -31,10 +31,9 @@ paper_grid=(--lambda log:0.1:30:40 --mu 0.5,1,2,3,4,5,6,7 --realizations 2000 --
 args_of() {
   case $1 in
     sweep) echo sweep "${paper_grid[*]}" -o DIR ;;
-    sweep_R) echo sweep "${paper_grid[*]}" --statistics R -o DIR ;;
     damped) echo sweep "${paper_grid[*]}" --c 0.632 -o DIR ;;
     family) echo sweep --lambda log:0.1:30:40 --mu-k 0.5,1,2,3,4,5,6,7 --mu-s 8 --realizations 2000 --seed 1 -o DIR ;;
-    peak) echo peak --statistic R --over lambda --range 0.1:30 --k 40 --mu 5 --seed 1 --format json -o DIR ;;
+    peak) echo peak --statistic R --over lambda --range 0.1:30 --k 40 --mu 5 --seed 1 --format json ;;
     reproduce_nofig) echo reproduce --no-figures -o DIR ;;
     reproduce) echo reproduce -o DIR ;;
     python) echo "<python> stickslip.sweep(lam=np.geomspace(0.1, 30, 40), mu=[0.5,1,2,3,4,5,6,7], realizations=2000, seed=1, output=DIR)" ;;
@@ -56,11 +55,13 @@ run_once() {
     # shellcheck disable=SC2206
     cmd=("$build/apps/stickslip/stickslip" ${line//DIR/$dir})
   fi
-  if ! /usr/bin/time -f '%e %U %S %M' -o "$t" "${cmd[@]}" >/dev/null 2>"$tmp/err"; then
+  if ! /usr/bin/time -f '%e %U %S %M' -o "$t" "${cmd[@]}" >"$tmp/stdout" 2>"$tmp/err"; then
     echo n/a >>"$out"
+    echo "  $case failed with $build: $(tail -n 3 "$tmp/err")" >&2
     return
   fi
-  local bytes=0
+  # Bytes written: the output directory, or what the command printed.
+  local bytes; bytes=$(stat -c %s "$tmp/stdout")
   [[ -e $dir ]] && bytes=$(du -sb "$dir" | cut -f1)
   awk -v b="$bytes" '{printf "%s %.3f %s %s\n", $1, $2 + $3, $4, b}' "$t" >>"$out"
 }
