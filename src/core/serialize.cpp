@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <fmt/format.h>
 
 #include "stickslip/error.hpp"
@@ -458,6 +459,22 @@ std::pair<work_unit, block_result> deserialize_unit_result(std::string_view in) 
   return out;
 }
 
+namespace {
+// What makes `got` not fit the point whose fresh statistics are `fresh`:
+// another histogram binning, or another number of belt levels.
+std::optional<std::string> shape_difference(const point_statistics& got,
+                                            const point_statistics& fresh) {
+  for (const auto& q : quantities())
+    if (q.density && !(got.*q.density).same_binning(fresh.*q.density))
+      return fmt::format("histogram binning of {} differs", q.name);
+  for (const auto& l : level_quantities())
+    if ((got.*l.moments).size() != (fresh.*l.moments).size())
+      return fmt::format("{} values of {}, the point has {} belt levels", (got.*l.moments).size(),
+                         l.name, (fresh.*l.moments).size());
+  return std::nullopt;
+}
+}  // namespace
+
 // ---- merged prefix ----
 bytes serialize_merged_prefix(std::size_t point, std::uint64_t blocks,
                               const point_statistics& stats) {
@@ -497,13 +514,7 @@ void check_prefix_shape(const sweep_spec& s, const merged_prefix& p) {
   if (p.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", p.stats.realizations, expected));
   const point_statistics fresh(point_parameters(s, p.point), s.histograms, s.family_statistics);
-  for (const auto& q : quantities())
-    if (q.density && !(p.stats.*q.density).same_binning(fresh.*q.density))
-      throw bad(fmt::format("histogram binning of {} differs", q.name));
-  for (const auto& l : level_quantities())
-    if ((p.stats.*l.moments).size() != (fresh.*l.moments).size())
-      throw bad(fmt::format("{} values of {}, the point has {} belt levels",
-                            (p.stats.*l.moments).size(), l.name, (fresh.*l.moments).size()));
+  if (auto why = shape_difference(p.stats, fresh)) throw bad(*why);
   if (p.stats.family_statistics != fresh.family_statistics)
     throw bad("another selection of statistics");
   if (s.keep_records) throw bad("a sweep that keeps raw records journals every block");
@@ -523,13 +534,7 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   if (b.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", b.stats.realizations, expected));
   const point_statistics fresh(point_parameters(s, u.point), s.histograms);
-  for (const auto& q : quantities())
-    if (q.density && !(b.stats.*q.density).same_binning(fresh.*q.density))
-      throw bad(fmt::format("histogram binning of {} differs", q.name));
-  for (const auto& l : level_quantities())
-    if ((b.stats.*l.moments).size() != (fresh.*l.moments).size())
-      throw bad(fmt::format("{} values of {}, the point has {} belt levels",
-                            (b.stats.*l.moments).size(), l.name, (fresh.*l.moments).size()));
+  if (auto why = shape_difference(b.stats, fresh)) throw bad(*why);
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))
     throw bad(fmt::format("{} raw records", b.records.size()));

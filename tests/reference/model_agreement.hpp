@@ -10,6 +10,8 @@
 // mu_s m g; an event within 1e3 tol_t of a belt switch; a near tangency the
 // oracle flags.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/episode_agreement.hpp"
 #include "reference/model_oracle.hpp"
 #include "reference/model_scenario.hpp"
 
@@ -112,20 +115,37 @@ inline std::string episodes_text(const std::vector<episode>& es) {
   return out;
 }
 
-struct difference {
-  double time = 0, position = 0;
+
+// One scenario through both integrators, with the tolerance and, when the
+// oracle cannot decide between two branches, why.
+struct scenario_run {
+  model_exact_run exact;
+  model_oracle_result oracle;
+  tolerance tol;
+  std::optional<std::string> degenerate;
 };
-inline std::optional<difference> compare(const std::vector<episode>& exact,
-                                  const std::vector<episode>& oracle) {
-  if (exact.size() != oracle.size()) return std::nullopt;
-  difference d;
-  for (std::size_t i = 0; i < exact.size(); ++i) {
-    if (exact[i].kind != oracle[i].kind) return std::nullopt;
-    d.time = std::max({d.time, std::abs(exact[i].start - oracle[i].start),
-                       std::abs(exact[i].end - oracle[i].end)});
-    d.position =
-        std::max(d.position, std::abs(exact[i].position_at_start - oracle[i].position_at_start));
+inline scenario_run run_both(const model_scenario& s, double steps_per_period) {
+  scenario_run r;
+  r.exact = run_model_exact(s);
+  r.oracle = integrate_model_reference(s.model, s.ic, s.switches,
+                                       {.steps_per_period = steps_per_period});
+  r.tol = tolerance_for(s, r.exact, steps_per_period);
+  r.degenerate = near_degenerate(s, r.exact, r.oracle, r.tol);
+  return r;
+}
+
+// The agreement the oracle tests require (header comment), as gtest
+// failures; nullopt when the episode sequences differ.
+inline std::optional<difference> expect_agreement(const model_scenario& s, const scenario_run& r) {
+  const auto d = compare(r.exact.episodes, r.oracle.episodes);
+  if (!d) {
+    ADD_FAILURE() << "episode sequences differ for " << describe(s) << "\nexact:\n"
+                  << episodes_text(r.exact.episodes) << "oracle:\n"
+                  << episodes_text(r.oracle.episodes);
+    return d;
   }
+  EXPECT_LE(d->time, r.tol.time) << describe(s);
+  EXPECT_LE(d->position, r.tol.position) << describe(s);
   return d;
 }
 

@@ -34,6 +34,7 @@
 #include <optional>
 #include <string>
 
+#include "reference/episode_agreement.hpp"
 #include "reference/oracle.hpp"
 #include "reference/scenario.hpp"
 
@@ -121,23 +122,6 @@ std::string episodes_text(const std::vector<episode>& es) {
   return out;
 }
 
-// Largest boundary and position differences, or nullopt if the sequences differ.
-struct difference {
-  double time = 0, position = 0;
-};
-std::optional<difference> compare(const std::vector<episode>& exact,
-                                  const std::vector<episode>& oracle) {
-  if (exact.size() != oracle.size()) return std::nullopt;
-  difference d;
-  for (std::size_t i = 0; i < exact.size(); ++i) {
-    if (exact[i].kind != oracle[i].kind) return std::nullopt;
-    d.time = std::max({d.time, std::abs(exact[i].start - oracle[i].start),
-                       std::abs(exact[i].end - oracle[i].end)});
-    d.position =
-        std::max(d.position, std::abs(exact[i].position_at_start - oracle[i].position_at_start));
-  }
-  return d;
-}
 
 TEST(OracleAgreement, RandomScenariosHaveIdenticalEpisodeSequences) {
   std::mt19937_64 rng(scenario_seed);
