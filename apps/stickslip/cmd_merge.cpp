@@ -30,7 +30,7 @@ namespace {
 struct merge_options {
   std::vector<std::string> inputs;
   std::string out_dir;
-  bool overwrite = false;
+  bool overwrite = false, json_histograms = false;
 };
 
 void print_problem(const std::string& p) { fmt::print(stderr, "stickslip: journal: {}\n", p); }
@@ -63,7 +63,8 @@ void run_merge(const merge_options& o) {
     fmt::print(stderr, "stickslip: merge: {} units were in more than one journal (identical; "
                        "used once)\n", merged.duplicates);
   try {
-    io::write_all(merged.results, merged.metadata, o.out_dir);
+    io::write_all(merged.results, merged.metadata, o.out_dir,
+                  io::output_options{.json_joint_histograms = o.json_histograms});
   } catch (const error& e) {
     if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
     throw;
@@ -89,6 +90,8 @@ void add_merge_command(CLI::App& app, const invocation&) {
       ->required();
   cmd->add_flag("--overwrite", opts->overwrite,
                 "replace the results of an earlier run in OUT (default: refuse and say which)");
+  cmd->add_flag("--json-histograms", opts->json_histograms,
+                "also write the joint (D, X) histograms into summary.json (default: results.nc only; they are most of its bytes)");
   cmd->callback([opts] { run_merge(*opts); });
 }
 

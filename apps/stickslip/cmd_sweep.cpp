@@ -54,7 +54,7 @@ struct sweep_options {
   bool records = false;
   std::string engine;
   std::string out_dir;
-  bool resume = false, keep_journal = false, overwrite = false;
+  bool resume = false, keep_journal = false, overwrite = false, json_histograms = false;
   std::string belt_start;
   CLI::Option* belt_start_opt = nullptr;
   std::string shard;                       // "i/n"
@@ -245,6 +245,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
       "another -o DIR";
   plan.dir = o.out_dir;
   plan.slice = run::parse_shard(o.shard);
+  plan.outputs.json_joint_histograms = o.json_histograms;
   plan.writer = plan.slice ? "stickslip sweep --shard " + o.shard : std::string("stickslip sweep");
   plan.resume = o.resume;
   plan.overwrite = o.overwrite;
@@ -357,6 +358,8 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                 "replace the results of an earlier run in DIR (default: refuse and say which)");
   cmd->add_flag("--keep-journal", o.keep_journal,
                 "keep DIR/.journal after the outputs are written (default: remove it)");
+  cmd->add_flag("--json-histograms", o.json_histograms,
+                "also write the joint (D, X) histograms into summary.json (default: results.nc only; they are most of its bytes)");
   cmd->callback([cmd, opts, inv] { run_sweep_command(*cmd, *opts, inv); });
 }
 

@@ -153,9 +153,10 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   return out;
 }
 
-void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal) {
+void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal,
+                   const io::output_options& options) {
   try {
-    io::write_all(*out.results, out.metadata, dir);
+    io::write_all(*out.results, out.metadata, dir, options);
   } catch (const error& e) {
     if (e.code() != exit_code::io_failure) throw;
     throw error(e.code(), std::string(e.what()) +
@@ -242,7 +243,7 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
   }
   try {
     auto out = run_journaled(spec, plan, fresh, r);
-    if (out.results) write_outputs(out, plan.dir, keep_journal);
+    if (out.results) write_outputs(out, plan.dir, keep_journal, plan.outputs);
     return out;
   } catch (const error& e) {
     // The shards of one directory share it and its journal: a failed shard

@@ -9,6 +9,13 @@
 
 namespace stickslip::io {
 
+// What the outputs hold beyond the defaults. summary.json leaves out the
+// joint histograms (the (D, X) counts: most of its bytes, 2.5 of 3.5 MB on
+// the paper grid) unless asked; results.nc always has them.
+struct output_options {
+  bool json_joint_histograms = false;
+};
+
 // File names that write_all uses inside its directory.
 inline constexpr const char* results_file = "results.nc";
 inline constexpr const char* summary_json_file = "summary.json";
@@ -22,13 +29,16 @@ inline constexpr const char* records_csv_file = "records.csv";
 void write_netcdf(const result_set& rs, const run_metadata& meta, const std::string& path);
 
 // summary.json: {"parameters": {...}, "points": [...], "elapsed_seconds": ...}
-void write_summary_json(const result_set& rs, const run_metadata& meta, const std::string& path);
+void write_summary_json(const result_set& rs, const run_metadata& meta, const std::string& path,
+                        const output_options& options = {});
 
 // The text of summary.json, and its "points" array exactly as it appears in
 // the file. The points text depends only on the result set's statistics (no
 // timestamps, no thread count), so identical result sets give identical bytes.
-[[nodiscard]] std::string summary_json(const result_set& rs, const run_metadata& meta);
-[[nodiscard]] std::string summary_json_points(const result_set& rs);
+[[nodiscard]] std::string summary_json(const result_set& rs, const run_metadata& meta,
+                                       const output_options& options = {});
+[[nodiscard]] std::string summary_json_points(const result_set& rs,
+                                              const output_options& options = {});
 
 // summary.csv: one row per grid point.
 void write_summary_csv(const result_set& rs, const std::string& path);
@@ -42,6 +52,7 @@ void write_records_csv(const result_set& rs, const std::string& path);
 // only when spec.keep_records). Writes every file to a temporary name first
 // and renames them only when all succeeded. On failure nothing new is left in
 // `dir` (and `dir` itself is removed again if this call created it).
-void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir);
+void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,
+               const output_options& options = {});
 
 }  // namespace stickslip::io

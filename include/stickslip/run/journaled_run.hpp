@@ -20,6 +20,7 @@
 
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/io/writers.hpp"
 #include "stickslip/run/runner.hpp"
 #include "stickslip/run/shard.hpp"
 #include "stickslip/run/stop.hpp"
@@ -42,6 +43,7 @@ struct run_plan {
   // Without resume or overwrite, finished results in DIR are refused under
   // the lock (io::refuse_to_replace) with this advice, when it is set.
   std::string replace_advice;
+  io::output_options outputs;  // what the outputs hold beyond the defaults
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
@@ -86,7 +88,8 @@ struct run_outcome {
 
 // io::write_all(results, metadata, dir), then removes the journal unless
 // keep_journal. An io_failure says that the units stay in the journal.
-void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal);
+void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal,
+                   const io::output_options& options = {});
 
 // What DIR held before a run, so that a failed run can remove what it created.
 struct directory_state {

@@ -15,7 +15,8 @@
 namespace stickslip::io {
 namespace fs = std::filesystem;
 
-void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir) {
+void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,
+               const output_options& options) {
   detail::check_shape(rs);
   const auto created = detail::create_directories(dir);
   const auto in_dir = [&](const char* name) { return (fs::path(dir) / name).string(); };
@@ -30,7 +31,7 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
       {in_dir(summary_json_file),
        [&](const std::string& p) {
          detail::write_text_temporary(
-             p, [&](detail::text_sink& out) { detail::fill_summary_json(out, rs, meta); });
+             p, [&](detail::text_sink& out) { detail::fill_summary_json(out, rs, meta, options); });
        }},
       {in_dir(summary_csv_file),
        [&](const std::string& p) {

@@ -173,7 +173,8 @@ void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
 // not sampled once per realization ("samples"), then each group of counters
 // ("events") as an object, the derivative estimates and the joint histograms.
 void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::string>& symbols,
-                const point_result& p, const std::vector<precision::crn_slope>* slopes) {
+                const point_result& p, const std::vector<precision::crn_slope>* slopes,
+                const output_options& options) {
   const auto& s = p.stats;
   j.begin_object();
   for (const auto& sym : symbols)
@@ -210,9 +211,10 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
   }
   emit_score_estimates(j, p);
   if (slopes) emit_crn_slopes(j, spec, *slopes);
-  // Joint histograms: counts[i][k] of x bin i and y bin k (in range), and
-  // the samples outside either range.
+  // Joint histograms, when asked: counts[i][k] of x bin i and y bin k (in
+  // range), and the samples outside either range.
   for (const auto& jh : joint_histograms()) {
+    if (!options.json_joint_histograms) break;
     const auto& h = s.*jh.counts;
     j.key(jh.summary_name);
     j.begin_array();
@@ -227,16 +229,17 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
   j.end_object();
 }
 
-void emit_points(json_emitter& j, const result_set& rs) {
+void emit_points(json_emitter& j, const result_set& rs, const output_options& options) {
   j.begin_array(layout::multi_line);
   const auto slopes = precision::crn_slopes(rs);  // empty without CRN and records
   const auto symbols = point_parameter_symbols(rs);
   for (std::size_t i = 0; i < rs.points.size(); ++i)
-    emit_point(j, rs.spec, symbols, rs.points[i], slopes.empty() ? nullptr : &slopes[i]);
+    emit_point(j, rs.spec, symbols, rs.points[i], slopes.empty() ? nullptr : &slopes[i], options);
   j.end_array();
 }
 
-void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& meta) {
+void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& meta,
+                     const output_options& options) {
   const auto& s = rs.spec;
   j.begin_object(layout::multi_line);
   // A swept parameter has no single value: null in "base", named in "swept".
@@ -299,19 +302,22 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("command_line", meta.command_line);
   j.member("created_utc", meta.created_utc);
   j.member("config", meta.resolved_config);
+  j.member("joint_histograms", options.json_joint_histograms ? "here and in results.nc"
+                                                             : "in results.nc only");
   j.end_object();
 }
 
 }  // namespace
 
-void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta) {
+void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta,
+                       const output_options& options) {
   check_shape(rs);
   json_emitter j(out);
   j.begin_object(layout::multi_line);
   j.key("parameters");
-  emit_parameters(j, rs, meta);
+  emit_parameters(j, rs, meta, options);
   j.key("points");
-  emit_points(j, rs);
+  emit_points(j, rs, options);
   j.member("elapsed_seconds", rs.elapsed_seconds);
   j.end_object();
   out.put('\n');
@@ -319,23 +325,25 @@ void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata&
 
 }  // namespace detail
 
-std::string summary_json(const result_set& rs, const run_metadata& meta) {
+std::string summary_json(const result_set& rs, const run_metadata& meta,
+                         const output_options& options) {
   detail::text_sink out;
-  detail::fill_summary_json(out, rs, meta);
+  detail::fill_summary_json(out, rs, meta, options);
   return out.str();
 }
 
-std::string summary_json_points(const result_set& rs) {
+std::string summary_json_points(const result_set& rs, const output_options& options) {
   detail::check_shape(rs);
   detail::text_sink out;
   detail::json_emitter j(out, 1);  // indented as inside the document
-  detail::emit_points(j, rs);
+  detail::emit_points(j, rs, options);
   return out.str();
 }
 
-void write_summary_json(const result_set& rs, const run_metadata& meta, const std::string& path) {
+void write_summary_json(const result_set& rs, const run_metadata& meta, const std::string& path,
+                        const output_options& options) {
   detail::write_text_atomically(
-      path, [&](detail::text_sink& out) { detail::fill_summary_json(out, rs, meta); });
+      path, [&](detail::text_sink& out) { detail::fill_summary_json(out, rs, meta, options); });
 }
 
 }  // namespace stickslip::io

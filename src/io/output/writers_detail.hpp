@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "stickslip/io/atomic_file.hpp"
-#include "stickslip/io/metadata.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/io/metadata.hpp"
+#include "stickslip/io/writers.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -51,7 +52,8 @@ void check_shape(const result_set& rs);
 // On failure the temporary is removed and io_error(path, ...) thrown.
 void write_netcdf_temporary(const result_set& rs, const run_metadata& meta,
                             const std::string& path);
-void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta);
+void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta,
+                       const output_options& options);
 void fill_summary_csv(text_sink& out, const result_set& rs);
 void fill_records_csv(text_sink& out, const result_set& rs);
 
