@@ -3,7 +3,6 @@
 // H5F__close_cb). The error is already known and the outputs are already
 // rolled back, so report it the way main() does and leave without running
 // the library's exit handlers: a clear error, not a crash.
-#include <fmt/format.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -13,10 +12,14 @@
 
 namespace stickslip::app {
 
+void print_error(const char* kind, const char* what) noexcept {
+  std::fprintf(stderr, "stickslip: %s: %s\n", kind, what);  // errors ignored: nothing else to tell
+  std::fflush(stderr);
+}
+
 void exit_after_failed_write(const std::exception& e) {
   std::fflush(stdout);
-  fmt::print(stderr, "stickslip: error: {}\n", e.what());
-  std::fflush(stderr);
+  print_error("error", e.what());
   const auto* se = dynamic_cast<const error*>(&e);
   std::_Exit(static_cast<int>(se ? se->code() : exit_code::io_failure));
 }

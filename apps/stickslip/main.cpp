@@ -29,10 +29,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return stickslip::app::report_parse_error(app, e, std::vector<std::string>(argv + 1, argv + argc));
   } catch (const stickslip::error& e) {
-    fmt::print(stderr, "stickslip: error: {}\n", e.what());
+    stickslip::app::print_error("error", e.what());
     return static_cast<int>(e.code());
   } catch (const std::exception& e) {
-    fmt::print(stderr, "stickslip: internal error: {}\n", e.what());
+    stickslip::app::print_error("internal error", e.what());
     return static_cast<int>(stickslip::exit_code::internal);
   }
   return 0;
