@@ -663,7 +663,9 @@ class lane_engine {
         const vec dt = Sub(nt, t[k]);
         const vec x_end = IfThenElse(sroot, x_root, xr[k]);
         const vec travel = hn::Abs(Sub(Mul(v[k], dt), Sub(x_end, x[k])));
-        const mask up = hn::Gt(v[k], zero);
+        // time at the first level: v = v1 (the paper's first level is +V;
+        // a family belt's levels may have any signs, e.g. 0.5 and 1)
+        const mask up = Family ? hn::Eq(v[k], V1) : hn::Gt(v[k], zero);
         const mask rn0 = run[k];
         hn::Store(Add(hn::Load(d, lt0_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d, lt0_ + j);
         hn::Store(Add(hn::Load(d, lt1_ + j), hn::IfThenElseZero(hn::AndNot(up, rn0), dt)), d, lt1_ + j);

@@ -263,6 +263,30 @@ TEST(FastPathFamily, SweepStatisticsEqualTheReference) {
   expect_engines_agree(s, 3);
 }
 
+// The time at each level, and what uses it (P_j, the belt-rate scores), for
+// two-level belts whose levels are not (positive, non-positive): both
+// positive, both negative, a resting first level. The lanes booked the time
+// by the sign of v (a fuzzer found P_1 = 1, P_2 = 0 for levels 0.5 and 1).
+TEST(FastPathFamily, LevelTimesEqualTheReferenceForLevelsOfAnySigns) {
+  for (const auto& levels : {std::vector<double>{0.5, 1.0}, std::vector<double>{-1.0, -0.3},
+                             std::vector<double>{0.0, 1.0}, std::vector<double>{-0.5, 2.0}}) {
+    sweep_spec s;
+    s.base.stiffness = 40.0;
+    s.base.window = 10.0;
+    s.base.static_friction = 6.0;
+    s.base.kinetic_friction = 4.0;
+    s.base.belt_levels = levels;
+    s.base.belt_rates = {2.0, 0.7};
+    s.realizations = 60;
+    s.block_size = 16;
+    s.seed = 12;
+    s.keep_records = true;
+    SCOPED_TRACE("levels " + std::to_string(levels[0]) + "," + std::to_string(levels[1]));
+    expect_engines_agree(s, 2);
+    if (HasFailure()) return;
+  }
+}
+
 // With common random numbers every point draws from one key: the lanes must
 // use it for the family's start level and switch waits too.
 TEST(FastPathFamily, CommonRandomNumbersEqualTheReference) {
