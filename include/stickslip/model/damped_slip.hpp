@@ -291,11 +291,22 @@ class damped_oscillator {
     if (g_lo - g_hi > 0.0)
       t = vertex_at_hi ? hi - (hi - lo) * std::sqrt(-g_hi / (g_lo - g_hi))
                        : lo + (hi - lo) * (g_lo / (g_lo - g_hi));
-    for (int i = 0; i < 200; ++i) {
-      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    // Halley creeps where g is flat: in an over-damped tail (x'' ~ 1e-200 far
+    // beyond the root) each step moves t by about 2 / |r1| while g does not
+    // change, so 200 steps from a secant point deep in a long horizon never
+    // reached the root, and the bracket's far end was returned instead (a
+    // missed stick that depended on t_a). A step that does not halve |g|
+    // on the same side of the root is followed by a bisection instead; a
+    // Halley step converging normally shrinks |g| far more.
+    double g_prev = 0.0;
+    bool bisect_next = false;
+    for (int i = 0; i < 400; ++i) {
+      if (bisect_next || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
       if (t <= lo || t >= hi) break;  // the bracket is two adjacent doubles
       const damped_state s = advance(y0, z0, t);
       const double g = sigma * (v - s.velocity);
+      bisect_next = i > 0 && (g <= 0.0) == (g_prev <= 0.0) && std::abs(g) > 0.5 * std::abs(g_prev);
+      g_prev = g;
       if (g <= 0.0) {
         hi = t;
         s_hi = s;
