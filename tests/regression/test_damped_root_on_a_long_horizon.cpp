@@ -16,6 +16,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "regression/recorded.hpp"
 #include "stickslip/model/belt_chain.hpp"
 #include "stickslip/model/damped_slip.hpp"
 #include "stickslip/model/model_engine.hpp"
@@ -23,12 +24,7 @@
 namespace stickslip {
 namespace {
 
-struct recorded {
-  std::vector<episode> episodes;
-  void on_event(const event&) {}
-  void on_segment(const segment&) {}
-  void on_episode(const episode& e) { episodes.push_back(e); }
-};
+using regression::recorded;
 
 oscillator_model fuzzer_model(double window) {
   oscillator_model m;

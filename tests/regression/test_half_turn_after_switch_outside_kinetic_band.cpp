@@ -17,19 +17,14 @@
 #include <numbers>
 #include <vector>
 
+#include "regression/recorded.hpp"
 #include "stickslip/model/belt_chain.hpp"
 #include "stickslip/model/model_engine.hpp"
 
 namespace stickslip {
 namespace {
 
-struct recorded {
-  std::vector<episode> episodes;
-  std::vector<event> events;
-  void on_event(const event& e) { events.push_back(e); }
-  void on_segment(const segment&) {}
-  void on_episode(const episode& e) { episodes.push_back(e); }
-};
+using regression::recorded;
 
 oscillator_model users_model(double damping) {
   oscillator_model m;

@@ -11,18 +11,14 @@
 
 #include <vector>
 
+#include "regression/recorded.hpp"
 #include "stickslip/belt_switches.hpp"
 #include "stickslip/integrator.hpp"
 
 namespace stickslip {
 namespace {
 
-struct recorded {
-  std::vector<episode> episodes;
-  void on_event(const event&) {}
-  void on_segment(const segment&) {}
-  void on_episode(const episode& e) { episodes.push_back(e); }
-};
+using regression::recorded;
 
 // g = 8, mu = 0.5, m = 1, k = 4: a = mu m g / k = 1 exactly, so x0 = +-a is
 // exactly on the band edge.
