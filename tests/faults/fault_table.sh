@@ -132,8 +132,8 @@ R=(reproduce --quick --no-figures --no-candidates --realizations 100 --refine-re
    --threads 2 --seed 11)                                  # two parameter sets, ~4 s
 D=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 100
    --threads 2 --checkpoint-interval 0)                    # 48 units, ~1.2 MB on disk
-J=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 60 --records
-   --threads 2 --seed 7)                                   # 80 units
+J=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 60
+   --threads 2 --seed 7)                                   # 80 units (merged-prefix journal)
 M=(sweep --lambda log:0.1:30:20 --mu 0.5,5 --realizations 600 --seed 5 --checkpoint-interval 0
    --threads 1)                                            # 240 units, ~4 s under mpirun -np 2
 T=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 8000 --block-size 100 --records
@@ -142,10 +142,16 @@ T=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 8000 --block-siz
 # ------------------------------------------------------------------ 1. kill -9
 row_kill_sweep() {
   local N; N=$(trials 50)
-  "$BIN" "${A[@]}" -o ref_a 2>/dev/null || { notes="reference run failed"; lost=1; return; }
+  # Odd trials keep raw records (a journal of every unit), even ones do not
+  # (a journal of merged prefixes, the default): both journal layouts.
+  local with_records=("${A[@]}") merged=() a
+  for a in "${A[@]}"; do [[ $a == --records ]] || merged+=("$a"); done
+  "$BIN" "${with_records[@]}" -o ref_a 2>/dev/null || { notes="reference run failed"; lost=1; return; }
+  "$BIN" "${merged[@]}" -o ref_am 2>/dev/null || { notes="reference run failed"; lost=1; return; }
   local t0 t_ref; t0=$(now_ms); "${NICE[@]}" "$BIN" "${A[@]}" -o ref_a_t 2>/dev/null; t_ref=$(( $(now_ms) - t0 ))
-  local hits=0 i k rc ci
+  local hits=0 i k rc ci ref
   for ((i = 1; i <= N; i++)); do
+    if ((i % 2)); then A=("${with_records[@]}"); ref=ref_a; else A=("${merged[@]}"); ref=ref_am; fi
     trial_ok=1; rm -rf ks
     # killed twice (the run, then its first --resume) at random moments, then resumed to the end
     for k in 1 2; do
@@ -159,10 +165,11 @@ row_kill_sweep() {
     done
     "$BIN" "${A[@]}" --resume -o ks 2>"$W/final.err" || bad $i "final --resume: exit $?: $(head -c 300 "$W/final.err")"
     [[ -e ks/.journal ]] && bad $i "journal left after the final --resume"
-    same_sweep ref_a ks || bad $i "outputs differ from the uninterrupted run"
+    same_sweep $ref ks || bad $i "outputs differ from the uninterrupted run"
     n=$i; ((trial_ok)) || lost=$((lost + 1))
   done
-  notes="$hits of $((2 * N)) kills hit a running process (uninterrupted run ${t_ref} ms)"
+  A=("${with_records[@]}")
+  notes="$hits of $((2 * N)) kills hit a running process (uninterrupted run ${t_ref} ms; odd trials with --records, even ones with the merged-prefix journal)"
 }
 
 row_kill_reproduce() {
@@ -275,7 +282,11 @@ journal_ready=""
 journal_setup() {
   [[ -n $journal_ready ]] && return 0
   "$BIN" "${J[@]}" -o ref_j 2>/dev/null || return 1
+  # two layouts: a shard's journal of every unit, and a whole run's journal
+  # of merged prefixes (its outputs removed, so that --resume reads it)
   "$BIN" "${J[@]}" --shard 0/1 --checkpoint-interval 0 -o pristine_j 2>/dev/null || return 1
+  "$BIN" "${J[@]}" --checkpoint-interval 0 --keep-journal -o pristine_jm 2>/dev/null || return 1
+  rm -f pristine_jm/results.nc pristine_jm/summary.json pristine_jm/summary.csv
   journal_ready=1
 }
 row_damage() {  # WHICH: segment or header
@@ -283,7 +294,8 @@ row_damage() {  # WHICH: segment or header
   journal_setup || { notes="setup failed"; lost=1; return; }
   local recomputed=0 refused=0 reported=0 i rc f how
   for ((i = 1; i <= N; i++)); do
-    trial_ok=1; rm -rf dj; cp -a pristine_j dj
+    trial_ok=1; rm -rf dj
+    if ((i % 2)); then cp -a pristine_j dj; else cp -a pristine_jm dj; fi
     if [[ $which == header ]]; then f=dj/.journal/header.bin
     else local segs=(dj/.journal/seg-*.bin); f=${segs[RANDOM % ${#segs[@]}]}; fi
     how=$("$PY" - "$f" "$RANDOM" <<'PY'
@@ -316,7 +328,7 @@ PY
     fi
     n=$i; ((trial_ok)) || lost=$((lost + 1))
   done
-  notes="$recomputed resumed (exit 0, outputs compared), $refused refused with a message; the damage reported in $reported"
+  notes="$recomputed resumed (exit 0, outputs compared), $refused refused with a message; the damage reported in $reported (odd trials: a journal of every unit, even: of merged prefixes)"
 }
 row_damage_segment() { row_damage segment; }
 row_damage_header() { row_damage header; }
