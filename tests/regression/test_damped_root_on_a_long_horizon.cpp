@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "regression/recorded.hpp"
@@ -74,6 +75,31 @@ TEST(DampedRootOnALongHorizon, EpisodesUpToAStickDoNotDependOnTheWindow) {
     first_stick.push_back(r.episodes[1].start);
   }
   for (double t : first_stick) EXPECT_NEAR(t, first_stick.front(), 1e-15);
+}
+
+// The damped engine visits every half-period of a slip: a window of more
+// than 1e6 radians of the natural frequency is refused by name instead of
+// hanging (fuzz_model_family found k ~ 4e49, m = 50, c = 19: ~1e21
+// half-periods in 5 ms).
+TEST(DampedRootOnALongHorizon, AWindowOfTooManyPeriodsIsRefusedByName) {
+  oscillator_model m = fuzzer_model(0.3);
+  m.mass = 50.0;
+  m.stiffness = 3.98e49;
+  m.damping = 19.0;
+  try {
+    validate(m);
+    ADD_FAILURE() << "accepted";
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("k (stiffness)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("sqrt(k/m) t_a <= 1e6"), std::string::npos) << e.what();
+  }
+  m.damping = 0.0;  // undamped slips have closed-form roots: accepted
+  EXPECT_NO_THROW(validate(m));
+  m = fuzzer_model(1e4);
+  m.mass = 1.0;
+  m.stiffness = 80.0;  // the users' largest scale
+  EXPECT_NO_THROW(validate(m));
 }
 
 }  // namespace

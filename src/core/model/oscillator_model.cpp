@@ -1,5 +1,7 @@
 #include "stickslip/model/oscillator_model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -94,6 +96,17 @@ void validate(const oscillator_model& m) {
   if (m.damping > 0.0) {
     require_scale("c", m.damping);
     require_scale("gamma = c / (2 m)", m.decay_rate());
+    // The damped engine isolates a slip's return to x' = v half-period by
+    // half-period (damped_slip.hpp), at most about omega_0 t_a / pi of them
+    // over the window: more than 1e6 radians would take that many steps (a
+    // fuzzer found k ~ 1e49, m = 50: a hang). Users' models are far below
+    // (k = 80, m = 1, t_a = 1e4: 9e4 rad).
+    if (m.natural_frequency() * m.window > 1e6)
+      throw invalid_parameter(
+          "k (stiffness)", m.stiffness,
+          fmt::format("with damping c > 0, sqrt(k/m) t_a <= 1e6, i.e. k <= {:.6g} for m = {:.6g} "
+                      "and t_a = {:.6g} (the damped engine visits every half-period of a slip)",
+                      1e12 * m.mass / (m.window * m.window), m.mass, m.window));
   }
 }
 
