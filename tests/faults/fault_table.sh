@@ -130,8 +130,11 @@ A=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size
    --threads 2 --seed 7)                                   # 320 units, ~0.5 s
 R=(reproduce --quick --no-figures --no-candidates --realizations 100 --refine-realizations 100
    --threads 2 --seed 11)                                  # two parameter sets, ~4 s
-D=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 100
+D=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 100 --records
    --threads 2 --checkpoint-interval 0)                    # 48 units, ~1.2 MB on disk
+# (--records: a journal of every unit, which only grows, so that the room
+# left on the disk decides the phase that fills it; the merged-prefix
+# journal replaces its segments and its size goes up and down)
 J=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 60
    --threads 2 --seed 7)                                   # 80 units (merged-prefix journal)
 M=(sweep --lambda log:0.1:30:20 --mu 0.5,5 --realizations 600 --seed 5 --checkpoint-interval 0
