@@ -1,0 +1,42 @@
+// The values an uncertain realization draws (parameter_law.hpp), each a pure
+// function of (seed, point key, realization, substream, index):
+//   uncertain parameter i (in the order given) uses word `offset + i` of the
+//   realization's substream `uncertain_parameters` (random_stream.hpp);
+//   a sweep draws with offset 0; a sensitivity design draws its sample A
+//   with offset 0 and its sample B with offset d (d = number of laws).
+// With common random numbers the key is common_stream_key, as for every
+// other draw, so realization r of every grid point draws the same u's.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "stickslip/parameters.hpp"
+#include "stickslip/uncertainty/parameter_law.hpp"
+
+namespace stickslip {
+
+// The uniforms u_i in (0, 1) of words [offset, offset + count) of
+// realization r's uncertain-parameter substream.
+[[nodiscard]] std::vector<double> uncertain_uniforms(std::uint64_t seed, std::uint64_t key,
+                                                     std::uint64_t realization, std::size_t offset,
+                                                     std::size_t count);
+
+// The parameters of one realization: `base` with each uncertain parameter set
+// to quantile(law_i, u_i) (set_parameter). `drawn`, when given, receives the
+// values in the order of `laws`.
+[[nodiscard]] model_parameters with_values(const model_parameters& base,
+                                           std::span<const uncertain_parameter> laws,
+                                           std::span<const double> values);
+[[nodiscard]] std::vector<double> draw_values(std::span<const uncertain_parameter> laws,
+                                              std::uint64_t seed, std::uint64_t key,
+                                              std::uint64_t realization, std::size_t offset = 0);
+
+// The stream key of a grid point whose parameters include laws: point_key of
+// `base` mixed with the canonical text of every law, so that two points
+// differing only in a law get different streams, and the key does not depend
+// on the base values of the uncertain symbols.
+[[nodiscard]] std::uint64_t uncertain_point_key(const model_parameters& base,
+                                                std::span<const uncertain_parameter> laws) noexcept;
+
+}  // namespace stickslip
