@@ -27,6 +27,7 @@
 #include "stickslip/accumulators/histogram2d.hpp"
 #include "stickslip/accumulators/mean_variance.hpp"
 #include "stickslip/accumulators/score_moments.hpp"
+#include "stickslip/uncertainty/sobol.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/observer.hpp"
@@ -159,6 +160,9 @@ class point_statistics {
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
   event_counts events;
   std::vector<convergence_point> convergence;
+  // The pick-freeze moments of a sensitivity study (sweep_spec::
+  // sensitivity_statistic); empty (0 inputs) otherwise.
+  sobol_moments sensitivity;
 
   friend bool operator==(const point_statistics&, const point_statistics&) = default;
 };

@@ -16,6 +16,7 @@
 #include "stickslip/integrator.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/statistics_schema.hpp"
+#include "stickslip/uncertainty/parameter_law.hpp"
 
 namespace stickslip {
 
@@ -91,6 +92,21 @@ struct sweep_spec {
   // peak finder reads (precision/peak_sweep.cpp); those means are the same
   // bits either way, everything else is empty.
   bool means_only = false;
+  // Uncertain parameters (uncertainty/parameter_law.hpp): each realization
+  // of every grid point draws its own values of these from its own substream
+  // (uncertainty/uncertain_draws.hpp), so a point's statistics are over the
+  // mixture. Empty: every parameter is a value or an axis.
+  std::vector<uncertain_parameter> uncertain;
+  // A sensitivity study (uncertainty/sensitivity.hpp) when not empty: the
+  // name of the per-realization statistic whose Sobol' indices over
+  // `uncertain` are estimated. There is then one point (no axes), and
+  // `realizations` counts the design's sample rows (each row runs
+  // 3 + uncertain.size() realizations); the point's statistics hold the
+  // design's moments (point_statistics::sensitivity). With
+  // target_halfwidth > 0 and target_statistic empty, the study stops at the
+  // first block after which every index and share has a 95 % half-width
+  // <= target_halfwidth (and at least min_realizations rows are merged).
+  std::string sensitivity_statistic;
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
 

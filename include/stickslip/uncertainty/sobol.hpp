@@ -84,6 +84,6 @@ struct sobol_estimates {
 
 // The estimates and their 95 % intervals. With fewer than 2 rows, or a zero
 // variance, every value is NaN.
-[[nodiscard]] sobol_estimates estimate(const sobol_moments& m);
+[[nodiscard]] sobol_estimates sobol_indices(const sobol_moments& m);
 
 }  // namespace stickslip
