@@ -15,7 +15,13 @@
 
 namespace stickslip {
 
-enum class substream : std::uint64_t { initial_conditions = 0, belt_switches = 1 };
+// Substream 2 is the Markov belt's (model/belt_chain.hpp); 3 holds the
+// uniforms of the uncertain parameters (uncertainty/uncertain_draws.hpp).
+enum class substream : std::uint64_t {
+  initial_conditions = 0,
+  belt_switches = 1,
+  uncertain_parameters = 3
+};
 
 // A 64-bit identity of a grid point: a hash of the bit patterns of its model
 // parameters, so the same physical point gets the same streams in any sweep

@@ -52,8 +52,8 @@ struct parameter_law {
 // "uniform", "gamma", ...
 [[nodiscard]] const char* to_string(law_family f) noexcept;
 // The canonical text, e.g. "gamma(mean=5,cv=0.2)", with every argument
-// named and written with enough digits (%.17g) that parse_law gives back
-// the same bits. Used in outputs, TOML, the journal and error messages.
+// named and written as the shortest decimal that reads back to the same
+// double (fmt's "{}"), so that parse_law gives back the same bits. Used in outputs, TOML, the journal and error messages.
 [[nodiscard]] std::string to_string(const parameter_law& law);
 
 // Whether `text` is written as a law (an identifier then '('), as opposed
@@ -61,7 +61,8 @@ struct parameter_law {
 // tell a law from a value.
 [[nodiscard]] bool looks_like_law(std::string_view text) noexcept;
 
-// Parses a law. Throws invalid_input (exit 2) naming `parameter`, the text
+// Parses a law. Throws invalid_input (exit 2) naming `parameter` (as the
+// caller spells it for the user, e.g. "--mu"; messages start with it), the text
 // and what is wrong: an unknown law (listing the known ones), a missing,
 // unknown, repeated or non-finite argument, positional arguments where they
 // are not allowed, or arguments outside the law's own constraints above.
@@ -84,12 +85,17 @@ struct uncertain_parameter {
   friend bool operator==(const uncertain_parameter&, const uncertain_parameter&) = default;
 };
 
-// Throws invalid_input naming the parameter, the law and the domain when a
+// Throws invalid_input naming the parameter (as its flag, --mu-s), the law
+// and the domain when a
 // law's support can leave the parameter's domain (a normal for m, a
 // negative rate, mu_k > mu_s possible given the other values and laws), when
 // a symbol is unknown or given twice, or when it is also a grid axis
 // (`axis_symbols`). `base` holds the values of the parameters that are not
-// uncertain.
+// uncertain (a sweep calls it once per axis value, so a fixed mu_s on an
+// axis is compared with a mu_k law at each of its values). Symbols must be
+// canonical (canonical_symbol). A last check validates the model at every
+// combination of the laws' extreme draws (the quantiles of the smallest and
+// largest open uniform; each law alone beyond 10 laws).
 void validate_laws(const model_parameters& base, std::span<const uncertain_parameter> laws,
                    std::span<const std::string> axis_symbols = {});
 

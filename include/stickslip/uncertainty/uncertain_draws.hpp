@@ -23,14 +23,22 @@ namespace stickslip {
                                                      std::size_t count);
 
 // The parameters of one realization: `base` with each uncertain parameter set
-// to quantile(law_i, u_i) (set_parameter). `drawn`, when given, receives the
-// values in the order of `laws`.
+// to values[i] (set_parameter, in the order of `laws`); draw_values gives
+// values[i] = quantile(law_i, u_i) of realization r's uniforms.
 [[nodiscard]] model_parameters with_values(const model_parameters& base,
                                            std::span<const uncertain_parameter> laws,
                                            std::span<const double> values);
 [[nodiscard]] std::vector<double> draw_values(std::span<const uncertain_parameter> laws,
                                               std::uint64_t seed, std::uint64_t key,
                                               std::uint64_t realization, std::size_t offset = 0);
+
+// `base` with each uncertain parameter at its law's median (quantile 0.5),
+// in the paper's form when that is the paper's model (paper_form): what a
+// point with laws stands for where one model is needed, namely its
+// coordinates in outputs, the histogram ranges of its statistics, and the
+// cost model of the ETA (expected_events). Realizations never run it.
+[[nodiscard]] model_parameters with_medians(const model_parameters& base,
+                                            std::span<const uncertain_parameter> laws);
 
 // The stream key of a grid point whose parameters include laws: point_key of
 // `base` mixed with the canonical text of every law, so that two points

@@ -1,0 +1,200 @@
+// validate_laws (uncertainty/parameter_law.hpp): whether every draw of the
+// uncertain parameters gives a valid model. Checked on the laws' supports
+// (the mathematical ones, so that a normal for a positive quantity is
+// refused even though no double draw reaches 0), then, as a backstop, on
+// the model at the extreme values a draw can take (the quantiles of the
+// smallest and largest open uniform).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+#include "stickslip/error.hpp"
+#include "stickslip/random_stream.hpp"
+#include "stickslip/uncertainty/parameter_law.hpp"
+#include "stickslip/uncertainty/uncertain_draws.hpp"
+
+namespace stickslip {
+namespace {
+
+// The domain of each symbol (parameters.hpp, validate): rates and the
+// paper's parameters are > 0, damping >= 0, belt levels any finite value.
+enum class domain : unsigned char { positive, nonnegative, finite };
+
+domain domain_of(const std::string& symbol) {
+  if (symbol == "c") return domain::nonnegative;
+  if (symbol.size() > 1 && symbol[0] == 'v' && std::isdigit(static_cast<unsigned char>(symbol[1])))
+    return domain::finite;
+  return domain::positive;
+}
+
+// How messages name a parameter: its flag (--mu-s), or vI / rI.
+std::string flag_of(const std::string& symbol) {
+  if (symbol.size() > 1 && (symbol[0] == 'v' || symbol[0] == 'r') &&
+      std::isdigit(static_cast<unsigned char>(symbol[1])))
+    return symbol;
+  std::string name = "--" + symbol;
+  std::replace(name.begin(), name.end(), '_', '-');
+  return name;
+}
+
+error invalid_law(const uncertain_parameter& u, const std::string& problem) {
+  return {exit_code::invalid_input,
+          fmt::format("{}: {} {}", flag_of(u.symbol), to_string(u.law), problem)};
+}
+
+void check_domain(const uncertain_parameter& u) {
+  const auto [low, high] = support(u.law);
+  const bool closed_low =
+      u.law.family != law_family::lognormal && u.law.family != law_family::gamma;
+  switch (domain_of(u.symbol)) {
+    case domain::positive:
+      if (low < 0.0 || (low == 0.0 && closed_low))
+        throw invalid_law(
+            u, fmt::format("can give values <= 0; {} must be > 0 ({})", u.symbol,
+                           u.law.family == law_family::normal
+                               ? "use truncnormal, lognormal or gamma"
+                               : "use a law with min > 0, or lognormal, gamma or loguniform"));
+      break;
+    case domain::nonnegative:
+      if (low < 0.0)
+        throw invalid_law(u, fmt::format("can give values < 0; {} must be >= 0 (use a law with "
+                                         "min >= 0, or lognormal or gamma)",
+                                         u.symbol));
+      break;
+    case domain::finite:
+      break;
+  }
+  (void)high;
+}
+
+// Symbols whose law would be overwritten or would override a value given
+// otherwise (the same rules as a grid axis, sweep.cpp check_has_effect).
+void check_has_effect(const model_parameters& base, const uncertain_parameter& u) {
+  const char* why = nullptr;
+  if (u.symbol == "V" && !base.belt_levels.empty()) why = "the belt levels are given";
+  if (u.symbol == "lambda" && (!base.belt_rates.empty() || !base.belt_generator.empty()))
+    why = "the belt rates are given";
+  if (u.symbol == "mu" && (base.static_friction > 0.0 || base.kinetic_friction > 0.0))
+    why = "mu sets mu_s and mu_k both, and one of them is given";
+  if (u.symbol[0] == 'v' && u.symbol != "V") {
+    const std::size_t i = std::stoul(u.symbol.substr(1));
+    if (i > base.levels().size())
+      why = "the belt has fewer levels";
+  }
+  if (u.symbol[0] == 'r' && (base.levels().size() != 2 || !base.belt_generator.empty()))
+    why = "r1, r2 are the rates of a two-level belt without a generator matrix";
+  if (u.symbol[0] == 'r' && u.symbol != "r1" && u.symbol != "r2") why = "only r1 and r2 exist";
+  if (why) throw invalid_law(u, fmt::format("has no effect on the model: {}", why));
+}
+
+// mu_k <= mu_s for every draw: the largest mu_k a draw can give against the
+// smallest mu_s (each the law's support, or the resolved value when fixed).
+void check_friction_order(const model_parameters& base,
+                          std::span<const uncertain_parameter> laws) {
+  const uncertain_parameter* s = nullptr;
+  const uncertain_parameter* k = nullptr;
+  for (const auto& u : laws) {
+    if (u.symbol == "mu_s") s = &u;
+    if (u.symbol == "mu_k") k = &u;
+  }
+  if (!s && !k) return;
+  const double s_low = s ? support(s->law).first : base.mu_s();
+  const double k_high = k ? support(k->law).second : base.mu_k();
+  if (!(k_high > s_low)) return;
+  const std::string rule = "mu_k must be <= mu_s";
+  if (s && k)
+    throw invalid_law(*k, fmt::format("can exceed {}: {}; {} (make mu_k's largest value <= "
+                                      "mu_s's smallest)",
+                                      flag_of("mu_s"), to_string(s->law), rule));
+  if (k)
+    throw invalid_law(*k, fmt::format("can exceed mu_s = {} (its fixed value); {} (give mu_k a "
+                                      "law with max <= {}, or a larger --mu-s)",
+                                      s_low, rule, s_low));
+  throw invalid_law(*s, fmt::format("can fall below mu_k = {} (its fixed value); {} (give mu_s a "
+                                    "law with min >= {}, or a smaller --mu-k)",
+                                    k_high, rule, k_high));
+}
+
+// The model at the extreme draws: every combination of each law's smallest
+// and largest value for up to 10 laws (1024 models), else each law alone.
+void check_extreme_models(const model_parameters& base,
+                          std::span<const uncertain_parameter> laws) {
+  const double u_low = random_stream::open_uniform(0);
+  const double u_high = random_stream::open_uniform(std::numeric_limits<std::uint64_t>::max());
+  std::vector<double> low(laws.size()), high(laws.size()), median(laws.size());
+  for (std::size_t i = 0; i < laws.size(); ++i) {
+    low[i] = quantile(laws[i].law, u_low);
+    high[i] = quantile(laws[i].law, u_high);
+    median[i] = quantile(laws[i].law, 0.5);
+  }
+  auto check = [&](const std::vector<double>& values) {
+    try {
+      validate(with_values(base, laws, values));
+    } catch (const error& e) {
+      std::string at;
+      for (std::size_t i = 0; i < laws.size(); ++i)
+        at += fmt::format("{}{} = {}", i ? ", " : "", laws[i].symbol, values[i]);
+      throw error(exit_code::invalid_input,
+                  fmt::format("{}: {} can give a model that is not valid: at {} (values the "
+                              "laws can draw): {}",
+                              flag_of(laws.front().symbol), to_string(laws.front().law), at,
+                              e.what()));
+    }
+  };
+  std::vector<double> values(laws.size());
+  if (laws.size() <= 10) {
+    for (std::size_t corner = 0; corner < (std::size_t{1} << laws.size()); ++corner) {
+      for (std::size_t i = 0; i < laws.size(); ++i) values[i] = (corner >> i) & 1 ? high[i] : low[i];
+      check(values);
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < laws.size(); ++i) {
+    values = median;
+    values[i] = low[i];
+    check(values);
+    values[i] = high[i];
+    check(values);
+  }
+}
+
+}  // namespace
+
+void validate_laws(const model_parameters& base, std::span<const uncertain_parameter> laws,
+                   std::span<const std::string> axis_symbols) {
+  std::set<std::string> seen, axes;
+  for (const auto& a : axis_symbols)
+    axes.insert(is_parameter_symbol(a) ? canonical_symbol(a) : a);
+  for (const auto& u : laws) {
+    if (!is_parameter_symbol(u.symbol))
+      throw error(exit_code::invalid_input,
+                  fmt::format("{}: {}: unknown parameter; allowed: m, k, g, mu, V, lambda, ta, "
+                              "c, mu_s, mu_k, belt levels v1..vN, two-level rates r1, r2",
+                              u.symbol, to_string(u.law)));
+    if (u.symbol != canonical_symbol(u.symbol))
+      throw invalid_law(u, fmt::format("names {} by its long name; use the symbol {}", u.symbol,
+                                       canonical_symbol(u.symbol)));
+    if (!seen.insert(u.symbol).second)
+      throw invalid_law(u, "is the second law for this parameter; give each parameter one law");
+    if (axes.contains(u.symbol))
+      throw invalid_law(u, "is given for a parameter that is also a grid axis; give either a "
+                           "law or a grid");
+    if (u.symbol == "mu")
+      for (const char* other : {"mu_s", "mu_k"})
+        if (axes.contains(other) ||
+            std::any_of(laws.begin(), laws.end(), [&](const auto& o) { return o.symbol == other; }))
+          throw invalid_law(u, fmt::format("is given together with {}: mu sets mu_s and mu_k "
+                                           "both; give mu_s and mu_k instead",
+                                           flag_of(other)));
+    check_has_effect(base, u);
+    check_domain(u);
+  }
+  check_friction_order(base, laws);
+  if (!laws.empty()) check_extreme_models(base, laws);
+}
+
+}  // namespace stickslip
