@@ -37,6 +37,10 @@
 namespace py = pybind11;
 using namespace stickslip;
 
+namespace stickslip {
+void register_sobol(py::module_& m);  // sobol_bindings.cpp
+}
+
 namespace {
 
 // Numbers as the CLI reads them: fmt "{}" is the shortest text that reads
@@ -616,4 +620,5 @@ PYBIND11_MODULE(_stickslip, m) {
   m.def("resolve_parameters", [](const py::dict& model) { return model_dict(parameters_from(model)); },
         py::arg("model"));
   m.attr("default_max_events") = stickslip::default_max_events;
+  stickslip::register_sobol(m);
 }
