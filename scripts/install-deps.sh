@@ -15,7 +15,7 @@ core=(
   clang libclang-rt-14-dev
   gnuplot-nox python3 python3-numpy python3-netcdf4
   python3-dev pybind11-dev python3-pandas python3-xarray python3-matplotlib python3-tqdm
-  python3-pytest python3-nbclient python3-nbformat python3-ipykernel
+  python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-openturns
 )
 peers=(octave libsundials-dev)
 
