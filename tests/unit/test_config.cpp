@@ -246,6 +246,67 @@ TEST(ToToml, RoundTripsCommonRandomNumbersAndTheTargetCi) {
                stickslip::error);
 }
 
+// Laws (issue 26): a [model] key holds a law's text; to_toml writes the
+// canonical text back, so the resolved config in results.nc reads back to the
+// same spec (resume identifies finished outputs by it).
+sweep_spec uncertain_spec() {
+  sweep_spec s = awkward_spec();
+  set_law(s, "mu_k", parse_law("uniform(0.5, 2)", "test"));
+  set_law(s, "k", parse_law("lognormal(cv=0.25,mean=40)", "test"));
+  set_law(s, "mu_s", parse_law("beta(mean=3,sd=0.1,min=2.5,max=4)", "test"));
+  set_law(s, "v1", parse_law("truncnormal(mean=1,sd=0.3,min=0.2,max=3)", "test"));
+  set_law(s, "c", parse_law("gamma(mean=0.1,cv=1.7)", "test"));
+  return s;
+}
+
+TEST(ToToml, RoundTripsLawsExactly) {
+  const sweep_spec s = uncertain_spec();
+  const auto text = to_toml(s);
+  EXPECT_THAT(text, HasSubstr("k = \"lognormal(mean=40,cv=0.25)\""));
+  EXPECT_THAT(text, HasSubstr("mu_k = \"uniform(min=0.5,max=2)\""));
+  EXPECT_THAT(text, HasSubstr("v1 = \"truncnormal(mean=1,sd=0.3,min=0.2,max=3)\""));
+  EXPECT_EQ(parse_sweep_toml(text, "laws.toml"), s) << text;
+  EXPECT_EQ(to_toml(parse_sweep_toml(text, "laws.toml")), text);
+}
+
+TEST(SetLaw, KeepsOneCanonicalOrderAndReplacesAxesValuesAndLaws) {
+  sweep_spec s;
+  s.axes = {{"lambda", {1.0, 3.8}}, {"mu", {2.0, 5.0}}};
+  s.base.stiffness = 40;
+  set_law(s, "k", parse_law("gamma(mean=40,cv=0.1)", "--k"));
+  set_law(s, "mu", parse_law("uniform(2,7)", "--mu"));
+  set_law(s, "k", parse_law("gamma(mean=30,cv=0.1)", "--k"));
+  ASSERT_EQ(s.uncertain.size(), 2u);
+  EXPECT_EQ(s.uncertain[0].symbol, "k");  // m k g mu ...: k before mu whatever the call order
+  EXPECT_EQ(s.uncertain[1].symbol, "mu");
+  EXPECT_EQ(to_string(s.uncertain[0].law), "gamma(mean=30,cv=0.1)");
+  ASSERT_EQ(s.axes.size(), 1u);  // the law replaced the mu axis
+  EXPECT_EQ(s.axes[0].name, "lambda");
+  EXPECT_EQ(s.base.stiffness, model_parameters{}.stiffness);  // the base value is the default
+  drop_law(s, "mu");
+  EXPECT_EQ(find_law(s, "mu"), nullptr);
+  EXPECT_NE(find_law(s, "k"), nullptr);
+}
+
+TEST(ParseSweepToml, ModelKeysTakeLaws) {
+  const auto s = parse_sweep_toml(
+      "[model]\nk = 40\nmu = \"gamma(mean=5, cv=0.2)\"\n[grid]\nlambda = [1, 3.8]\n", "l.toml");
+  ASSERT_EQ(s.uncertain.size(), 1u);
+  EXPECT_EQ(s.uncertain[0].symbol, "mu");
+  EXPECT_EQ(to_string(s.uncertain[0].law), "gamma(mean=5,cv=0.2)");
+  EXPECT_EQ(s.base.stiffness, 40.0);
+  EXPECT_EQ(s.axes.size(), 1u);
+  // Errors name the key, its position, the law and the problem.
+  EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[model]\nmu = \"gama(mean=5,cv=1)\"\n", "b.toml"); }),
+              AllOf(HasSubstr("model.mu at b.toml:2:6"), HasSubstr("unknown law 'gama'")));
+  EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[model]\nk = \"gamma(mean=5)\"\n", "b.toml"); }),
+              AllOf(HasSubstr("model.k"), HasSubstr("cv is missing")));
+  EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[model]\nk = \"fast\"\n", "b.toml"); }),
+              AllOf(HasSubstr("model.k"), HasSubstr("a number, or a law")));
+  EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[model]\nv1 = 2\n", "b.toml"); }),
+              AllOf(HasSubstr("model.v1"), HasSubstr("a law string")));
+}
+
 TEST(ToToml, IsReadableAndComplete) {
   const auto text = to_toml(parse_sweep_toml(paper_toml, "p.toml"));
   for (const char* key : {"[model]", "[initial]", "[grid]", "[sweep]", "[histograms]",

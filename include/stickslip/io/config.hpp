@@ -44,6 +44,24 @@ enum class grid_domain : unsigned char { positive, non_negative, any };
 // s.target_halfwidth; throws naming `key` when malformed or unknown.
 void parse_target_ci(std::string_view key, std::string_view text, sweep_spec& s);
 
+// Uncertain parameters (uncertainty/parameter_law.hpp) in a spec, as every
+// front end (flags, TOML keys, Python keywords) sets them:
+//   set_law     makes `symbol` (canonical) a law: it replaces that symbol's
+//               law or grid axis, and the base value of a scalar goes back to
+//               its default (model_parameters{}), so that to_toml, which writes
+//               the law in its place, reads back to the same spec. Laws are
+//               kept in one canonical order (m k g mu V lambda ta c mu_s mu_k,
+//               then v1..vN, then r1 r2), so that a realization's draws (word i
+//               of its substream for law i) do not depend on the order the
+//               flags or keys were given in.
+//   drop_law    removes `symbol`'s law, if any (a value or a grid replaces it).
+//   find_law    the law of `symbol`, or nullptr.
+void set_law(sweep_spec& s, const std::string& symbol, parameter_law law);
+void drop_law(sweep_spec& s, std::string_view symbol);
+[[nodiscard]] const parameter_law* find_law(const sweep_spec& s, std::string_view symbol) noexcept;
+// The laws in set_law's canonical order.
+void sort_laws(std::vector<uncertain_parameter>& laws);
+
 // Reads a sweep spec from TOML text (see docs/config.md for the keys). Keys
 // not given keep the defaults of sweep_spec. Does not call validate(): flags
 // may still override values; the caller validates the final spec.
@@ -53,7 +71,9 @@ void parse_target_ci(std::string_view key, std::string_view text, sweep_spec& s)
 [[nodiscard]] sweep_spec read_sweep_toml_file(const std::string& path);
 
 // The full resolved spec as TOML: what goes into every output's attributes.
-// Round trip: parse_sweep_toml(to_toml(s), ...) == s for any spec.
+// Round trip: parse_sweep_toml(to_toml(s), ...) == s for any spec whose laws
+// were set by set_law (an uncertain parameter's [model] key holds its law in
+// canonical text, to_string(law); its base value is the default).
 [[nodiscard]] std::string to_toml(const sweep_spec& s);
 
 // A replayed belt: switch times, and the level each switch goes to.

@@ -135,28 +135,59 @@ std::vector<double> read_generator(const context& cx, const std::string& dotted,
   return q;
 }
 
-void read_model(const context& cx, const toml::table& t, model_parameters& p) {
+// A [model] key holding a law (a string such as "gamma(mean=5,cv=0.2)"):
+// parsed by parse_law, whose messages start with the key and its position.
+void read_law(const context& cx, const std::string& key, const toml::node& n, sweep_spec& s) {
+  const std::string& text = n.as_string()->get();
+  if (!looks_like_law(text))
+    cx.wrong("model." + key, n,
+             "a number, or a law such as \"gamma(mean=5,cv=0.2)\" (docs/uncertainty.md)");
+  set_law(s, key, parse_law(text, fmt::format("model.{} at {}", key, cx.at(n.source()))));
+}
+
+// A recorded scalar (m, k, ..., mu_k): a number or a law; a belt level vI or
+// rate rI: a law (its value goes in belt_levels or belt_rates).
+void read_model_value(const context& cx, const std::string& key, const toml::node& n,
+                      sweep_spec& s) {
+  if (n.is_string()) return read_law(cx, key, n, s);
+  drop_law(s, key);
+  set_parameter(s.base, key, read_number(cx, "model." + key, n));
+}
+
+bool is_indexed_symbol(const std::string& key) {
+  return key.size() > 1 && (key[0] == 'v' || key[0] == 'r') && is_parameter_symbol(key) &&
+         key.find('-') == std::string::npos && canonical_symbol(key) == key;
+}
+
+void read_model(const context& cx, const toml::table& t, sweep_spec& s) {
   // "mu" sets mu_s and mu_k both: read it first, so that mu_s and mu_k in
-  // the same table refine it whatever their order in the file.
-  if (const auto* mu = t.get("mu")) set_parameter(p, "mu", read_number(cx, "model.mu", *mu));
+  // the same table refine it whatever their order in the file. The belt
+  // arrays come before vI and rI (the table is ordered by key).
+  if (const auto* mu = t.get("mu")) read_model_value(cx, "mu", *mu, s);
   for (auto&& [k, n] : t) {
     const std::string key(k.str());
     const std::string dotted = "model." + key;
     if (key == "mu") continue;
     if (key == "belt_levels") {
-      p.belt_levels = read_numbers(cx, dotted, n);
+      s.base.belt_levels = read_numbers(cx, dotted, n);
     } else if (key == "belt_rates") {
-      p.belt_rates = read_numbers(cx, dotted, n);
+      s.base.belt_rates = read_numbers(cx, dotted, n);
     } else if (key == "belt_generator") {
-      p.belt_generator = read_generator(cx, dotted, n);
+      s.base.belt_generator = read_generator(cx, dotted, n);
     } else if (std::find_if(std::begin(recorded_parameter_names), std::end(recorded_parameter_names),
-                            [&](const char* s) { return key == s; }) !=
+                            [&](const char* p) { return key == p; }) !=
                std::end(recorded_parameter_names)) {
-      set_parameter(p, key, read_number(cx, dotted, n));
+      read_model_value(cx, key, n, s);
+    } else if (is_indexed_symbol(key)) {
+      if (!n.is_string())
+        cx.wrong(dotted, n,
+                 "a law string (a fixed belt level or rate goes in belt_levels or belt_rates)");
+      read_law(cx, key, n, s);
     } else {
       cx.unknown_key(dotted, k,
-                     "[model] takes m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt_levels, "
-                     "belt_rates, belt_generator");
+                     "[model] takes m, k, g, mu, V, lambda, ta, c, mu_s, mu_k (each a number or "
+                     "a law), belt_levels, belt_rates, belt_generator, and laws of belt levels "
+                     "v1..vN and rates r1, r2");
     }
   }
 }
@@ -356,7 +387,7 @@ sweep_spec parse_sweep_toml(std::string_view toml_text, std::string_view origin)
   for (auto&& [k, n] : root) {
     const std::string key(k.str());
     if (key == "model")
-      read_model(cx, as_table(cx, key, n), s.base);
+      read_model(cx, as_table(cx, key, n), s);
     else if (key == "initial")
       read_initial(cx, as_table(cx, key, n), s.initial);
     else if (key == "grid")
@@ -377,13 +408,27 @@ sweep_spec read_sweep_toml_file(const std::string& path) {
 
 std::string to_toml(const sweep_spec& s) {
   std::string out = "# stickslip sweep configuration, fully resolved (docs/config.md)\n\n[model]\n";
-  for (const char* name : parameter_names)
-    out += fmt::format("{} = {}\n", name, toml_float(parameter_value(s.base, name)));
+  // An uncertain parameter's key holds its law (set_law left its base value
+  // at the default, so nothing is lost).
+  auto law_line = [&](const char* name) -> std::string {
+    const parameter_law* law = find_law(s, name);
+    return law ? fmt::format("{} = \"{}\"\n", name, to_string(*law)) : std::string();
+  };
+  for (const char* name : parameter_names) {
+    const std::string line = law_line(name);
+    out += line.empty() ? fmt::format("{} = {}\n", name, toml_float(parameter_value(s.base, name)))
+                        : line;
+  }
   // The family's values as given (unset mu_s, mu_k and belt arrays stay unset).
   const auto& b = s.base;
-  out += fmt::format("c = {}\n", toml_float(b.damping));
-  if (b.static_friction > 0) out += fmt::format("mu_s = {}\n", toml_float(b.static_friction));
-  if (b.kinetic_friction > 0) out += fmt::format("mu_k = {}\n", toml_float(b.kinetic_friction));
+  const std::string c_law = law_line("c");
+  out += c_law.empty() ? fmt::format("c = {}\n", toml_float(b.damping)) : c_law;
+  for (const char* name : {"mu_s", "mu_k"}) {
+    const double v = name == std::string_view("mu_s") ? b.static_friction : b.kinetic_friction;
+    const std::string line = law_line(name);
+    if (!line.empty()) out += line;
+    else if (v > 0) out += fmt::format("{} = {}\n", name, toml_float(v));
+  }
   auto array = [](const std::vector<double>& v, std::size_t from, std::size_t count) {
     std::string a = "[";
     for (std::size_t i = 0; i < count; ++i) a += (i ? ", " : "") + toml_float(v[from + i]);
@@ -399,6 +444,9 @@ std::string to_toml(const sweep_spec& s) {
     for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + array(b.belt_generator, i * n, n);
     out += "]\n";
   }
+  for (const auto& u : s.uncertain)  // belt levels vI and rates rI
+    if (is_indexed_symbol(u.symbol))
+      out += fmt::format("{} = \"{}\"\n", u.symbol, to_string(u.law));
 
   const auto& law = s.initial;
   out += fmt::format("\n[initial]\nx0 = [{}, {}]\nxdot0 = [{}, {}]\nbelt_start = \"{}\"\n",
