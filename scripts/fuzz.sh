@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# libFuzzer runs of the six fuzz targets (tests/fuzz), built with clang and
+# libFuzzer runs of the fuzz targets (tests/fuzz), built with clang and
 # -fsanitize=fuzzer,address,undefined in build-fuzz:
 #   fuzz_config_toml   TOML sweep configuration parser (+ to_toml round trip)
 #   fuzz_grid_spec     grid specifications, numbers, unsigned integers
@@ -10,6 +10,9 @@
 #                      balance; lane engine vs simulate_model bit for bit
 #   fuzz_journal_reader  edits of a valid checkpoint journal -> read_journal
 #                      refuses or recomputes, never misreads a unit
+#   fuzz_merge_inputs  shard directories built from real journals, then
+#                      mutated -> merge_shards refuses with a stickslip error
+#                      or equals the direct run of the spec
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET]   (default 25: the bounded CI run)
 #   Longer run, documented in docs/bad-input.md:  scripts/fuzz.sh 1800
 # New inputs are kept in build-fuzz/corpus/<target>; crashes in build-fuzz/crashes.
@@ -26,7 +29,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz "${gen[@]}" -DCMAKE_BUILD_TYPE=Rel
   -DSTICKSLIP_BUILD_FUZZERS=ON -DSTICKSLIP_BUILD_TESTS=OFF -DSTICKSLIP_BUILD_BENCH=OFF \
   -DSTICKSLIP_WITH_MPI=OFF -DSTICKSLIP_SANITIZE=fuzzer-no-link,address,undefined \
   -DCMAKE_CXX_FLAGS="-fno-sanitize-recover=all" >/dev/null
-targets=(config_toml grid_spec switch_times simulator model_family journal_reader)
+targets=(config_toml grid_spec switch_times simulator model_family journal_reader merge_inputs)
 cmake --build build-fuzz -j "$jobs" --target "${targets[@]/#/fuzz_}" >build-fuzz/build.log 2>&1 \
   || { tail -n 40 build-fuzz/build.log; exit 1; }
 mkdir -p build-fuzz/crashes
