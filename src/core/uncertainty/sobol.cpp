@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -47,14 +48,16 @@ sobol_moments::sobol_moments(std::size_t inputs)
 void sobol_moments::add(double y_a, double y_a2, double y_b, std::span<const double> y_e) {
   const z_layout L{inputs_};
   const std::size_t n = L.size();
-  // The row's z, on the stack for up to 8 inputs.
-  double buffer[5 + 3 * 8];
+  // The row's z and delta, on the stack for up to 8 inputs.
+  constexpr std::size_t on_stack = sobol_moments::dimension(8);
+  std::array<double, 2 * on_stack> buffer;
   std::vector<double> heap;
-  double* z = buffer;
-  if (n > std::size(buffer)) {
-    heap.resize(n);
+  double* z = buffer.data();
+  if (n > on_stack) {
+    heap.resize(2 * n);
     z = heap.data();
   }
+  double* delta = z + n;
   z[L.a()] = y_a;
   z[L.b()] = y_b;
   z[L.aa()] = y_a * y_a;
@@ -67,13 +70,6 @@ void sobol_moments::add(double y_a, double y_a2, double y_b, std::span<const dou
   }
   ++rows_;
   const double inv_n = 1.0 / static_cast<double>(rows_);
-  double delta_buffer[5 + 3 * 8];
-  std::vector<double> delta_heap;
-  double* delta = delta_buffer;
-  if (n > std::size(delta_buffer)) {
-    delta_heap.resize(n);
-    delta = delta_heap.data();
-  }
   for (std::size_t k = 0; k < n; ++k) {
     delta[k] = z[k] - mean_[k];
     mean_[k] += delta[k] * inv_n;
