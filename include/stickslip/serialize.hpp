@@ -32,7 +32,9 @@ namespace stickslip {
 // Bumped whenever the layout of anything below changes. Readers refuse other
 // versions (a journal from another version is recomputed, never misread).
 // Version 2: the layout id follows the version.
-inline constexpr std::uint32_t serial_format_version = 7;  // 7: merged prefixes in journals
+// 8: a spec's uncertain parameters and sensitivity statistic, the design's
+// moments in point statistics, the drawn values in records.
+inline constexpr std::uint32_t serial_format_version = 8;
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.
 [[nodiscard]] std::uint64_t layout_id() noexcept;

@@ -61,6 +61,9 @@ struct realization_record {
   // (causal_score_moments).
   double stick_switch_moment = 0, stick_time_moment = 0;
   event_counts events;
+  // The values of the uncertain parameters (sweep_spec::uncertain, in that
+  // order) this realization drew; empty without laws.
+  std::vector<double> drawn_values;
 };
 
 // What one finished realization adds to the statistics: its record, the

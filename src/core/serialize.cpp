@@ -117,6 +117,29 @@ histogram get_histogram(reader& r) {
 // The accumulators in schema order (statistics_schema.cpp): every quantity's
 // moments, every binned quantity's histogram, the realization count, every
 // counter; then the convergence trace.
+// The pick-freeze moments (uncertainty/sobol.hpp): inputs, rows, the means
+// of the row vector z and its co-moments (upper triangle). Empty: zeros.
+void put(writer& w, const sobol_moments& m) {
+  w.u64(m.inputs());
+  w.u64(m.rows());
+  put_values(w, m.means());
+  put_values(w, m.comoments());
+}
+sobol_moments get_sobol_moments(reader& r) {
+  const auto inputs = r.u64("sensitivity inputs");
+  const auto rows = r.u64("sensitivity rows");
+  std::vector<double> means = get_values(r, "sensitivity means");
+  std::vector<double> comoments = get_values(r, "sensitivity co-moments");
+  if (inputs == 0 && rows == 0 && means.empty() && comoments.empty()) return {};
+  if (inputs > 1000) throw corrupt(fmt::format("{} sensitivity inputs", inputs));
+  try {  // from_state checks the sizes against the inputs
+    return sobol_moments::from_state(static_cast<std::size_t>(inputs), rows, std::move(means),
+                                     std::move(comoments));
+  } catch (const error& e) {
+    throw corrupt(e.what());
+  }
+}
+
 void put(writer& w, const point_statistics& s) {
   for (const auto& q : quantities()) put(w, s.*q.moments);
   for (const auto& q : quantities())
@@ -179,6 +202,7 @@ void put(writer& w, const point_statistics& s) {
     w.f64(c.stick_duration_mean);
     w.f64(c.stick_duration_ci95_half_width);
   }
+  put(w, s.sensitivity);
 }
 point_statistics get_statistics(reader& r) {
   point_statistics s;
@@ -266,10 +290,11 @@ point_statistics get_statistics(reader& r) {
     c.stick_duration_mean = r.f64("convergence point");
     c.stick_duration_ci95_half_width = r.f64("convergence point");
   }
+  s.sensitivity = get_sobol_moments(r);
   return s;
 }
 
-constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 8 + 8 + 40;
+constexpr std::size_t record_bytes = 8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 8 + 8 + 40 + 8;
 
 void put(writer& w, const realization_record& x) {
   w.u64(x.realization);
@@ -287,6 +312,7 @@ void put(writer& w, const realization_record& x) {
   w.f64(x.stick_switch_moment);
   w.f64(x.stick_time_moment);
   put(w, x.events);
+  put_values(w, x.drawn_values);
 }
 realization_record get_record(reader& r) {
   realization_record x;
@@ -310,6 +336,7 @@ realization_record get_record(reader& r) {
   x.stick_switch_moment = r.f64("record");
   x.stick_time_moment = r.f64("record");
   x.events = get_counts(r);
+  x.drawn_values = get_values(r, "record drawn values");
   return x;
 }
 
@@ -377,6 +404,13 @@ bytes serialize(const sweep_spec& s) {
   w.u64(s.min_realizations);
   w.u8(s.family_statistics ? 1 : 0);
   w.u8(s.means_only ? 1 : 0);
+  w.u64(s.uncertain.size());
+  for (const auto& u : s.uncertain) {
+    w.str(u.symbol);
+    w.u8(static_cast<std::uint8_t>(u.law.family));
+    put_values(w, u.law.arguments);
+  }
+  w.str(s.sensitivity_statistic);
   return w.take();
 }
 
@@ -416,6 +450,26 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   s.min_realizations = r.u64("min realizations");
   s.family_statistics = r.boolean("family_statistics");
   s.means_only = r.boolean("means_only");
+  s.uncertain.resize(r.count("uncertain parameters", 17));
+  for (auto& u : s.uncertain) {
+    u.symbol = r.str("uncertain parameter");
+    const auto family = r.u8("law family");
+    if (family > static_cast<std::uint8_t>(law_family::beta))
+      throw corrupt(fmt::format("unknown law family {}", family));
+    u.law.family = static_cast<law_family>(family);
+    u.law.arguments = get_values(r, "law arguments");
+    // The canonical text parses back to the same law only when the
+    // arguments are the family's and meet its constraints.
+    bool valid = false;
+    try {
+      valid = parse_law(to_string(u.law), u.symbol) == u.law;
+    } catch (const error&) {
+    }
+    if (!valid)
+      throw corrupt(fmt::format("the law of {} is not a valid {} law", u.symbol,
+                                to_string(u.law.family)));
+  }
+  s.sensitivity_statistic = r.str("sensitivity statistic");
   r.finish("sweep spec");
   return s;
 }
@@ -538,8 +592,13 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))
     throw bad(fmt::format("{} raw records", b.records.size()));
-  for (std::size_t i = 0; i < b.records.size(); ++i)
+  for (std::size_t i = 0; i < b.records.size(); ++i) {
     if (b.records[i].realization != first + i) throw bad("raw records out of order");
+    if (b.records[i].drawn_values.size() != s.uncertain.size())
+      throw bad(fmt::format("a raw record with {} drawn values, the sweep has {} uncertain "
+                            "parameters",
+                            b.records[i].drawn_values.size(), s.uncertain.size()));
+  }
 }
 
 // ---- checksums ----
@@ -629,6 +688,17 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
     return fmt::format("family statistics: {} vs {}", a.family_statistics, b.family_statistics);
   if (a.means_only != b.means_only)
     return fmt::format("means only: {} vs {}", a.means_only, b.means_only);
+  auto laws = [](const sweep_spec& s) {
+    std::string t;
+    for (const auto& u : s.uncertain)
+      t += (t.empty() ? "" : ", ") + u.symbol + " ~ " + to_string(u.law);
+    return t.empty() ? std::string("none") : t;
+  };
+  if (a.uncertain != b.uncertain)
+    return fmt::format("uncertain parameters: {} vs {}", laws(a), laws(b));
+  if (a.sensitivity_statistic != b.sensitivity_statistic)
+    return fmt::format("sensitivity statistic: '{}' vs '{}'", a.sensitivity_statistic,
+                       b.sensitivity_statistic);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

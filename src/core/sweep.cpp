@@ -16,6 +16,7 @@
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/model/model_realization.hpp"
+#include "stickslip/uncertainty/uncertain_realization.hpp"
 
 namespace stickslip {
 namespace {
@@ -106,6 +107,7 @@ void validate(const sweep_spec& s) {
     }
   }
   check_coupled_axes(s, first);
+  validate_uncertain_points(s);
   for (const auto& ax : s.axes)
     for (const auto& other : s.axes)
       if (canonical_symbol(ax.name) == "mu" &&
@@ -158,13 +160,17 @@ void validate(const sweep_spec& s) {
     for (const auto& ax : s.axes)
       if (canonical_symbol(ax.name) == symbol)
         v = *std::max_element(ax.values.begin(), ax.values.end());
+    for (const auto& u : s.uncertain)
+      if (u.symbol == symbol) v = largest_draw(u.law);
     return v;
   };
   double fastest = 0.0;
   if (!s.base.belt_generator.empty()) {
     const std::vector<double> q = s.base.generator();
     for (std::size_t i = 0; i < levels; ++i) fastest = std::max(fastest, -q[i * levels + i]);
-  } else if (!s.base.belt_rates.empty() || seen.contains("r1") || seen.contains("r2")) {
+  } else if (!s.base.belt_rates.empty() || seen.contains("r1") || seen.contains("r2") ||
+             std::any_of(s.uncertain.begin(), s.uncertain.end(),
+                         [](const auto& u) { return u.symbol == "r1" || u.symbol == "r2"; })) {
     fastest = std::max(largest("r1"), largest("r2"));
   } else {
     fastest = largest("lambda");
@@ -196,6 +202,7 @@ model_parameters point_parameters(const sweep_spec& s, std::size_t point) {
   const auto idx = point_index(s, point);
   for (std::size_t k = 0; k < s.axes.size(); ++k)
     set_parameter(p, s.axes[k].name, s.axes[k].values[idx[k]]);
+  if (!s.uncertain.empty()) return with_medians(p, s.uncertain);  // what the point stands for
   return p.is_paper_model() ? paper_form(p) : p;
 }
 
@@ -215,6 +222,7 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
 // undamped two-level belts), simulate_model otherwise
 // and for sweep_engine::reference.
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
+  if (!s.uncertain.empty()) return simulate_block_uncertain(s, u);
   const auto p = point_parameters(s, u.point);
   if (!p.is_paper_model()) {
     if (s.engine == sweep_engine::fast && detail::runs_in_lanes(p))
@@ -238,7 +246,7 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
     while (b < units.size() && units[b].point == units[a].point &&
            units[b].block == units[b - 1].block + 1)
       ++b;
-    if (lanes && detail::runs_in_lanes(point_parameters(s, units[a].point))) {
+    if (lanes && s.uncertain.empty() && detail::runs_in_lanes(point_parameters(s, units[a].point))) {
       auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
       for (auto& x : r) results.push_back(std::move(x));
     } else {

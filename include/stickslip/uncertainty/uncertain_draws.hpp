@@ -32,6 +32,11 @@ namespace stickslip {
                                               std::uint64_t seed, std::uint64_t key,
                                               std::uint64_t realization, std::size_t offset = 0);
 
+// The smallest and the largest value a draw can take: the quantiles of the
+// smallest and the largest open uniform (random_stream::open_uniform).
+[[nodiscard]] double smallest_draw(const parameter_law& law);
+[[nodiscard]] double largest_draw(const parameter_law& law);
+
 // `base` with each uncertain parameter at its law's median (quantile 0.5),
 // in the paper's form when that is the paper's model (paper_form): what a
 // point with laws stands for where one model is needed, namely its

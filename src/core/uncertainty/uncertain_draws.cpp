@@ -63,6 +63,13 @@ std::vector<double> draw_values(std::span<const uncertain_parameter> laws, std::
   return v;
 }
 
+double smallest_draw(const parameter_law& law) {
+  return quantile(law, random_stream::open_uniform(0));
+}
+double largest_draw(const parameter_law& law) {
+  return quantile(law, random_stream::open_uniform(~std::uint64_t{0}));
+}
+
 model_parameters with_medians(const model_parameters& base,
                               std::span<const uncertain_parameter> laws) {
   std::vector<double> m(laws.size());

@@ -123,12 +123,10 @@ void check_friction_order(const model_parameters& base,
 // and largest value for up to 10 laws (1024 models), else each law alone.
 void check_extreme_models(const model_parameters& base,
                           std::span<const uncertain_parameter> laws) {
-  const double u_low = random_stream::open_uniform(0);
-  const double u_high = random_stream::open_uniform(std::numeric_limits<std::uint64_t>::max());
   std::vector<double> low(laws.size()), high(laws.size()), median(laws.size());
   for (std::size_t i = 0; i < laws.size(); ++i) {
-    low[i] = quantile(laws[i].law, u_low);
-    high[i] = quantile(laws[i].law, u_high);
+    low[i] = smallest_draw(laws[i].law);
+    high[i] = largest_draw(laws[i].law);
     median[i] = quantile(laws[i].law, 0.5);
   }
   auto check = [&](const std::vector<double>& values) {

@@ -58,6 +58,8 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
   const auto symbols = swept_symbols(rs.spec);
   out.write("point,");
   for (const auto& sym : symbols) out.print("{},", sym);
+  // The values each realization drew for the uncertain parameters.
+  for (const auto& u : rs.spec.uncertain) out.print("{},", u.symbol);
   out.write(
       "realization,x0,xdot0,belt_start,sticks,slips,stick_fraction,first_stick_start,"
       "first_stick_duration,first_stick_censored,friction_power,damping_power,belt_switches,"
@@ -69,6 +71,7 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
       prefix += fmt::format("{},", parameter_value(rs.points[i].parameters, sym));
     for (const auto& r : rs.records[i]) {
       out.write(prefix);
+      for (double v : r.drawn_values) out.print("{},", v);
       // -1 marks "no stick" for first_stick_start/duration, as in realization_record.
       out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
                 r.belt_start, r.sticks, r.slips, r.stick_fraction, r.first_stick_start,

@@ -278,6 +278,14 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("max_events", static_cast<std::int64_t>(s.max_events));
   j.member("keep_records", s.keep_records);
   j.member("common_random_numbers", s.common_random_numbers);
+  if (!s.uncertain.empty()) {
+    // Each drawn per realization from its law (docs/uncertainty.md); the
+    // points' values of these are the laws' medians.
+    j.key("uncertain_parameters");
+    j.begin_object();
+    for (const auto& u : s.uncertain) j.member(u.symbol, to_string(u.law));
+    j.end_object();
+  }
   j.key("target_ci");
   if (s.target_statistic.empty()) {
     j.null();

@@ -698,10 +698,22 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   std::string swept;
   for (const auto& sym : swept_symbols(s)) swept += (swept.empty() ? "" : " ") + sym;
   f.putAtt("swept_parameters", swept);
+  // Uncertain parameters: drawn per realization, each from the law in the
+  // attribute <symbol>_law; their grid variables hold the laws' medians.
+  std::string uncertain;
+  for (const auto& u : s.uncertain) {
+    uncertain += (uncertain.empty() ? "" : " ") + u.symbol;
+    f.putAtt(u.symbol + "_law", to_string(u.law));
+  }
+  if (!uncertain.empty()) f.putAtt("uncertain_parameters", uncertain);
   const auto sw = swept_symbols(s);
   const auto omitted = meaningless_parameters(rs);
+  const auto is_uncertain = [&](const char* sym) {
+    return std::any_of(s.uncertain.begin(), s.uncertain.end(),
+                       [&](const auto& u) { return u.symbol == sym; });
+  };
   for (const char* sym : recorded_parameter_names)
-    if (std::find(sw.begin(), sw.end(), sym) == sw.end() &&
+    if (std::find(sw.begin(), sw.end(), sym) == sw.end() && !is_uncertain(sym) &&
         std::find(omitted.begin(), omitted.end(), sym) == omitted.end())
       f.putAtt(sym, nc::ncDouble, parameter_value(resolved_base(rs), sym));
   // The resolved belt of the base (a swept vI or rI is a coordinate instead):
