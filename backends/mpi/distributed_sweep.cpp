@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <climits>
 #include <condition_variable>
@@ -14,6 +15,8 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <string_view>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -96,6 +99,30 @@ struct failure_slot {
     }
   }
 };
+
+// Test-only fault injection (tests/faults/fault_table.sh, row mpi_throw):
+// STICKSLIP_FAULT_INJECT=mpi_worker_throw_after_units:N makes a worker's
+// main thread, outside its compute threads, throw once it has sent N results
+// to rank 0, as a failed MPI call or allocation there would. Read by the
+// workers of this backend only, once per sweep; any other value is an error,
+// so that a test that misspells it cannot pass without its fault.
+constexpr const char* fault_variable = "STICKSLIP_FAULT_INJECT";
+std::optional<std::uint64_t> injected_throw_after_units() {
+  const char* value = std::getenv(fault_variable);
+  if (!value || !*value) return std::nullopt;
+  constexpr std::string_view key = "mpi_worker_throw_after_units:";
+  const std::string_view text(value);
+  std::uint64_t n = 0;
+  const char* end = text.data() + text.size();
+  if (text.starts_with(key)) {
+    const auto [p, ec] = std::from_chars(text.data() + key.size(), end, n);
+    if (ec == std::errc() && p == end && p != text.data() + key.size()) return n;
+  }
+  throw error(exit_code::invalid_input,
+              fmt::format("invalid {}: '{}' (allowed: mpi_worker_throw_after_units:N, a "
+                          "test-only fault, N a whole number)",
+                          fault_variable, text));
+}
 
 }  // namespace
 
@@ -260,6 +287,7 @@ bool serve(const session&, unsigned threads) {
   check(MPI_Bcast(spec_bytes.data(), checked_size(len), MPI_BYTE, 0, MPI_COMM_WORLD), "MPI_Bcast");
   const sweep_spec s = deserialize_sweep_spec(spec_bytes);
   const unsigned n_threads = resolve_threads(threads);
+  const auto throw_after_units = injected_throw_after_units();
 
   std::mutex mu;
   std::condition_variable work_cv, main_cv;
@@ -316,54 +344,78 @@ bool serve(const session&, unsigned threads) {
     throw;
   }
 
-  // The main thread does all MPI calls (MPI_THREAD_FUNNELED).
+  // The main thread does all MPI calls (MPI_THREAD_FUNNELED). Whatever way
+  // it leaves, the compute threads are stopped and joined first: a thrown
+  // error reaches serve_all (which reports it and aborts the job), never
+  // std::terminate through a joinable std::thread.
   bool stopped = false;    // rank 0 said stop, or we failed
   bool fail_sent = false;  // after a failure nothing else is sent
+  std::uint64_t results_sent = 0;
   std::unique_lock lock(mu);
-  while (true) {
-    if (failure.first) outbox.clear();
-    while (!outbox.empty()) {
-      const std::string msg = std::move(outbox.front());
-      outbox.pop_front();
-      lock.unlock();
-      send_bytes(msg, 0, result_tag);
-      lock.lock();
+  auto stop_compute_threads = [&] {
+    if (!lock.owns_lock()) lock.lock();
+    shutdown = true;
+    queue.clear();  // units not started are not computed
+    work_cv.notify_all();
+    lock.unlock();
+    for (auto& th : pool) th.join();
+  };
+  auto injected_fault = [&] {
+    if (throw_after_units && results_sent >= *throw_after_units)
+      throw error(exit_code::internal,
+                  fmt::format("injected fault ({}=mpi_worker_throw_after_units:{}): the worker's "
+                              "main thread throws after sending {} results",
+                              fault_variable, *throw_after_units, results_sent));
+  };
+  try {
+    while (true) {
+      if (failure.first) outbox.clear();
+      injected_fault();
+      while (!outbox.empty()) {
+        const std::string msg = std::move(outbox.front());
+        outbox.pop_front();
+        lock.unlock();
+        send_bytes(msg, 0, result_tag);
+        ++results_sent;
+        injected_fault();
+        lock.lock();
+      }
+      if (failure.first && !fail_sent) {
+        detail::byte_writer w;
+        w.u32(static_cast<std::uint32_t>(failure.first->code()));
+        w.str(failure.first->what());
+        lock.unlock();
+        send_bytes(w.take(), 0, failure_tag);
+        lock.lock();
+        stopped = fail_sent = true;
+        queue.clear();  // units received while failing are not computed
+      }
+      // Keep every thread busy plus one batch queued, so no thread waits for
+      // a round trip; not more, so the tail stays balanced.
+      const std::size_t outstanding = queue.size() + busy;
+      const std::size_t wanted = (n_threads + 1) * batch;
+      if (!stopped && outstanding < wanted) {
+        detail::byte_writer w;
+        w.u32(static_cast<std::uint32_t>(wanted - outstanding));
+        lock.unlock();
+        send_bytes(w.take(), 0, request_tag);
+        MPI_Status st;
+        check(MPI_Probe(0, work_tag, MPI_COMM_WORLD, &st), "MPI_Probe");
+        const auto units = decode_indices(receive_bytes(st));
+        lock.lock();
+        if (units.empty()) stopped = true;
+        for (auto i : units) queue.push_back(i);
+        work_cv.notify_all();
+        continue;
+      }
+      if (stopped && queue.empty() && busy == 0 && (outbox.empty() || fail_sent)) break;
+      main_cv.wait_for(lock, std::chrono::milliseconds(5));
     }
-    if (failure.first && !fail_sent) {
-      detail::byte_writer w;
-      w.u32(static_cast<std::uint32_t>(failure.first->code()));
-      w.str(failure.first->what());
-      lock.unlock();
-      send_bytes(w.take(), 0, failure_tag);
-      lock.lock();
-      stopped = fail_sent = true;
-      queue.clear();  // units received while failing are not computed
-    }
-    // Keep every thread busy plus one batch queued, so no thread waits for
-    // a round trip; not more, so the tail stays balanced.
-    const std::size_t outstanding = queue.size() + busy;
-    const std::size_t wanted = (n_threads + 1) * batch;
-    if (!stopped && outstanding < wanted) {
-      detail::byte_writer w;
-      w.u32(static_cast<std::uint32_t>(wanted - outstanding));
-      lock.unlock();
-      send_bytes(w.take(), 0, request_tag);
-      MPI_Status st;
-      check(MPI_Probe(0, work_tag, MPI_COMM_WORLD, &st), "MPI_Probe");
-      const auto units = decode_indices(receive_bytes(st));
-      lock.lock();
-      if (units.empty()) stopped = true;
-      for (auto i : units) queue.push_back(i);
-      work_cv.notify_all();
-      continue;
-    }
-    if (stopped && queue.empty() && busy == 0 && (outbox.empty() || fail_sent)) break;
-    main_cv.wait_for(lock, std::chrono::milliseconds(5));
+  } catch (...) {
+    stop_compute_threads();
+    throw;
   }
-  shutdown = true;
-  work_cv.notify_all();
-  lock.unlock();
-  for (auto& th : pool) th.join();
+  stop_compute_threads();
   return true;
 }
 

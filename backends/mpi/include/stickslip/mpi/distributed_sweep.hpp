@@ -47,6 +47,9 @@ void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
 // Ranks > 0: receive the spec of one sweep and compute its units until told
 // to stop. Returns true after a sweep (also after sending a failure), false
 // when rank 0 released the workers (see cancel) instead of sending a sweep.
+// An error outside the compute threads is thrown after they are joined.
+// Test-only: STICKSLIP_FAULT_INJECT=mpi_worker_throw_after_units:N makes it
+// throw once it has sent N results (tests/faults/fault_table.sh, mpi_throw).
 bool serve(const session& ses, unsigned threads);
 // Ranks > 0: serve every sweep rank 0 coordinates (a command may run several,
 // as `reproduce` does) until rank 0 releases the workers.
