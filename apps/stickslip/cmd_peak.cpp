@@ -97,6 +97,9 @@ void run_peak(const CLI::App& cmd, const peak_flags& f) {
       throw invalid_value(flag_label(over), flag->text,
                           "not given: --over " + over + " sweeps it over --range");
 
+  refuse_laws(cmd, f.model, "peak",
+              "it locates the maximum for one model (give a value), while `stickslip sweep` "
+              "takes laws and grids together");
   sweep_spec spec;
   spec.base = apply_scalar_flags(cmd, f.model, apply_preset(f.model, model_parameters{}));
   spec.seed = resolve_seed(f.model, spec.seed);

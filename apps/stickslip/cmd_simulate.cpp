@@ -7,6 +7,9 @@
 // (seed, point_key(params), r)), so any sweep realization can be replayed alone.
 // Replay mode fixes any of x0, x'0, the belt start (the others are still drawn
 // from the stream) and/or the belt switch times.
+// With laws for parameters (--mu 'gamma(mean=5,cv=0.2)'), --realization R
+// replays realization R of the sweep point with those laws: the values it
+// drew, then its run (io::replay_uncertain); they are printed.
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -22,6 +25,7 @@
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/realization_output.hpp"
+#include "stickslip/io/uncertain_replay.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/sweep.hpp"
@@ -44,6 +48,7 @@ struct simulate_options {
   CLI::Option *x0_opt = nullptr, *xdot0_opt = nullptr, *belt_opt = nullptr;
   CLI::Option *times_opt = nullptr, *times_file_opt = nullptr, *trajectory_opt = nullptr;
   CLI::Option *events_file_opt = nullptr, *trajectory_file_opt = nullptr;
+  CLI::Option* realization_opt = nullptr;
 };
 
 // A file flag without the output it names would write nothing: refused
@@ -74,17 +79,36 @@ void set_given_switches(const simulate_options& o, replay_request& req) {
   if (!schedule.levels.empty()) req.switch_levels = std::move(schedule.levels);
 }
 
+// Realization R of a point with laws, drawn and run as the sweep does. One
+// trajectory of an uncertain model is only defined as a given realization,
+// and it is replayed whole: its inputs are not fixed one by one.
+io::realization_report run_uncertain(const simulate_options& o, replay_request req,
+                                     std::vector<uncertain_parameter> laws) {
+  if (o.realization_opt->count() == 0) throw io::realization_required(laws);
+  for (const CLI::Option* fixed : {o.x0_opt, o.xdot0_opt, o.times_opt, o.times_file_opt})
+    if (fixed->count() > 0)
+      throw io::fixed_input_with_laws(fixed->get_name(), fixed->as<std::string>(), laws);
+  if (o.belt_opt->count() > 0)  // the sweep's --belt-start: the law of the starting level
+    req.initial.belt_start = io::parse_belt_start("--belt-start", o.belt_start,
+                                                  req.parameters.levels().size());
+  req.keep_events = o.events;
+  req.keep_segments = o.trajectory_opt->count() > 0;
+  return io::replay_uncertain(req, std::move(laws));
+}
+
 // One realization through the core's replay (the same as Python's
 // stickslip.simulate): drawn as realization R of the sweep point, with any
 // of x0, x'0, the belt start and the switch times fixed by flags.
 io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   replay_request req;
   req.parameters = apply_scalar_flags(cmd, o.model, apply_preset(o.model, model_parameters{}));
-  set_given_switches(o, req);
   req.seed = resolve_seed(o.model, req.seed);
   req.max_events = resolve_max_events(o.model, req.max_events);
   req.realization = io::parse_unsigned("--realization", o.realization);
   req.common_random_numbers = o.common_random_numbers;
+  if (auto laws = given_laws(cmd, o.model); !laws.empty())
+    return run_uncertain(o, std::move(req), std::move(laws));
+  set_given_switches(o, req);
   if (o.x0_opt->count() > 0) req.x0 = io::parse_number("--x0 (initial position)", o.x0);
   if (o.xdot0_opt->count() > 0)
     req.xdot0 = io::parse_number("--xdot0 (initial velocity)", o.xdot0);
@@ -96,7 +120,7 @@ io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   req.keep_events = o.events;
   req.keep_segments = o.trajectory_opt->count() > 0;
   auto trace = replay(req);
-  return {std::move(req), std::move(trace)};
+  return {std::move(req), std::move(trace), {}, {}};
 }
 
 // A file next to the -o output, or in the current directory for stdout.
@@ -152,9 +176,13 @@ void run_simulate(const CLI::App& cmd, const simulate_options& o) {
   }
 
   const auto& s = run.trace.record;
-  fmt::print(stderr, "seed {} realization {}: S_T = {}, S_L = {}, R = {:.6g} ({} events)\n",
-             run.request.seed, run.request.realization, s.sticks, s.slips, s.stick_fraction,
-             s.events.total());
+  std::string drawn;
+  for (std::size_t i = 0; i < run.uncertain.size(); ++i)
+    drawn += fmt::format("{}{} = {} (drawn from {})", i ? ", " : "", run.uncertain[i].symbol,
+                         run.drawn[i], to_string(run.uncertain[i].law));
+  fmt::print(stderr, "seed {} realization {}: {}{}S_T = {}, S_L = {}, R = {:.6g} ({} events)\n",
+             run.request.seed, run.request.realization, drawn, drawn.empty() ? "" : "; ",
+             s.sticks, s.slips, s.stick_fraction, s.events.total());
 }
 
 }  // namespace
@@ -168,9 +196,12 @@ void add_simulate_command(CLI::App& app, const invocation&) {
       "with --x0/--xdot0/--belt-start and --switch-times[-file].");
   auto& o = *opts;
   add_model_flags(*cmd, o.model, flag_values::scalar, model_parameters{});
-  cmd->add_option("--realization", o.realization,
-                  "realization index R: the same streams as realization R of a sweep (default 0)")
-      ->type_name("R");
+  o.realization_opt =
+      cmd->add_option("--realization", o.realization,
+                      "realization index R: the same streams as realization R of a sweep "
+                      "(default 0); required with a law for a parameter, whose drawn values "
+                      "are printed")
+          ->type_name("R");
   cmd->add_flag("--common-random-numbers", o.common_random_numbers,
                 "the streams of a sweep run with --common-random-numbers (the same for every "
                 "grid point) instead of this point's own");

@@ -74,14 +74,20 @@ int axis_rank(const std::string& symbol) {
 }
 
 // Applies the model flags to `spec`. A single number sets the fixed value
-// (and drops any axis of that parameter from the file); a list or a
+// (and drops any axis or law of that parameter from the file); a list or a
 // lin:/log: range makes an axis, replacing the file's values in place or
-// appending a new axis after the file's axes.
+// appending a new axis after the file's axes; a law makes the parameter
+// uncertain (io::set_law: it replaces the file's axis or law).
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec) {
   spec.base = apply_belt_flags(f, std::move(spec.base));
   std::vector<axis> added;
   for (const auto* flag : given_model_flags(cmd, f)) {
     const auto& sym = flag->symbol;
+    if (holds_law(*flag)) {
+      io::set_law(spec, sym, parse_law(flag->text, flag_name(sym)));
+      continue;
+    }
+    io::drop_law(spec, sym);
     auto in_file = std::find_if(spec.axes.begin(), spec.axes.end(),
                                 [&](const axis& a) { return a.name == sym; });
     if (io::is_single_value(flag->text)) {

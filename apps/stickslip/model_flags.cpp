@@ -29,8 +29,8 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
     flag.symbol = symbol;
     const std::string what =
         kind == flag_values::grid
-            ? fmt::format("{} [{}]: a value, a list 'a,b,c', 'lin:a:b:n' or 'log:a:b:n' "
-                          "(default {})",
+            ? fmt::format("{} [{}]: a value, a list 'a,b,c', 'lin:a:b:n' or 'log:a:b:n', or a "
+                          "law such as 'gamma(mean=M,cv=C)' (default {})",
                           info.description, info.units, parameter_value(defaults, symbol))
             : fmt::format("{} [{}] (default {})", info.description, info.units,
                           parameter_value(defaults, symbol));
@@ -132,11 +132,32 @@ model_parameters apply_preset(const model_flags& f, model_parameters base) {
   return base;
 }
 
+bool holds_law(const model_flags::flag& flag) noexcept { return looks_like_law(flag.text); }
+
+std::vector<uncertain_parameter> given_laws(const CLI::App& cmd, const model_flags& f) {
+  std::vector<uncertain_parameter> laws;
+  for (const auto* flag : given_model_flags(cmd, f))
+    if (holds_law(*flag))
+      laws.push_back({flag->symbol, parse_law(flag->text, flag_name(flag->symbol))});
+  io::sort_laws(laws);
+  return laws;
+}
+
+void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& command,
+                 const std::string& instead) {
+  for (const auto* flag : given_model_flags(cmd, f))
+    if (holds_law(*flag))
+      throw invalid_value(flag_label(flag->symbol), flag->text,
+                          fmt::format("a number: `stickslip {}` does not take laws; {}", command,
+                                      instead));
+}
+
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
   base = apply_belt_flags(f, std::move(base));
   for (const auto* flag : given_model_flags(cmd, f))
-    set_parameter(base, flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text));
+    if (!holds_law(*flag))
+      set_parameter(base, flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text));
   return base;
 }
 

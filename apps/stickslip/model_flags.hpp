@@ -1,8 +1,10 @@
-// Model-parameter flags shared by `simulate` and `sweep`: one flag per
+// Model-parameter flags shared by `simulate`, `sweep` and `peak`: one flag per
 // parameter, named after the paper's symbol, with a descriptive alias
 // (--lambda / --switch-rate, ...), plus --seed and --max-events. Values are
 // kept as text and turned into numbers by the command: a scalar in
-// `simulate`, a grid specification in `sweep` (see io::parse_grid).
+// `simulate`, a grid specification in `sweep` (see io::parse_grid). Any of
+// them may instead hold a law ('gamma(mean=5,cv=0.2)', parameter_law.hpp),
+// told apart by looks_like_law: an uncertain parameter.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <array>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "stickslip/parameters.hpp"
+#include "stickslip/uncertainty/parameter_law.hpp"
 
 namespace stickslip::app {
 
@@ -60,8 +63,21 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
 // `base` with --belt-levels and --belt-rates applied if given.
 [[nodiscard]] model_parameters apply_belt_flags(const model_flags& f, model_parameters base);
 
+// Whether a flag holds a law rather than a value or a grid.
+[[nodiscard]] bool holds_law(const model_flags::flag& flag) noexcept;
+
+// The given flags that hold laws, parsed (parse_law: exit 2 naming the flag,
+// the law and the problem), in io::sort_laws' canonical order.
+[[nodiscard]] std::vector<uncertain_parameter> given_laws(const CLI::App& cmd,
+                                                          const model_flags& f);
+
+// Throws invalid_input naming the first flag that holds a law: `command`
+// cannot use one, and `instead` says what to do.
+void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& command,
+                 const std::string& instead);
+
 // `base` with every given flag applied as one number (and the belt flags),
-// not validated.
+// not validated. Flags that hold laws are left out (given_laws reads them).
 [[nodiscard]] model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                                   model_parameters base);
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "stickslip/replay.hpp"
+#include "stickslip/uncertainty/parameter_law.hpp"
 
 namespace stickslip::io {
 
@@ -15,14 +16,22 @@ namespace stickslip::io {
 struct realization_report {
   replay_request request;
   realization_trace trace;
+  // With uncertain parameters (replay_uncertain, uncertain_replay.hpp): the
+  // laws and the values realization r drew from them, in the same order;
+  // request.parameters is then the model it ran at.
+  std::vector<uncertain_parameter> uncertain;
+  std::vector<double> drawn;
 };
 
 // mode,start,end,x_start,belt_velocity,censored (one row per episode).
 [[nodiscard]] std::string episodes_csv(const realization_report& r);
 // kind,time,x,xdot,v (one row per event).
 [[nodiscard]] std::string events_csv(const realization_report& r);
-// {"parameters", "seed", "realization", "initial_conditions", "switch_times",
-//  "statistics", "event_counts", "episodes"[, "events"]}.
+// {"parameters", "seed", "realization"[, "laws", "drawn"], "initial_conditions",
+//  "switch_times", "statistics", "event_counts", "episodes"[, "events"]};
+// with laws, "laws" maps each uncertain symbol to its law's canonical text
+// and "drawn" to the value realization r drew ("parameters" is the model at
+// those values).
 [[nodiscard]] std::string realization_json(const realization_report& r, bool with_events);
 // t,x,xdot,v,mode sampled by sample_trajectory (trajectory.hpp) every `step`.
 [[nodiscard]] std::string trajectory_csv(const realization_report& r, double step);

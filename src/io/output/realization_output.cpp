@@ -53,6 +53,18 @@ void emit_initial_conditions(json_emitter& j, const realization_report& r) {
   j.end_object();
 }
 
+void emit_draws(json_emitter& j, const realization_report& r) {
+  j.key("laws");
+  j.begin_object();
+  for (const auto& u : r.uncertain) j.member(u.symbol, to_string(u.law));
+  j.end_object();
+  j.key("drawn");
+  j.begin_object();
+  for (std::size_t i = 0; i < r.uncertain.size() && i < r.drawn.size(); ++i)
+    j.member(r.uncertain[i].symbol, r.drawn[i]);
+  j.end_object();
+}
+
 void emit_statistics(json_emitter& j, const realization_report& r) {
   const auto& s = r.trace.record;
   j.key("statistics");
@@ -118,6 +130,7 @@ std::string realization_json(const realization_report& r, bool with_events) {
   j.end_object();
   j.member("seed", r.request.seed);
   j.member("realization", r.request.realization);
+  if (!r.uncertain.empty()) emit_draws(j, r);
   emit_initial_conditions(j, r);
   // "poisson" for the paper's telegraph belt, "markov" for any other belt.
   j.member("switch_times", r.request.switch_times.has_value()          ? "given"
