@@ -24,6 +24,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/io/uncertain_replay.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/output_lock.hpp"
@@ -49,13 +50,26 @@ std::string list_text(const std::vector<double>& values) {
   return fmt::format("{}", fmt::join(values, ","));
 }
 
+// The flag of a symbol, as parse_law and the messages name it ("--mu-s"; a
+// belt level or rate by its symbol); Python maps it to the keyword.
+std::string flag_of(const std::string& symbol) {
+  if (symbol.size() > 1 && (symbol[0] == 'v' || symbol[0] == 'r')) return symbol;
+  std::string flag = "--" + symbol;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
 // The model from stickslip's keyword arguments, applied as the CLI applies
 // its flags (apps/stickslip/model_flags.cpp): the belt (levels, rates,
 // generator) first, then the scalars in the order given with mu first, so
 // that mu sets mu_s and mu_k both and a later mu_s / mu_k / vI / rI refines.
 //   model: {symbol: value} in the order given, plus "belt_levels",
 //   "belt_rates": [values] and "belt_generator": [[row]].
-model_parameters parameters_from(const py::dict& model, model_parameters p = {}) {
+// A value that is text is a law (parse_law, with the CLI's messages), put in
+// `laws` in io::sort_laws' order; without `laws`, one is refused (`refusal`).
+model_parameters parameters_from(const py::dict& model, model_parameters p = {},
+                                 std::vector<uncertain_parameter>* laws = nullptr,
+                                 const char* refusal = "") {
   if (model.contains("belt_levels") && !model["belt_levels"].is_none()) {
     p.belt_levels = io::parse_value_list(
         "--belt-levels", list_text(py::cast<std::vector<double>>(model["belt_levels"])));
@@ -84,9 +98,16 @@ model_parameters parameters_from(const py::dict& model, model_parameters p = {})
   std::vector<std::pair<std::string, double>> scalars;
   for (const auto& [key, value] : model) {
     auto sym = py::cast<std::string>(key);
-    if (sym != "belt_levels" && sym != "belt_rates" && sym != "belt_generator")
-      scalars.emplace_back(std::move(sym), py::cast<double>(value));
+    if (sym == "belt_levels" || sym == "belt_rates" || sym == "belt_generator") continue;
+    if (py::isinstance<py::str>(value)) {
+      const auto text = py::cast<std::string>(value);
+      if (!laws) throw invalid_value(flag_of(sym), text, refusal);
+      laws->push_back({sym, parse_law(text, flag_of(sym))});
+      continue;
+    }
+    scalars.emplace_back(std::move(sym), py::cast<double>(value));
   }
+  if (laws) io::sort_laws(*laws);
   std::stable_partition(scalars.begin(), scalars.end(), [](const auto& s) { return s.first == "mu"; });
   for (const auto& [sym, value] : scalars) set_parameter(p, sym, value);
   return p;
@@ -126,16 +147,30 @@ struct trace_segments {
 
 // The replay of stickslip.simulate() (and of each of simulate_many()'s
 // realizations) from its keyword arguments, read as `simulate` reads its flags.
-replay_request request_from(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
+// With laws (text values), `laws` holds them and the request is realization
+// R of the point with those laws (io::replay_uncertain), R required; its
+// inputs are then drawn, not fixed, and belt_start is the sweep's.
+replay_request request_from(const py::dict& model, std::uint64_t seed, std::optional<std::uint64_t> realization,
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
                    std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
-                   bool common_random_numbers) {
+                   bool common_random_numbers, std::vector<uncertain_parameter>& laws) {
   replay_request r;
   r.common_random_numbers = common_random_numbers;
-  r.parameters = parameters_from(model);
+  r.parameters = parameters_from(model, {}, &laws);
   r.seed = seed;
-  r.realization = realization;
+  r.realization = realization.value_or(0);
+  r.max_events = max_events;
+  if (!laws.empty()) {
+    if (!realization) throw io::realization_required(laws);
+    if (x0) throw io::fixed_input_with_laws("--x0", fmt::format("{}", *x0), laws);
+    if (xdot0) throw io::fixed_input_with_laws("--xdot0", fmt::format("{}", *xdot0), laws);
+    if (switch_times) throw io::fixed_input_with_laws("--switch-times", list_text(*switch_times), laws);
+    if (switch_levels)
+      throw io::fixed_input_with_laws("switch_levels", fmt::format("{}", fmt::join(*switch_levels, ",")), laws);
+    if (belt_start) r.initial.belt_start = belt_start_from(*belt_start, r.parameters);
+    return r;
+  }
   r.x0 = x0;
   r.xdot0 = xdot0;
   if (belt_start)
@@ -157,7 +192,6 @@ replay_request request_from(const py::dict& model, std::uint64_t seed, std::uint
     r.switch_times = std::move(schedule.times);
     if (!schedule.levels.empty()) r.switch_levels = std::move(schedule.levels);
   }
-  r.max_events = max_events;
   return r;
 }
 
@@ -166,19 +200,30 @@ py::tuple episode_row(const episode& e) {
                         e.censored);
 }
 
-py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t realization,
+// One realization: replay(), or with laws io::replay_uncertain (the CLI's
+// simulate --realization R), whose drawn values are returned too.
+io::realization_report report_of(const replay_request& r,
+                                 const std::vector<uncertain_parameter>& laws) {
+  if (!laws.empty()) return io::replay_uncertain(r, laws);
+  return {r, replay(r), {}, {}};
+}
+
+py::dict replay_py(const py::dict& model, std::uint64_t seed, std::optional<std::uint64_t> realization,
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
                    std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
                    bool common_random_numbers) {
-  const replay_request r = request_from(model, seed, realization, x0, xdot0, belt_start,
-                                        switch_times, switch_levels, max_events,
-                                        common_random_numbers);
-  realization_trace t;
+  std::vector<uncertain_parameter> laws;
+  const replay_request asked = request_from(model, seed, realization, x0, xdot0, belt_start,
+                                            switch_times, switch_levels, max_events,
+                                            common_random_numbers, laws);
+  io::realization_report report;
   {
     py::gil_scoped_release release;
-    t = replay(r);
+    report = report_of(asked, laws);
   }
+  const replay_request& r = report.request;
+  realization_trace& t = report.trace;
   py::list episodes, events;
   for (const auto& e : t.episodes) episodes.append(episode_row(e));
   for (const auto& e : t.events)
@@ -191,6 +236,13 @@ py::dict replay_py(const py::dict& model, std::uint64_t seed, std::uint64_t real
   out["xdot0"] = t.initial.velocity;
   out["belt_start"] = t.initial.belt_direction;
   out["parameters"] = model_dict(r.parameters);
+  py::dict law_texts, drawn;
+  for (std::size_t i = 0; i < report.uncertain.size(); ++i) {
+    law_texts[py::str(report.uncertain[i].symbol)] = to_string(report.uncertain[i].law);
+    drawn[py::str(report.uncertain[i].symbol)] = report.drawn[i];
+  }
+  out["laws"] = law_texts;
+  out["drawn"] = drawn;
   const auto& rec = t.record;
   py::dict record;
   record["S_T"] = rec.sticks;
@@ -289,8 +341,11 @@ py::list replay_many_py(const py::dict& model, std::uint64_t seed,
                         std::optional<std::vector<double>> switch_times,
                         std::optional<std::vector<std::int64_t>> switch_levels,
                         std::int64_t max_events, bool common_random_numbers, unsigned threads) {
-  replay_request base = request_from(model, seed, 0, x0, xdot0, belt_start, switch_times,
-                                     switch_levels, max_events, common_random_numbers);
+  std::vector<uncertain_parameter> laws;
+  // With laws every index is given: realization r of the point, as simulate() draws it.
+  replay_request base = request_from(model, seed, std::uint64_t{0}, x0, xdot0, belt_start,
+                                     switch_times, switch_levels, max_events, common_random_numbers,
+                                     laws);
   base.keep_events = false;
   base.keep_segments = false;
   const std::size_t n = realizations.size();
@@ -309,7 +364,7 @@ py::list replay_many_py(const py::dict& model, std::uint64_t seed,
             try {
               replay_request r = base;
               r.realization = realizations[i];
-              episodes[i] = replay(r).episodes;
+              episodes[i] = report_of(r, laws).trace.episodes;
               done.fetch_add(1);
             } catch (...) {
               std::lock_guard lock(failure_mutex);
@@ -342,7 +397,8 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
                      std::size_t bins, bool records, const std::string& engine,
                      std::int64_t max_events, const std::optional<std::string>& belt_start) {
   sweep_spec s;
-  s.base = parameters_from(base);
+  std::vector<uncertain_parameter> laws;
+  s.base = parameters_from(base, {}, &laws);
   // An axis of a scalar that has a CLI flag is read as that flag's grid
   // ("--c 0.5,2"), with its checks and messages; a belt level vI or rate rI
   // (a TOML [grid] key only) is checked by validate().
@@ -360,6 +416,7 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
     const auto rank = [](const std::string& sym) { return sym == "lambda" ? 0 : sym == "mu" ? 1 : 2; };
     return rank(a.name) < rank(b.name);
   });
+  for (auto& u : laws) io::set_law(s, u.symbol, std::move(u.law));
   s.realizations = realizations;
   s.seed = seed;
   s.block_size = block_size;
@@ -486,7 +543,10 @@ py::dict peak_py(const py::dict& model, const std::string& over, const std::stri
                  std::uint64_t seed, unsigned threads, std::uint64_t initial,
                  std::uint64_t budget, std::int64_t max_events) {
   precision::sweep_peak_request q;
-  q.spec.base = parameters_from(model);
+  q.spec.base = parameters_from(model, {}, nullptr,
+                                 "a number: stickslip.peak() does not take laws; it locates the "
+                                 "maximum for one model (give a value), while stickslip.sweep() "
+                                 "takes laws and grids together");
   q.spec.seed = seed;
   q.spec.max_events = max_events;
   q.over = canonical_symbol(over);
@@ -619,6 +679,9 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("max_events"));
   m.def("resolve_parameters", [](const py::dict& model) { return model_dict(parameters_from(model)); },
         py::arg("model"));
+  // How a keyword's text is told to be a law (parameter_law.hpp), as flags and TOML tell it.
+  m.def("looks_like_law", [](const std::string& text) { return looks_like_law(text); },
+        py::arg("text"));
   m.attr("default_max_events") = stickslip::default_max_events;
   stickslip::register_sobol(m);
 }

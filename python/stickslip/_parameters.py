@@ -175,11 +175,19 @@ def number_or_axis(name, value):
     return number(name, value)
 
 
+def is_law(value):
+    """Whether a keyword's value is a law's text ("gamma(mean=5,cv=0.2)"), told
+    apart as the CLI tells a flag's: the extension parses it (parse_law), so
+    its refusals are the CLI's messages."""
+    return isinstance(value, str) and _stickslip.looks_like_law(value)
+
+
 def model_arguments(kwargs, axes=False):
     """Pops the scalar model parameters out of `kwargs` (in the order given)
     and returns {symbol: value} with only the given ones: numbers, or with
     axes=True a number or a list of numbers (number_or_axis), each read under
-    the keyword the caller used."""
+    the keyword the caller used; any of them may be a law's text (is_law),
+    kept as a str."""
     by_keyword = {kw: sym for sym, (kw, *_rest) in PARAMETERS.items()}
     given = {}
     for key in list(kwargs):
@@ -189,7 +197,10 @@ def model_arguments(kwargs, axes=False):
             if sym in given:
                 raise TypeError(f"{key}: {sym} given twice (an alias names the same parameter)")
             value = kwargs.pop(key)
-            given[sym] = number_or_axis(key, value) if axes else number(key, value)
+            if is_law(value):
+                given[sym] = value
+            else:
+                given[sym] = number_or_axis(key, value) if axes else number(key, value)
     return given
 
 
@@ -270,6 +281,7 @@ KEYWORD_OF_FLAG = {
     **{"--" + kw.replace("_", "-"): kw for kw in BELT},
     "--belt-start": "belt_start", "--switch-times": "switch_times",
     "--max-events": "max_events", "--target-ci": "target_ci",
+    "--realization": "realization", "--x0": "x0", "--xdot0": "xdot0",
     "-o": "output", "--resume": "resume=True", "--overwrite": "overwrite=True",
     "--records": "records=True", "--keep-journal": "keep_journal=True",
     "--common-random-numbers": "common_random_numbers=True",

@@ -26,7 +26,11 @@ class Realization:
                   JSON "initial_conditions".
       parameters  dict of the resolved model, as the CLI's JSON "parameters":
                   m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt_levels,
-                  belt_generator (rows) and, for two levels, belt_rates.
+                  belt_generator (rows) and, for two levels, belt_rates; with
+                  laws, the model at the drawn values.
+      laws, drawn dicts {symbol: ...} of the uncertain parameters: each law's
+                  canonical text, and the value this realization drew from
+                  it (the CLI's JSON "laws" and "drawn"); empty without laws.
     """
 
     def __init__(self, seed, realization, raw):
@@ -35,6 +39,7 @@ class Realization:
         self.realization = realization
         self.x0, self.xdot0, self.belt_start = raw["x0"], raw["xdot0"], raw["belt_start"]
         self.record = dict(raw["record"])
+        self.laws, self.drawn = dict(raw["laws"]), dict(raw["drawn"])
         self.episodes = pd.DataFrame(raw["episodes"], columns=EPISODE_COLUMNS)
         self.events = pd.DataFrame(raw["events"], columns=["kind", "time", "x", "xdot", "belt_velocity"])
         self._segments = raw["segments"]  # the library's segments, whole (every field)
@@ -78,7 +83,7 @@ class Realization:
         return ax
 
 
-def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, switch_times=None,
+def simulate(*, seed=1, realization=None, x0=None, xdot0=None, belt_start=None, switch_times=None,
              switch_levels=None, belt_levels=None, belt_rates=None, belt_generator=None,
              max_events=None, common_random_numbers=False, **model):
     """One realization of the stick-slip oscillator, exactly as
@@ -88,7 +93,13 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
 
     Model parameters (keyword arguments, any subset):
 {params}
-    seed: master seed (default 1); realization: index of the realization (default 0).
+    seed: master seed (default 1); realization: index of the realization
+        (default 0; required when a parameter is a law).
+    A parameter may be a law's text, e.g. mu="gamma(mean=5,cv=0.2)": the
+        realization is then realization `realization` of the sweep point
+        with that law, its values drawn as the sweep draws them (returned in
+        .drawn); x0, xdot0 and switch_times cannot be fixed then, and
+        belt_start is the sweep's (the law of the starting level).
     x0: initial position [m]; xdot0: initial velocity [m/s]; default: drawn
         from U[-1, 1] as in the sweep.
     belt_start: the level at t = 0, an int: +1 or -1 (first / second of two
@@ -110,9 +121,9 @@ def simulate(*, seed=1, realization=0, x0=None, xdot0=None, belt_start=None, swi
     arguments = _replay_arguments("simulate", model, seed, x0, xdot0, belt_start, switch_times,
                                   switch_levels, belt_levels, belt_rates, belt_generator,
                                   max_events, common_random_numbers)
-    realization = whole("realization", realization)
+    realization = optional(whole, "realization", realization)
     raw = extension.replay(**arguments, realization=realization)
-    return Realization(arguments["seed"], realization, raw)
+    return Realization(arguments["seed"], realization or 0, raw)
 
 
 def _replay_arguments(function, model, seed, x0, xdot0, belt_start, switch_times, switch_levels,
