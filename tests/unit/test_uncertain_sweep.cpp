@@ -217,6 +217,13 @@ TEST(UncertainSweep, ValidationRefusesLawsThatCanLeaveTheDomain) {
               std::string::npos)
         << e.what();
   }
+  // The base's own value of an uncertain parameter is not used: mu_k = mu = 5
+  // above mu_s = 4.5 is no error when mu_k has a law below mu_s.
+  s = family_sweep();
+  s.base.kinetic_friction = 0;
+  s.base.static_friction = 4.5;
+  s.uncertain = {law("mu_k", "uniform(3,4)")};
+  EXPECT_NO_THROW(validate(s));
   s = gamma_mu_sweep();
   s.uncertain = {law("lambda", "loguniform(1,1e7)")};  // the event bound at the largest draw
   s.axes = {{"k", {40.0}}};
@@ -275,6 +282,16 @@ TEST(UncertainSweep, RecordsCsvHasAColumnPerUncertainParameter) {
   std::filesystem::remove(path);
   EXPECT_EQ(header.rfind("point,lambda,mu,realization,", 0), 0u) << header;
   EXPECT_EQ(first.rfind(fmt::format("0,1,{},0,", rs.records[0][0].drawn_values[0]), 0), 0u) << first;
+  // summary.json names each law by its canonical text.
+  const std::string json = io::summary_json(rs, io::run_metadata{});
+  const auto at = json.find("\"uncertain_parameters\"");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(json.find("\"mu\": \"gamma(mean=5,cv=0.2)\"", at), std::string::npos) << json.substr(at, 80);
+  // ... and gives mu (with mu_s, mu_k) no single value in the base.
+  const auto base = json.find("\"base\"");
+  ASSERT_NE(base, std::string::npos);
+  EXPECT_NE(json.find("\"mu\": null", base), std::string::npos) << json.substr(base, 200);
+  EXPECT_LT(json.find("\"mu\": null", base), json.find("\"swept\"", base));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "stickslip/parameters.hpp"
@@ -44,6 +45,13 @@ namespace stickslip {
 // cost model of the ETA (expected_events). Realizations never run it.
 [[nodiscard]] model_parameters with_medians(const model_parameters& base,
                                             std::span<const uncertain_parameter> laws);
+
+// The recorded parameters (recorded_parameter_names) a law sets, which
+// therefore have no single value: each law's symbol, and mu_s and mu_k when
+// mu has a law (they resolve to it). Writers leave them out of the values
+// of the base and name the laws instead.
+[[nodiscard]] std::vector<std::string> symbols_set_by_laws(
+    std::span<const uncertain_parameter> laws);
 
 // The stream key of a grid point whose parameters include laws: point_key of
 // `base` mixed with the canonical text of every law, so that two points

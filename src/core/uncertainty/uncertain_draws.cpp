@@ -78,6 +78,15 @@ model_parameters with_medians(const model_parameters& base,
   return p.is_paper_model() ? paper_form(p) : p;
 }
 
+std::vector<std::string> symbols_set_by_laws(std::span<const uncertain_parameter> laws) {
+  std::vector<std::string> out;
+  for (const auto& u : laws) {
+    out.push_back(u.symbol);
+    if (u.symbol == "mu") out.insert(out.end(), {"mu_s", "mu_k"});
+  }
+  return out;
+}
+
 std::uint64_t uncertain_point_key(const model_parameters& base,
                                   std::span<const uncertain_parameter> laws) noexcept {
   // The base at the medians: its other values enter as in point_key, the

@@ -18,6 +18,7 @@
 #include "json_emitter.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -242,11 +243,14 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
                      const output_options& options) {
   const auto& s = rs.spec;
   j.begin_object(layout::multi_line);
-  // A swept parameter has no single value: null in "base", named in "swept".
+  // A swept parameter has no single value: null in "base", named in "swept";
+  // nor has one set by a law: null, named in "uncertain_parameters".
   const auto swept = swept_symbols(s);
+  auto without_value = swept;
+  for (auto& sym : symbols_set_by_laws(s.uncertain)) without_value.push_back(sym);
   j.key("base");
   j.begin_object();
-  emit_model_members(j, resolved_base(rs), swept, meaningless_parameters(rs));
+  emit_model_members(j, resolved_base(rs), without_value, meaningless_parameters(rs));
   j.end_object();
   j.key("swept");
   j.begin_array();

@@ -19,6 +19,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
 #include "writers_detail.hpp"
 
@@ -708,9 +709,9 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   if (!uncertain.empty()) f.putAtt("uncertain_parameters", uncertain);
   const auto sw = swept_symbols(s);
   const auto omitted = meaningless_parameters(rs);
+  const auto by_laws = symbols_set_by_laws(s.uncertain);
   const auto is_uncertain = [&](const char* sym) {
-    return std::any_of(s.uncertain.begin(), s.uncertain.end(),
-                       [&](const auto& u) { return u.symbol == sym; });
+    return std::find(by_laws.begin(), by_laws.end(), sym) != by_laws.end();
   };
   for (const char* sym : recorded_parameter_names)
     if (std::find(sw.begin(), sw.end(), sym) == sw.end() && !is_uncertain(sym) &&
