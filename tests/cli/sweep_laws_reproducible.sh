@@ -1,6 +1,6 @@
 # A sweep with an uncertain parameter (issue 26: laws and grid axes combined)
 # is bit-identical for 1 and 2 threads, from a TOML config and from flags,
-# after kill -9 and --resume, and under `mpirun -np 2`; --resume on its
+# after kill -9 and --resume, from 3 merged shards, and under `mpirun -np 2`; --resume on its
 # finished outputs recognizes them (the resolved config, laws included,
 # reads back exactly); and every realization replays alone with `simulate
 # --realization r`, drawing the same value as its record.
@@ -60,6 +60,12 @@ same "kill -9 ($kills kills) and --resume" killed
 ((kills > 0)) || fail "no run was killed before it finished (give more realizations)"
 echo "kill -9 / --resume: $kills kills"
 
+# Shards merged with `stickslip merge`.
+for i in 0 1 2; do
+  run_ok "${args[@]}" --threads 1 --shard $i/3 -o shard$i
+done
+run_ok merge -o merged shard0 shard1 shard2 && same "3 shards merged" merged
+
 if [[ -n $MPIRUN ]]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   checks=$((checks + 1))
@@ -100,4 +106,17 @@ for row in rows[::step]:
         assert got == want, (row["point"], row["realization"], name, got, want)
 PYEOF
 checks=$((checks + 1))
+
+# With common random numbers realization r of every point draws the same
+# value, and simulate --common-random-numbers replays it.
+run_ok sweep --k 40 --lambda 1,3.8 --mu 'uniform(2,7)' --realizations 30 --seed 5 --records \
+  --common-random-numbers -o crn
+first=$(awk -F, '$1 == 0 && $4 == 7 {print $3}' crn/records.csv)
+second=$(awk -F, '$1 == 1 && $4 == 7 {print $3 "," $8}' crn/records.csv)
+expect_eq "realization 7 draws the same mu at both points" "$first" "${second%,*}"
+run_ok simulate --k 40 --lambda 3.8 --mu 'uniform(2,7)' --seed 5 --realization 7 \
+  --common-random-numbers --format json
+"$PY" -c 'import json, sys; d = json.load(open(sys.argv[1])); print(repr(d["drawn"]["mu"]) + "," + str(d["statistics"]["sticks"]))' \
+  "$WORK/stdout" >crn.replay
+expect_eq "simulate --common-random-numbers replays realization 7" "$(cat crn.replay)" "$second"
 finish
