@@ -269,6 +269,51 @@ TEST(ToToml, RoundTripsLawsExactly) {
   EXPECT_EQ(to_toml(parse_sweep_toml(text, "laws.toml")), text);
 }
 
+// A sensitivity study is a sweep_spec too, and its resolved config in
+// sensitivity.nc identifies it on resume: its statistic, and its half-width
+// without a target statistic (the study's stop rule), read back exactly; so
+// do a half-width or a min_realizations that no stop rule uses.
+TEST(ToToml, RoundTripsSensitivityStudies) {
+  sweep_spec fixed_rows;
+  set_law(fixed_rows, "mu", parse_law("uniform(2,7)", "test"));
+  set_law(fixed_rows, "lambda", parse_law("loguniform(0.5,10)", "test"));
+  fixed_rows.base.stiffness = 40;
+  fixed_rows.sensitivity_statistic = "R";
+  fixed_rows.realizations = 4096;
+  fixed_rows.block_size = 64;
+  sweep_spec to_target = fixed_rows;
+  to_target.target_halfwidth = 0.02 / 3;
+  to_target.min_realizations = 777;
+  to_target.realizations = 1'000'000;
+  sweep_spec only_min;
+  only_min.min_realizations = 5;
+  sweep_spec only_halfwidth;
+  only_halfwidth.target_halfwidth = 1e-300;
+  for (const auto& s : {fixed_rows, to_target, only_min, only_halfwidth, uncertain_spec()}) {
+    const auto text = to_toml(s);
+    EXPECT_EQ(parse_sweep_toml(text, "sensitivity.toml"), s) << text;
+    EXPECT_EQ(to_toml(parse_sweep_toml(text, "sensitivity.toml")), text);
+  }
+  EXPECT_THAT(to_toml(fixed_rows), AllOf(HasSubstr("sensitivity_statistic = \"R\""),
+                                         Not(HasSubstr("target_halfwidth")),
+                                         Not(HasSubstr("min_realizations"))));
+  EXPECT_THAT(to_toml(to_target), AllOf(HasSubstr("target_halfwidth = 0.006666666666666667"),
+                                        HasSubstr("min_realizations = 777")));
+  // Without these keys a configuration reads and prints as before.
+  EXPECT_THAT(to_toml(sweep_spec{}), AllOf(Not(HasSubstr("sensitivity_statistic")),
+                                           Not(HasSubstr("target_halfwidth")),
+                                           Not(HasSubstr("min_realizations"))));
+  EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[sweep]\ntarget_halfwidth = 0\n", "h.toml"); }),
+              AllOf(HasSubstr("sweep.target_halfwidth at h.toml:2:"), HasSubstr("> 0")));
+  EXPECT_THAT(error_of([] {
+                (void)parse_sweep_toml("[sweep]\ntarget_ci = \"R:0.1\"\ntarget_halfwidth = 0.2\n",
+                                       "h.toml");
+              }),
+              AllOf(HasSubstr("sweep.target_halfwidth"), HasSubstr("target_ci")));
+  EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[sweep]\nsensitivity_statistic = 1\n", "h.toml"); }),
+              AllOf(HasSubstr("sweep.sensitivity_statistic"), HasSubstr("naming a statistic")));
+}
+
 TEST(SetLaw, KeepsOneCanonicalOrderAndReplacesAxesValuesAndLaws) {
   sweep_spec s;
   s.axes = {{"lambda", {1.0, 3.8}}, {"mu", {2.0, 5.0}}};

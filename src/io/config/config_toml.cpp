@@ -337,10 +337,23 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       parse_target_ci(dotted, n.as_string()->get(), s);
     } else if (key == "min_realizations") {
       s.min_realizations = read_u64(cx, dotted, n, 2, max_realizations);
+    } else if (key == "sensitivity_statistic") {
+      // A sensitivity study (uncertainty/sensitivity_design.hpp): the
+      // statistic whose Sobol' indices are estimated; realizations = rows.
+      if (!n.is_string()) cx.wrong(dotted, n, "a string naming a statistic, e.g. \"R\"");
+      s.sensitivity_statistic = n.as_string()->get();
+    } else if (key == "target_halfwidth") {
+      // The sensitivity study's stop rule (every index's 95 % half-width);
+      // a sweep's is target_ci, which carries its own half-width.
+      if (t.contains("target_ci"))
+        cx.wrong(dotted, n, "absent when target_ci is given (its half-width is target_ci's)");
+      s.target_halfwidth = read_number(cx, dotted, n);
+      if (!(s.target_halfwidth > 0.0)) cx.wrong(dotted, n, "a number > 0");
     } else
       cx.unknown_key(dotted, k,
                      "[sweep] takes realizations, seed, block_size, max_events, keep_records, "
-                     "engine, common_random_numbers, target_ci, min_realizations");
+                     "engine, common_random_numbers, target_ci, min_realizations, "
+                     "sensitivity_statistic, target_halfwidth");
   }
 }
 
@@ -475,9 +488,17 @@ std::string to_toml(const sweep_spec& s) {
       s.keep_records, to_string(s.engine));
   // Written only when set, so configurations without them read as before.
   if (s.common_random_numbers) out += "common_random_numbers = true\n";
+  // A half-width without a target statistic is a sensitivity study's stop
+  // rule; min_realizations whenever a stop rule or its own value needs it.
   if (!s.target_statistic.empty())
-    out += fmt::format("target_ci = \"{}:{}\"\nmin_realizations = {}\n", s.target_statistic,
-                       toml_float(s.target_halfwidth), toml_u64(s.min_realizations));
+    out += fmt::format("target_ci = \"{}:{}\"\n", s.target_statistic, toml_float(s.target_halfwidth));
+  else if (s.target_halfwidth != 0.0)
+    out += fmt::format("target_halfwidth = {}\n", toml_float(s.target_halfwidth));
+  if (!s.target_statistic.empty() || s.target_halfwidth != 0.0 ||
+      s.min_realizations != sweep_spec{}.min_realizations)
+    out += fmt::format("min_realizations = {}\n", toml_u64(s.min_realizations));
+  if (!s.sensitivity_statistic.empty())
+    out += fmt::format("sensitivity_statistic = \"{}\"\n", s.sensitivity_statistic);
   out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
                      toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
                      toml_float(s.histograms.slip_duration_max));
