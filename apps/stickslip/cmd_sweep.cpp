@@ -67,46 +67,6 @@ struct sweep_options {
               *bins_opt = nullptr, *records_opt = nullptr, *engine_opt = nullptr;
 };
 
-// Grid axes that come from flags: lambda first, then mu, then the others in
-// the order they were given.
-int axis_rank(const std::string& symbol) {
-  return symbol == "lambda" ? 0 : symbol == "mu" ? 1 : 2;
-}
-
-// Applies the model flags to `spec`. A single number sets the fixed value
-// (and drops any axis or law of that parameter from the file); a list or a
-// lin:/log: range makes an axis, replacing the file's values in place or
-// appending a new axis after the file's axes; a law makes the parameter
-// uncertain (io::set_law: it replaces the file's axis or law).
-void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec) {
-  spec.base = apply_belt_flags(f, std::move(spec.base));
-  std::vector<axis> added;
-  for (const auto* flag : given_model_flags(cmd, f)) {
-    const auto& sym = flag->symbol;
-    if (holds_law(*flag)) {
-      io::set_law(spec, sym, parse_law(flag->text, flag_name(sym)));
-      continue;
-    }
-    io::drop_law(spec, sym);
-    auto in_file = std::find_if(spec.axes.begin(), spec.axes.end(),
-                                [&](const axis& a) { return a.name == sym; });
-    if (io::is_single_value(flag->text)) {
-      set_parameter(spec.base, sym, io::parse_number(flag_label(sym), flag->text));
-      if (in_file != spec.axes.end()) spec.axes.erase(in_file);
-      continue;
-    }
-    auto values = io::parse_grid(flag_name(sym), flag->text, io::grid_domain_of(sym));
-    if (in_file != spec.axes.end())
-      in_file->values = std::move(values);
-    else
-      added.push_back({sym, std::move(values)});
-  }
-  std::stable_sort(added.begin(), added.end(), [](const axis& a, const axis& b) {
-    return axis_rank(a.name) < axis_rank(b.name);
-  });
-  spec.axes.insert(spec.axes.end(), added.begin(), added.end());
-}
-
 // --common-random-numbers, --target-ci STAT:H [--max-realizations N]
 // [--min-realizations N]. With a target, the cap per point is
 // --max-realizations (default 10^6), not --realizations.
@@ -136,8 +96,12 @@ void apply_precision_flags(const sweep_options& o, sweep_spec& spec) {
 // (a) The resolved, validated spec: defaults < --config file < --preset < flags.
 sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   sweep_spec spec = o.config_opt->count() > 0 ? io::read_sweep_toml_file(o.config) : sweep_spec{};
-  spec.base = apply_preset(o.model, spec.base);
-  apply_model_flags(cmd, o.model, spec);
+  if (!spec.sensitivity_statistic.empty() ||
+      (spec.target_statistic.empty() && spec.target_halfwidth != 0.0))
+    throw invalid_value("--config", o.config,
+                        "a sweep's configuration: sensitivity_statistic and target_halfwidth "
+                        "belong to a sensitivity study (`stickslip sensitivity`), not a sweep");
+  apply_model_flags(cmd, o.model, spec, true);
   spec.seed = resolve_seed(o.model, spec.seed);
   spec.max_events = resolve_max_events(o.model, spec.max_events);
   if (o.realizations_opt->count() > 0)

@@ -161,6 +161,51 @@ model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
   return base;
 }
 
+namespace {
+
+// Grid axes that come from flags: lambda first, then mu, then the others in
+// the order they were given.
+int axis_rank(const std::string& symbol) {
+  return symbol == "lambda" ? 0 : symbol == "mu" ? 1 : 2;
+}
+
+}  // namespace
+
+void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
+                       bool grids_allowed) {
+  spec.base = apply_belt_flags(f, apply_preset(f, std::move(spec.base)));
+  std::vector<axis> added;
+  for (const auto* flag : given_model_flags(cmd, f)) {
+    const auto& sym = flag->symbol;
+    if (holds_law(*flag)) {
+      io::set_law(spec, sym, parse_law(flag->text, flag_name(sym)));
+      continue;
+    }
+    io::drop_law(spec, sym);
+    auto in_spec = std::find_if(spec.axes.begin(), spec.axes.end(),
+                                [&](const axis& a) { return a.name == sym; });
+    if (io::is_single_value(flag->text)) {
+      set_parameter(spec.base, sym, io::parse_number(flag_label(sym), flag->text));
+      if (in_spec != spec.axes.end()) spec.axes.erase(in_spec);
+      continue;
+    }
+    if (!grids_allowed)
+      throw invalid_value(flag_label(sym), flag->text,
+                          fmt::format("a value or a law such as 'uniform(2,7)': `stickslip {}` "
+                                      "has no grid axes (`stickslip sweep` takes grids)",
+                                      cmd.get_name()));
+    auto values = io::parse_grid(flag_name(sym), flag->text, io::grid_domain_of(sym));
+    if (in_spec != spec.axes.end())
+      in_spec->values = std::move(values);
+    else
+      added.push_back({sym, std::move(values)});
+  }
+  std::stable_sort(added.begin(), added.end(), [](const axis& a, const axis& b) {
+    return axis_rank(a.name) < axis_rank(b.name);
+  });
+  spec.axes.insert(spec.axes.end(), added.begin(), added.end());
+}
+
 std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback) {
   if (!f.seed_option || f.seed_option->count() == 0) return fallback;
   return io::parse_unsigned("--seed", f.seed_text);

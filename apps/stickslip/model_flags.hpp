@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "stickslip/parameters.hpp"
+#include "stickslip/sweep.hpp"
 #include "stickslip/uncertainty/parameter_law.hpp"
 
 namespace stickslip::app {
@@ -75,6 +76,19 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
 // cannot use one, and `instead` says what to do.
 void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& command,
                  const std::string& instead);
+
+// Applies --preset, the belt flags and every given parameter flag to `spec`,
+// each flag's text read as one of three things:
+// - a law (looks_like_law): the parameter is uncertain (io::set_law, which
+//   replaces an axis, value or law the spec had for it);
+// - one number: the fixed value (dropping the spec's axis or law of it);
+// - a grid (a list, lin:, log:): an axis, replacing the spec's axis of that
+//   parameter in place or appended after its axes (lambda, then mu, then the
+//   others in the order given). Without `grids_allowed` (a command that runs
+//   one point, such as `sensitivity`) a grid is refused, exit 2.
+// Bad text exits 2 naming the flag. Nothing is validated beyond the flag.
+void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
+                       bool grids_allowed);
 
 // `base` with every given flag applied as one number (and the belt flags),
 // not validated. Flags that hold laws are left out (given_laws reads them).

@@ -51,6 +51,14 @@ cat >domain.toml <<'TOML'
 m = "normal(mean=1,sd=0.1)"
 TOML
 expect_bad "--m: normal(mean=1,sd=0.1)|m must be > 0" sweep --config domain.toml
+# a sensitivity study's resolved config is not a sweep's
+cat >study.toml <<'TOML'
+[model]
+mu = "uniform(2,7)"
+[sweep]
+sensitivity_statistic = "R"
+TOML
+expect_bad "--config: 'study.toml'|sensitivity_statistic|stickslip sensitivity" sweep --config study.toml
 # simulate: a law needs --realization; fixed inputs do not go with it
 expect_bad "--realization|a realization index R|--mu is gamma(mean=5,cv=0.2)" \
   simulate --mu 'gamma(mean=5,cv=0.2)'
