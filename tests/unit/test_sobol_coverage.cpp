@@ -206,9 +206,15 @@ void print(const std::string& title, const std::vector<coverage_row>& table) {
 
 // N = 4000 rows: the pick-freeze products of the Ishigami function
 // (x_3^4 terms) are skewed, and the delta method needs N in the thousands
-// for its normal approximation to hold at the 95 % level.
+// for its normal approximation to hold at the 95 % level. At N = 4000 the
+// true coverage of every index and share below, both forms, is 94.2 % to
+// 95.6 % (4000 runs each with other seeds, standard error 0.35 %).
+// R = 2000 runs: an index with true coverage 94.2 % then falls below 93 %
+// with probability ~1 % (2.3 standard errors); with R = 1000 it would be
+// ~5 % per index, so that almost any reseeding of the whole table would
+// fail somewhere.
 constexpr std::size_t rows_per_run = 4000;
-constexpr std::size_t replications = 1000;
+constexpr std::size_t replications = 2000;
 
 void check_coverage(const test_function& t, double sigma, std::uint64_t seed,
                     first_order_form form, const std::string& form_name,
@@ -248,11 +254,10 @@ TEST(SobolCoverage, GFunctionWithNoise) {
                  "OpenTURNS Saltelli");
 }
 
-// Saltelli 2010's form is more skewed than OpenTURNS's for the large first
-// index of the g-function (92.6 % at N = 4000): N = 8000.
+// The other first-order form (sobol.hpp), through the same intervals.
 TEST(SobolCoverage, Saltelli2010FormWithNoise) {
-  check_coverage(ishigami(), 2.0, 15, first_order_form::saltelli_2010, "Saltelli 2010", 8000);
-  check_coverage(g_function(), 0.5, 16, first_order_form::saltelli_2010, "Saltelli 2010", 8000);
+  check_coverage(ishigami(), 2.0, 15, first_order_form::saltelli_2010, "Saltelli 2010");
+  check_coverage(g_function(), 0.5, 16, first_order_form::saltelli_2010, "Saltelli 2010");
 }
 
 // The accumulator's algebra.
