@@ -242,6 +242,10 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
   realizations += o.realizations;
   stick_fraction_causal_score += o.stick_fraction_causal_score;
   for (const auto& c : counters()) c.of(*this) += c.value(o);
+  if (sensitivity.inputs() == 0)
+    sensitivity = o.sensitivity;  // a default-constructed merger, or no design
+  else if (o.sensitivity.inputs() == sensitivity.inputs())
+    sensitivity += o.sensitivity;
   return *this;
 }
 

@@ -16,6 +16,7 @@
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/model/model_realization.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/uncertainty/uncertain_realization.hpp"
 
 namespace stickslip {
@@ -86,6 +87,10 @@ void validate(const sweep_spec& s) {
   for (const auto& ax : s.axes)
     if (!ax.values.empty() && is_parameter_symbol(ax.name))
       set_parameter(first, canonical_symbol(ax.name), ax.values.front());
+  // Uncertain parameters: their laws first; then their medians stand for
+  // them (the base's values of them are not used).
+  validate_uncertain_points(s);
+  if (!s.uncertain.empty()) first = with_medians(first, s.uncertain);
   validate(first);
   validate(s.initial);
   const std::size_t levels = s.base.levels().size();
@@ -107,7 +112,7 @@ void validate(const sweep_spec& s) {
     }
   }
   check_coupled_axes(s, first);
-  validate_uncertain_points(s);
+  validate_sensitivity(s);
   for (const auto& ax : s.axes)
     for (const auto& other : s.axes)
       if (canonical_symbol(ax.name) == "mu" &&
@@ -117,6 +122,13 @@ void validate(const sweep_spec& s) {
                                 " axis: mu sets mu_s and mu_k both");
   if (s.realizations < 1)
     throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
+  if (!target_quantity(s) && !is_sensitivity(s) && s.target_halfwidth != 0.0)
+    throw invalid_parameter("target half-width", s.target_halfwidth,
+                            "0 (unset) without a target statistic (target_ci) or a sensitivity "
+                            "study: there is nothing to stop on");
+  if (is_sensitivity(s) && s.target_halfwidth != 0.0 &&
+      (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth)))
+    throw invalid_parameter("target half-width", s.target_halfwidth, "finite and > 0");
   if (target_quantity(s)) {
     if (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth))
       throw invalid_parameter("target CI half-width", s.target_halfwidth, "finite and > 0");
@@ -222,6 +234,7 @@ work_unit unit_at(const sweep_spec& s, std::uint64_t i) noexcept {
 // undamped two-level belts), simulate_model otherwise
 // and for sweep_engine::reference.
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
+  if (is_sensitivity(s)) return simulate_block_sensitivity(s, u);
   if (!s.uncertain.empty()) return simulate_block_uncertain(s, u);
   const auto p = point_parameters(s, u.point);
   if (!p.is_paper_model()) {
@@ -234,6 +247,9 @@ block_result simulate_block(const sweep_spec& s, const work_unit& u) {
 }
 
 std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
+  // Points with laws (and sensitivity designs) run one realization at a
+  // time: no lanes to keep busy, and a finer grain for the stop rules.
+  if (!s.uncertain.empty()) return 1;
   return s.engine == sweep_engine::fast ? 20 : 1;  // 20 x 50 realizations
 }
 
@@ -328,6 +344,7 @@ const quantity_info* target_quantity(const sweep_spec& s) {
 }
 
 bool meets_target(const sweep_spec& s, const point_statistics& p) {
+  if (is_sensitivity(s)) return meets_sensitivity_target(s, p);
   const quantity_info* q = target_quantity(s);
   if (!q || p.realizations < s.min_realizations) return false;
   return (p.*q->moments).ci95_half_width() <= s.target_halfwidth;
@@ -429,7 +446,9 @@ double expected_events(const model_parameters& p) {
 double expected_unit_cost(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
-  return static_cast<double>(last - first) * expected_events(point_parameters(s, u.point));
+  // A design row runs d + 3 realizations.
+  const double runs = is_sensitivity(s) ? static_cast<double>(runs_per_row(s)) : 1.0;
+  return runs * static_cast<double>(last - first) * expected_events(point_parameters(s, u.point));
 }
 
 std::vector<std::size_t> points_by_cost(const sweep_spec& s) {

@@ -1,4 +1,5 @@
 #include "stickslip/run/journaled_run.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
 
 #include <fmt/format.h>
 
@@ -183,7 +184,9 @@ std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
   std::string difference;
   try {
     const sweep_spec theirs = io::parse_sweep_toml(
-        meta->resolved_config, (std::filesystem::path(dir) / io::results_file).string());
+        meta->resolved_config,
+        (std::filesystem::path(dir) /
+         (is_sensitivity(spec) ? io::sensitivity_file : io::results_file)).string());
     if (!same_results(theirs, spec)) difference = first_difference(theirs, spec);
   } catch (const error& e) {
     difference = fmt::format("its resolved_config does not parse here: {}", e.what());
@@ -194,6 +197,7 @@ std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
                             "those results vs this command){}",
                             dir, difference, nothing_to_resume));
   std::vector<std::string> wanted{io::results_file, io::summary_json_file, io::summary_csv_file};
+  if (is_sensitivity(spec)) wanted = {io::sensitivity_file, io::summary_json_file};
   if (spec.keep_records) wanted.push_back(io::records_csv_file);
   for (const auto& name : wanted) {
     const auto path = (std::filesystem::path(dir) / name).string();

@@ -11,12 +11,13 @@
 namespace stickslip::io {
 
 // The results of a finished sweep that `dir` holds now (results.nc,
-// summary.json, summary.csv, records.csv; the journal is not a result).
+// summary.json, summary.csv, records.csv, and a sensitivity study's
+// sensitivity.nc; the journal is not a result).
 [[nodiscard]] std::vector<std::string> existing_sweep_results(const std::string& dir);
 
 // The run metadata (resolved configuration, version, git revision, command
-// line, creation time) that DIR/results.nc of a finished sweep carries in its
-// global attributes; nullopt, with the reason in `problem`, when the file is
+// line, creation time) that DIR/results.nc of a finished sweep (or
+// DIR/sensitivity.nc of a sensitivity study) carries in its global attributes; nullopt, with the reason in `problem`, when the file is
 // missing, unreadable or lacks the resolved configuration.
 [[nodiscard]] std::optional<run_metadata> read_finished_metadata(const std::string& dir,
                                                                  std::string* problem = nullptr);

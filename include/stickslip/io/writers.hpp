@@ -21,6 +21,9 @@ inline constexpr const char* results_file = "results.nc";
 inline constexpr const char* summary_json_file = "summary.json";
 inline constexpr const char* summary_csv_file = "summary.csv";
 inline constexpr const char* records_csv_file = "records.csv";
+// A sensitivity study (uncertainty/sensitivity_design.hpp) writes
+// sensitivity.nc and summary.json instead of the sweep's files.
+inline constexpr const char* sensitivity_file = "sensitivity.nc";
 
 // results.nc: NetCDF-4, one dimension per swept axis (coordinate variables
 // named after the parameter symbols), statistics as variables with units and
@@ -48,8 +51,16 @@ void write_summary_csv(const result_set& rs, const std::string& path);
 // throws stickslip::error with exit_code::invalid_input otherwise).
 void write_records_csv(const result_set& rs, const std::string& path);
 
+// What `sensitivity --format json` prints: the statistic, the realizations
+// and samples, the laws, every input's indices of the mean response
+// ("of": "mean", first and total order) and in the response ("of":
+// "response", first order), each with its 95 % interval, and the shares.
+// summary.json of a sensitivity study is this with a "run" object added.
+[[nodiscard]] std::string sensitivity_json(const result_set& rs);
+
 // All of the above into directory `dir` (created if missing; records.csv
-// only when spec.keep_records). Writes every file to a temporary name first
+// only when spec.keep_records; sensitivity.nc and summary.json for a
+// sensitivity study). Writes every file to a temporary name first
 // and renames them only when all succeeded. On failure nothing new is left in
 // `dir` (and `dir` itself is removed again if this call created it).
 void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,

@@ -13,8 +13,10 @@ namespace stickslip::io {
 namespace fs = std::filesystem;
 
 std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::string* problem) {
-  const auto path = (fs::path(dir) / results_file).string();
+  auto path = (fs::path(dir) / results_file).string();
   std::error_code ec;
+  if (!fs::is_regular_file(path, ec) && fs::is_regular_file(fs::path(dir) / sensitivity_file, ec))
+    path = (fs::path(dir) / sensitivity_file).string();
   if (!fs::is_regular_file(path, ec)) {
     if (problem) *problem = "'" + path + "' is missing";
     return std::nullopt;

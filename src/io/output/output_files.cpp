@@ -13,7 +13,8 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> existing_sweep_results(const std::string& dir) {
   std::vector<std::string> found;
-  for (const char* name : {results_file, summary_json_file, summary_csv_file, records_csv_file}) {
+  for (const char* name : {results_file, summary_json_file, summary_csv_file, records_csv_file,
+                           sensitivity_file}) {
     const auto path = (fs::path(dir) / name).string();
     std::error_code ec;
     if (fs::exists(fs::symlink_status(path, ec))) found.push_back(path);

@@ -10,6 +10,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -25,7 +26,19 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
     std::string path;
     std::function<void(const std::string&)> write_temporary;
   };
-  std::vector<output> outputs{
+  std::vector<output> outputs;
+  if (is_sensitivity(rs.spec)) {
+    outputs = {
+        {in_dir(sensitivity_file),
+         [&](const std::string& p) { detail::write_sensitivity_temporary(rs, meta, p); }},
+        {in_dir(summary_json_file),
+         [&](const std::string& p) {
+           detail::write_text_temporary(
+               p, [&](detail::text_sink& out) { detail::fill_sensitivity_json(out, rs, &meta); });
+         }},
+    };
+  } else {
+    outputs = {
       {in_dir(results_file),
        [&](const std::string& p) { detail::write_netcdf_temporary(rs, meta, p); }},
       {in_dir(summary_json_file),
@@ -38,7 +51,8 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
          detail::write_text_temporary(
              p, [&](detail::text_sink& out) { detail::fill_summary_csv(out, rs); });
        }},
-  };
+    };
+  }
   if (rs.spec.keep_records)
     outputs.push_back({in_dir(records_csv_file), [&](const std::string& p) {
                          detail::write_text_temporary(p, [&](detail::text_sink& out) {

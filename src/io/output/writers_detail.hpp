@@ -56,5 +56,10 @@ void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata&
                        const output_options& options);
 void fill_summary_csv(text_sink& out, const result_set& rs);
 void fill_records_csv(text_sink& out, const result_set& rs);
+// A sensitivity study's outputs (writer_sensitivity.cpp); `meta` adds the
+// "run" object of summary.json.
+void write_sensitivity_temporary(const result_set& rs, const run_metadata& meta,
+                                 const std::string& path);
+void fill_sensitivity_json(text_sink& out, const result_set& rs, const run_metadata* meta);
 
 }  // namespace stickslip::io::detail

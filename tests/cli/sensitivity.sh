@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# `stickslip sensitivity`: the outputs (sensitivity.nc with an `input`
+# dimension, summary.json, --format json, the figure), bit-identical indices
+# for 1 and 2 threads, after kill -9 + --resume and from shards + merge, and
+# bad input refused with exit 2 and nothing written.
+source "$(dirname "$0")/lib.sh" "$@"
+A=(sensitivity --k 40 --ta 20 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 600
+   --block-size 20 --seed 3)
+
+indices() {  # the estimates of summary.json (no timings, no run metadata)
+  "$PY" - "$1" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+print(json.dumps({k: d[k] for k in ("statistic", "realizations", "samples", "laws", "mean",
+                                     "variance", "intrinsic_variance", "indices", "shares")},
+                 sort_keys=True))
+PY
+}
+
+run_ok "${A[@]}" --threads 1 -o one --format json
+cp "$WORK/stdout" one.json
+"$PY" - one.json <<'PY' || fail "--format json lacks what the issue lists"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["statistic"] == "R" and d["realizations"] == 600 * 5 and d["samples"] == 600
+assert isinstance(d["elapsed_seconds"], float)
+means = [i for i in d["indices"] if i["of"] == "mean"]
+resp = [i for i in d["indices"] if i["of"] == "response"]
+assert [i["input"] for i in means] == ["mu", "lambda"] and len(resp) == 2
+for i in means:
+    for k in ("first_order", "total_order"):
+        lo, hi = i[k + "_ci95"]
+        assert lo <= i[k] <= hi, i
+for k in ("parameters", "intrinsic"):
+    lo, hi = d["shares"][k + "_ci95"]
+    assert lo <= d["shares"][k] <= hi
+assert abs(d["shares"]["parameters"] + d["shares"]["intrinsic"] - 1) < 1e-12
+PY
+pass
+for f in sensitivity.nc summary.json; do
+  [[ -f one/$f ]] || fail "one/$f missing"
+done
+if command -v gnuplot >/dev/null; then
+  for f in sensitivity.png sensitivity.svg sensitivity.dat sensitivity.gp; do
+    [[ -s one/$f ]] || fail "one/$f missing or empty"
+  done
+fi
+"$PY" - one/sensitivity.nc <<'PY' || fail "sensitivity.nc lacks its variables"
+import sys, netCDF4
+with netCDF4.Dataset(sys.argv[1]) as ds:
+    assert ds.dimensions["input"].size == 2
+    assert list(ds["input"][:]) == ["mu", "lambda"]
+    for v in ("first_order", "total_order", "response_first_order"):
+        for s in ("", "_ci95_low", "_ci95_high"):
+            assert ds[v + s].dimensions == ("input",)
+    for v in ("parameter_share", "intrinsic_share"):
+        float(ds[v][...])
+    assert "uniform" in ds.resolved_config
+PY
+pass
+
+run_ok "${A[@]}" --threads 2 -o two
+expect_eq "indices with 1 and 2 threads" "$(indices two/summary.json)" "$(indices one/summary.json)"
+
+# kill -9 part-way, then --resume: the same indices.
+"$BIN" "${A[@]/600/3000}" --threads 2 -o killed --checkpoint-interval 0 2>/dev/null & pid=$!
+sleep 0.7; kill -9 $pid 2>/dev/null; { wait $pid; } 2>/dev/null
+run_ok "${A[@]/600/3000}" --threads 2 -o straight
+run_ok "${A[@]/600/3000}" --threads 1 -o killed --resume
+expect_eq "indices after kill -9 and --resume" "$(indices killed/summary.json)" \
+  "$(indices straight/summary.json)"
+
+# Shards + merge.
+run_ok "${A[@]}" --shard 0/2 -o shard0
+run_ok "${A[@]}" --shard 1/2 -o shard1
+run_ok merge shard0 shard1 -o merged
+expect_eq "indices from shards + merge" "$(indices merged/summary.json)" "$(indices one/summary.json)"
+
+# Bad input: exit 2, nothing written.
+bad() {  # bad "phrases" ARGS...
+  local phrases=$1; shift
+  "$BIN" "$@" -o "bad_$checks" >"$WORK/stdout" 2>"$WORK/stderr"
+  expect_eq "exit code of $*" "$?" "2"
+  [[ -e bad_$checks ]] && fail "'$*' failed but wrote bad_$checks"
+  local p; IFS='|' read -r -a list <<<"$phrases"
+  for p in "${list[@]}"; do
+    grep -qF -- "$p" "$WORK/stderr" || fail "stderr of '$*' lacks '$p': $(cat "$WORK/stderr")"
+  done
+}
+bad "no uncertain input" sensitivity --k 40 --mu 5
+bad "--lambda|has no grid axes" sensitivity --mu 'uniform(2,7)' --lambda 1,2
+bad "--statistic|first_stick_duration" sensitivity --mu 'uniform(2,7)' --statistic first_stick_duration
+bad "--statistic|no_such" sensitivity --mu 'uniform(2,7)' --statistic no_such
+bad "--m|normal" sensitivity --m 'normal(mean=1,sd=0.1)'
+bad "--samples|--target-halfwidth" sensitivity --mu 'uniform(2,7)' --samples 10 --target-halfwidth 0.1
+
+finish
