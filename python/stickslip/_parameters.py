@@ -199,6 +199,10 @@ def model_arguments(kwargs, axes=False):
             value = kwargs.pop(key)
             if is_law(value):
                 given[sym] = value
+            elif isinstance(value, str):
+                forms = "a number or a 1-D sequence of finite numbers" if axes else "a finite number"
+                raise error(f"invalid {key}: {value!r} (allowed: {forms}, or a law's text such as "
+                            "'gamma(mean=5,cv=0.2)'; got text that is neither)")
             else:
                 given[sym] = number_or_axis(key, value) if axes else number(key, value)
     return given

@@ -123,6 +123,9 @@ def test_peak_refuses_laws():
         stickslip.peak(mu=LAW)
 
 
-def test_text_that_is_not_a_law_is_still_refused_as_a_number():
-    with pytest.raises(stickslip.Error, match="invalid mu: 'five'"):
+def test_text_that_is_not_a_law_is_refused_naming_both_forms():
+    with pytest.raises(stickslip.Error, match=r"invalid mu: 'five' \(allowed: a number or a 1-D "
+                                              r"sequence of finite numbers, or a law's text"):
         stickslip.sweep(mu="five", realizations=10)
+    with pytest.raises(stickslip.Error, match=r"invalid k: '40' \(allowed: a finite number, or"):
+        stickslip.simulate(k="40")
