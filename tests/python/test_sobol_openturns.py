@@ -122,3 +122,35 @@ def test_intervals_match_openturns_asymptotic_ones(name):
         theirs = (np.array(ci.getUpperBound()) - np.array(ci.getLowerBound())) / 2
         half = np.array([(hi - lo) / 2 for lo, hi in ours[key + "_ci95"]])
         np.testing.assert_allclose(half, theirs, rtol=1e-2)
+
+
+@pytest.mark.parametrize("form", ["openturns_saltelli", "saltelli_2010"])
+def test_stochastic_estimates_equal_the_header_formulas(form):
+    """With a replicate y_A2 != y_A (a noisy output), every estimate equals
+    sobol.hpp's formula computed here in two passes with numpy, for both
+    first-order forms: the streaming accumulator adds nothing but rounding."""
+    f, law = CASES["ishigami"]
+    d, n = len(law), 5000
+    x = openturns_design(law, n, 7)
+    rng = np.random.default_rng(7)
+    y_a, y_b, y_e = blocks(f(x) + 2.0 * rng.standard_normal(len(x)), n, d)
+    y_a2 = f(x[:n]) + 2.0 * rng.standard_normal(n)
+    ours = _stickslip.sobol_indices(y_a, y_a2, y_b, np.column_stack(y_e), form=form)
+    c = np.mean(np.concatenate([y_a, y_b] + y_e))
+    v = np.var(y_a, ddof=1)
+    s2 = np.sum((y_a - y_a2) ** 2) / (2 * n)
+    if form == "openturns_saltelli":
+        vi = [np.sum((y_b - c) * (e - c)) / (n - 1) - np.mean(y_a - c) * np.mean(y_b - c)
+              for e in y_e]
+    else:
+        vi = [np.mean(y_b * (e - y_a)) for e in y_e]
+    vti = [(np.sum((y_a - e) ** 2) - np.sum((y_a - y_a2) ** 2)) / (2 * n - 1) for e in y_e]
+    assert ours["intrinsic_variance"] > 0
+    np.testing.assert_allclose(ours["mean"], c, rtol=1e-12)
+    np.testing.assert_allclose(ours["variance"], v, rtol=1e-12)
+    np.testing.assert_allclose(ours["intrinsic_variance"], s2, rtol=1e-12)
+    np.testing.assert_allclose(ours["first_order"], np.array(vi) / (v - s2), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(ours["total_order"], np.array(vti) / (v - s2), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(ours["response_first_order"], np.array(vi) / v, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(ours["parameter_share"], (v - s2) / v, rtol=1e-12)
+    np.testing.assert_allclose(ours["intrinsic_share"], s2 / v, rtol=1e-12)
