@@ -16,6 +16,7 @@ core=(
   gnuplot-nox python3 python3-numpy python3-netcdf4
   python3-dev pybind11-dev python3-pandas python3-xarray python3-matplotlib python3-tqdm
   python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-openturns
+  python3-hypothesis
 )
 peers=(octave libsundials-dev)
 
