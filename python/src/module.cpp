@@ -22,6 +22,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/uncertain_replay.hpp"
@@ -433,17 +434,25 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
 // directory, every output file there through the run layer: journal,
 // resume). Raises KeyboardInterrupt when interrupted (the journal of an
 // output directory then holds every finished unit).
-void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string, std::vector<double>>>& axes,
+std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string, std::vector<double>>>& axes,
                   std::uint64_t realizations, std::uint64_t seed, std::uint64_t block_size,
                   std::size_t bins, bool records, const std::string& engine, std::int64_t max_events,
                   unsigned threads, const std::string& output, bool resume, bool keep_journal,
                   double checkpoint_interval, const std::string& netcdf_path, const std::string& command_line,
                   const py::object& progress, const std::optional<std::string>& belt_start,
                   bool common_random_numbers, const std::string& target_ci,
-                  std::uint64_t min_realizations, bool overwrite) {
+                  std::uint64_t min_realizations, bool overwrite,
+                  const std::string& sensitivity_statistic, double target_halfwidth) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
+  // stickslip.sensitivity(): the CLI's `sensitivity`, a one-point sweep of
+  // design rows (uncertainty/sensitivity_design.hpp); returns its JSON.
+  spec.sensitivity_statistic = sensitivity_statistic;
+  if (!sensitivity_statistic.empty() && target_halfwidth > 0.0) {
+    spec.target_halfwidth = target_halfwidth;
+    spec.min_realizations = min_realizations;
+  }
   // Issue 13: common random numbers, adaptive sampling (realizations is then the cap).
   spec.common_random_numbers = common_random_numbers;
   if (!target_ci.empty()) {
@@ -463,7 +472,8 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
   auto before = run::directory_state::of(output);
   std::optional<io::output_lock> lock;
   if (!output.empty()) {
-    lock.emplace(output, "stickslip.sweep (Python)");
+    lock.emplace(output, sensitivity_statistic.empty() ? "stickslip.sweep (Python)"
+                                                       : "stickslip.sensitivity (Python)");
     before.journal_existed = io::journal_exists(output);  // under the lock
   }
   bool already_complete = false;
@@ -475,7 +485,7 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
     else if (!io::journal_exists(output))
       already_complete = run::finished_outputs_of(spec, output).has_value();
   }
-  if (already_complete) return;
+  if (already_complete) return {};
   io::run_metadata meta = io::make_metadata(0, nullptr, io::to_toml(spec));
   meta.command_line = command_line;
   run::stop_token stop;
@@ -526,8 +536,9 @@ void run_sweep_py(const py::dict& base, const std::vector<std::pair<std::string,
   py::gil_scoped_release release;
   if (!output.empty())
     run::write_outputs(outcome, output, keep_journal);
-  else
+  else if (!is_sensitivity(spec))
     io::write_netcdf(*outcome.results, meta, netcdf_path);
+  return is_sensitivity(spec) ? io::sensitivity_json(*outcome.results) : std::string();
 }
 
 // Ends a peak search stopped by Ctrl-C (run_interruptibly raises the
@@ -656,7 +667,8 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("netcdf_path"),
         py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
-        py::arg("min_realizations") = 1000, py::arg("overwrite") = false);
+        py::arg("min_realizations") = 1000, py::arg("overwrite") = false,
+        py::arg("sensitivity_statistic") = "", py::arg("target_halfwidth") = 0.0);
   m.def("replay_many", &replay_many_py, py::arg("parameters"), py::arg("seed"),
         py::arg("realizations"), py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"),
         py::arg("switch_times"), py::arg("switch_levels"), py::arg("max_events"),

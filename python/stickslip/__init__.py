@@ -17,11 +17,12 @@ from ._stickslip import Error, __version__, git_revision
 from ._realization import Realization, simulate, simulate_many
 from ._sweep import open, sweep  # noqa: A004 (stickslip.open reads results.nc)
 from ._peak import peak
+from ._sensitivity import sensitivity
 
 Error.__doc__ = (
     "Bad input or a failed run; a ValueError. The message is the command-line "
     "tool's: it names the parameter, the value and the allowed range. "
     "`exit_code` is the CLI's exit code for the same error.")
 
-__all__ = ["Error", "Realization", "__version__", "git_revision", "open", "peak", "simulate",
-           "simulate_many", "sweep"]
+__all__ = ["Error", "Realization", "__version__", "git_revision", "open", "peak", "sensitivity",
+           "simulate", "simulate_many", "sweep"]
