@@ -350,6 +350,11 @@ TEST(ParseSweepToml, ModelKeysTakeLaws) {
               AllOf(HasSubstr("model.k"), HasSubstr("a number, or a law")));
   EXPECT_THAT(error_of([] { (void)parse_sweep_toml("[model]\nv1 = 2\n", "b.toml"); }),
               AllOf(HasSubstr("model.v1"), HasSubstr("a law string")));
+  // A law and an axis for one parameter: refused, whichever table comes first.
+  for (const char* text : {"[grid]\nmu = [1, 2]\n[model]\nmu = \"uniform(1,2)\"\n",
+                           "[model]\nmu = \"uniform(1,2)\"\n[grid]\nmu = [1, 2]\n"})
+    EXPECT_THAT(error_of([&] { (void)parse_sweep_toml(text, "b.toml"); }),
+                AllOf(HasSubstr("mu"), HasSubstr("a law or a [grid] axis, not both")));
 }
 
 TEST(ToToml, IsReadableAndComplete) {

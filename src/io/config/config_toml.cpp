@@ -142,7 +142,11 @@ void read_law(const context& cx, const std::string& key, const toml::node& n, sw
   if (!looks_like_law(text))
     cx.wrong("model." + key, n,
              "a number, or a law such as \"gamma(mean=5,cv=0.2)\" (docs/uncertainty.md)");
-  set_law(s, key, parse_law(text, fmt::format("model.{} at {}", key, cx.at(n.source()))));
+  const std::string where = fmt::format("model.{} at {}", key, cx.at(n.source()));
+  parameter_law law = parse_law(text, where);
+  if (std::any_of(s.axes.begin(), s.axes.end(), [&](const axis& a) { return a.name == key; }))
+    throw invalid_value(where, text, "a law or a [grid] axis, not both: [grid] sweeps " + key);
+  set_law(s, key, std::move(law));
 }
 
 // A recorded scalar (m, k, ..., mu_k): a number or a law; a belt level vI or
@@ -269,7 +273,8 @@ std::vector<std::string> read_order(const context& cx, const toml::node& n) {
   return order;
 }
 
-void read_grid(const context& cx, const toml::table& t, std::vector<axis>& axes) {
+void read_grid(const context& cx, const toml::table& t, const sweep_spec& spec,
+               std::vector<axis>& axes) {
   std::vector<axis> found;
   const toml::node* order_node = nullptr;
   for (auto&& [k, n] : t) {
@@ -283,6 +288,8 @@ void read_grid(const context& cx, const toml::table& t, std::vector<axis>& axes)
       cx.unknown_key(dotted, k,
                      "[grid] takes order and m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt "
                      "levels v1..vN, two-level belt rates r1, r2");
+    if (find_law(spec, key))  // [model] was read first
+      cx.wrong(dotted, n, "a law or a [grid] axis, not both: [model] gives " + key + " a law");
     found.push_back({key, read_axis_values(cx, dotted, n, grid_domain_of(key))});
   }
   std::vector<std::string> order;
@@ -404,7 +411,7 @@ sweep_spec parse_sweep_toml(std::string_view toml_text, std::string_view origin)
     else if (key == "initial")
       read_initial(cx, as_table(cx, key, n), s.initial);
     else if (key == "grid")
-      read_grid(cx, as_table(cx, key, n), s.axes);
+      read_grid(cx, as_table(cx, key, n), s, s.axes);
     else if (key == "sweep")
       read_sweep(cx, as_table(cx, key, n), s);
     else if (key == "histograms")
