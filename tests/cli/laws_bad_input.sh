@@ -59,6 +59,13 @@ mu = "uniform(2,7)"
 sensitivity_statistic = "R"
 TOML
 expect_bad "--config: 'study.toml'|sensitivity_statistic|stickslip sensitivity" sweep --config study.toml
+expect_bad "--lambda: normal(mean=1,sd=0.5)|lambda must be > 0" sweep --lambda 'normal(mean=1,sd=0.5)'
+expect_bad "--mu-k: uniform(min=4,max=6)|can exceed mu_s = 5" sweep --mu-k 'uniform(4,6)'
+# a law and a [grid] axis for one parameter, whichever table comes first
+printf '[grid]\nlambda = [1, 2]\n[model]\nlambda = "uniform(1,2)"\n' >both.toml
+expect_bad "model.lambda at both.toml:4:10|a law or a [grid] axis, not both" sweep --config both.toml
+printf '[model]\nlambda = "uniform(1,2)"\n[grid]\nlambda = [1, 2]\n' >both2.toml
+expect_bad "lambda|a law or a [grid] axis, not both" sweep --config both2.toml
 # simulate: a law needs --realization; fixed inputs do not go with it
 expect_bad "--realization|a realization index R|--mu is gamma(mean=5,cv=0.2)" \
   simulate --mu 'gamma(mean=5,cv=0.2)'
