@@ -114,8 +114,10 @@ void validate_family(const model_parameters& p) {
 
 std::vector<double> model_parameters::generator() const {
   if (!belt_generator.empty()) return belt_generator;
+  // validate() asks for this (via max_stick_duration) before it counts the
+  // rates, so a single rate must not be read past: it then stands for both.
   const double r1 = belt_rates.empty() ? switch_rate : belt_rates[0];
-  const double r2 = belt_rates.empty() ? switch_rate : belt_rates[1];
+  const double r2 = belt_rates.size() < 2 ? r1 : belt_rates[1];
   return {-r1, r1, r2, -r2};
 }
 
@@ -253,6 +255,9 @@ void set_parameter(model_parameters& p, std::string_view name, double value) {
                           "r1, r2 only for a two-level belt without a generator matrix");
     if (j > 2) throw invalid_value("parameter name", s, "r1 or r2");
     if (p.belt_rates.empty()) p.belt_rates = {p.switch_rate, p.switch_rate};
+    if (p.belt_rates.size() != 2)  // not yet validated: never write past the rates
+      throw invalid_parameter("belt-rates (count)", static_cast<double>(p.belt_rates.size()),
+                              "exactly 2: the rate of leaving each level");
     p.belt_rates[j - 1] = value;
   }
 }
