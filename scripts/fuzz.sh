@@ -13,6 +13,9 @@
 #   fuzz_merge_inputs  shard directories built from real journals, then
 #                      mutated -> merge_shards refuses with a stickslip error
 #                      or equals the direct run of the spec
+#   fuzz_family_toml   generated family TOML (levels, rates, generator, laws,
+#                      initial state, grid) + byte damage -> error, or a spec
+#                      that round-trips through to_toml; validate throws or accepts
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET]   (default 25: the bounded CI run)
 #   Longer run, documented in docs/bad-input.md:  scripts/fuzz.sh 1800
 # New inputs are kept in build-fuzz/corpus/<target>; crashes in build-fuzz/crashes.
@@ -29,7 +32,7 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz "${gen[@]}" -DCMAKE_BUILD_TYPE=Rel
   -DSTICKSLIP_BUILD_FUZZERS=ON -DSTICKSLIP_BUILD_TESTS=OFF -DSTICKSLIP_BUILD_BENCH=OFF \
   -DSTICKSLIP_WITH_MPI=OFF -DSTICKSLIP_SANITIZE=fuzzer-no-link,address,undefined \
   -DCMAKE_CXX_FLAGS="-fno-sanitize-recover=all" >/dev/null
-targets=(config_toml grid_spec switch_times simulator model_family journal_reader merge_inputs)
+targets=(config_toml grid_spec switch_times simulator model_family journal_reader merge_inputs family_toml)
 cmake --build build-fuzz -j "$jobs" --target "${targets[@]/#/fuzz_}" >build-fuzz/build.log 2>&1 \
   || { tail -n 40 build-fuzz/build.log; exit 1; }
 mkdir -p build-fuzz/crashes
