@@ -76,6 +76,21 @@ run_ok "${A[@]}" --shard 1/2 -o shard1
 run_ok merge shard0 shard1 -o merged
 expect_eq "indices from shards + merge" "$(indices merged/summary.json)" "$(indices one/summary.json)"
 
+# One writer per directory: a second sensitivity (or sweep) into a running
+# study's DIR is refused at once, naming it; a sensitivity into a running
+# sweep's DIR too.
+"$BIN" "${A[@]/600/400000}" --threads 1 --checkpoint-interval 0.2 -o busy >/dev/null 2>&1 &
+first=$!
+for _ in $(seq 1 200); do [[ -s busy/.stickslip.lock ]] && break; sleep 0.05; done
+"$BIN" "${A[@]}" --resume -o busy >"$WORK/stdout" 2>"$WORK/stderr"
+expect_eq "exit code of a second writer" "$?" "2"
+checks=$((checks + 1))
+grep -qF "is in use by stickslip sensitivity (pid $first on host " "$WORK/stderr" ||
+  fail "the second writer is not refused naming the first: $(cat "$WORK/stderr")"
+"$BIN" sweep --lambda 1 --realizations 10 --overwrite -o busy >"$WORK/stdout" 2>"$WORK/stderr"
+expect_eq "exit code of a sweep into a running study" "$?" "2"
+kill -9 $first 2>/dev/null; { wait $first; } 2>/dev/null
+
 # Bad input: exit 2, nothing written.
 bad() {  # bad "phrases" ARGS...
   local phrases=$1; shift
