@@ -40,18 +40,26 @@ run_ok "${args[@]}" --threads 2 -o t2 --resume &&
   { grep -qF "already holds the complete results" "$WORK/stderr" ||
       fail "--resume did not recognize finished outputs: $(cat "$WORK/stderr")"; }
 
-# kill -9 at random points, then --resume until it completes.
+# kill -9 once the journal has grown by a segment (then after a random
+# further delay), and --resume, three times; then --resume to the end.
+segments() { compgen -G "killed/.journal/seg-*" | wc -l; }
 kills=0
-for cycle in $(seq 1 30); do
+for cycle in 1 2 3; do
   resume=(); ((cycle > 1)) && resume=(--resume)
+  before=$(segments)
   "$BIN" "${args[@]}" --threads 2 --checkpoint-interval 0 -o killed "${resume[@]}" \
     >/dev/null 2>>"$WORK/kill.log" &
   pid=$!
-  sleep "$("$PY" -c "import random; print(round(random.uniform(0.05, 0.4), 3))")"
-  if kill -9 $pid 2>/dev/null; then kills=$((kills + 1)); fi
+  for _ in $(seq 400); do
+    (($(segments) > before)) && break
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.01
+  done
+  sleep "$("$PY" -c "import random; print(round(random.uniform(0, 0.05), 3))")"
+  kill -9 $pid 2>/dev/null
   wait $pid 2>/dev/null
+  (($? == 137)) && kills=$((kills + 1))  # killed, not finished
   [[ -f killed/results.nc && ! -d killed/.journal ]] && break
-  ((kills >= 3)) && break
 done
 if [[ ! -f killed/results.nc || -d killed/.journal ]]; then
   run_ok "${args[@]}" --threads 2 -o killed --resume
@@ -75,21 +83,26 @@ if [[ -n $MPIRUN ]]; then
   same "mpirun -np 2" mpi
 fi
 
-# Every realization replays alone: simulate --realization r draws the record's mu.
-"$PY" - "$BIN" t1/records.csv <<'PYEOF' || fail "simulate does not replay the sweep's records"
+# Every realization replays alone: simulate --realization r draws the record's
+# values and gives its record. replay SWEEP_DIR AXIS LAWS_JSON FLAGS...
+# (AXIS: the records.csv column of the swept parameter; FLAGS: the sweep's
+# model flags without that axis).
+replay() {
+  checks=$((checks + 1))
+  "$PY" - "$BIN" "$@" <<'PYEOF' || fail "simulate does not replay the records of $1"
 import csv, json, subprocess, sys
-binary, path = sys.argv[1], sys.argv[2]
-rows = list(csv.DictReader(open(path)))
+binary, folder, axis, laws, flags = sys.argv[1], sys.argv[2], sys.argv[3], json.loads(sys.argv[4]), sys.argv[5:]
+rows = list(csv.DictReader(open(folder + "/records.csv")))
 step = max(1, len(rows) // 16)
 for row in rows[::step]:
     out = subprocess.run(
-        [binary, "simulate", "--k", "40", "--lambda", row["lambda"],
-         "--mu", "gamma(mean=5,cv=0.2)", "--seed", "7", "--realization", row["realization"],
+        [binary, "simulate", *flags, "--" + axis, row[axis], "--realization", row["realization"],
          "--format", "json"], check=True, capture_output=True, text=True).stdout
     d = json.loads(out)
-    assert d["drawn"]["mu"] == float(row["mu"]), (row["point"], row["realization"], d["drawn"])
-    assert d["laws"] == {"mu": "gamma(mean=5,cv=0.2)"}, d["laws"]
-    assert d["parameters"]["mu"] == float(row["mu"])
+    assert d["laws"] == laws, d["laws"]
+    for sym in laws:
+        assert d["drawn"][sym] == float(row[sym]), (row["point"], row["realization"], d["drawn"])
+        assert d["parameters"][sym] == float(row[sym])
     ic, st, ev = d["initial_conditions"], d["statistics"], d["event_counts"]
     pairs = [("x0", ic["x0"], float(row["x0"])), ("xdot0", ic["xdot0"], float(row["xdot0"])),
              ("belt_start", ic["belt_start"], int(row["belt_start"])),
@@ -105,7 +118,13 @@ for row in rows[::step]:
     for name, got, want in pairs:
         assert got == want, (row["point"], row["realization"], name, got, want)
 PYEOF
-checks=$((checks + 1))
+}
+replay t1 lambda '{"mu": "gamma(mean=5,cv=0.2)"}' --k 40 --mu 'gamma(mean=5,cv=0.2)' --seed 7
+# The model family's engine: damped, mu_s > mu_k, with laws for c and mu_k.
+run_ok sweep --k 40 --mu-s 5 --c 'gamma(mean=0.2,cv=0.5)' --mu-k 'uniform(2,4)' --lambda 1,3.8 \
+  --ta 20 --realizations 40 --records --seed 2 -o family
+replay family lambda '{"c": "gamma(mean=0.2,cv=0.5)", "mu_k": "uniform(min=2,max=4)"}' \
+  --k 40 --mu-s 5 --c 'gamma(mean=0.2,cv=0.5)' --mu-k 'uniform(2,4)' --ta 20 --seed 2
 
 # With common random numbers realization r of every point draws the same
 # value, and simulate --common-random-numbers replays it.
