@@ -129,3 +129,17 @@ def test_text_that_is_not_a_law_is_refused_naming_both_forms():
         stickslip.sweep(mu="five", realizations=10)
     with pytest.raises(stickslip.Error, match=r"invalid k: '40' \(allowed: a finite number, or"):
         stickslip.simulate(k="40")
+
+
+def test_resume_recognizes_finished_outputs_with_laws(tmp_path):
+    """The resolved config in results.nc writes the law in canonical text and
+    reads back to the same spec, so resume=True finds the finished outputs
+    (and reads them back) instead of refusing or recomputing them."""
+    out = tmp_path / "laws"
+    keywords = dict(k=40, lam=[1, 3.8], mu="gamma(mean = 5, cv = 0.2)", realizations=100, seed=5)
+    first = stickslip.sweep(**keywords, output=out)
+    stamp = (out / "results.nc").stat().st_mtime_ns
+    again = stickslip.sweep(**keywords, output=out, resume=True)
+    assert (out / "results.nc").stat().st_mtime_ns == stamp
+    assert_same_dataset(first, again)
+    assert 'mu = "gamma(mean=5,cv=0.2)"' in first.attrs["resolved_config"]
