@@ -314,6 +314,19 @@ TEST(ToToml, RoundTripsSensitivityStudies) {
               AllOf(HasSubstr("sweep.sensitivity_statistic"), HasSubstr("naming a statistic")));
 }
 
+// Specs that validate() refuses still print back as they were read (what
+// fuzz_family_toml found): a generator whose size does not match the levels,
+// a negative mu_s or mu_k.
+TEST(ToToml, RoundTripsSpecsThatValidateRefuses) {
+  for (const char* text : {"[model]\nbelt_levels = [1, 0, -1]\nbelt_generator = [[-1, 1], [2, -2]]\n",
+                           "[model]\nbelt_generator = [[-1, 0.5, 0.5], [1, -1, 0], [0, 2, -2]]\n",
+                           "[model]\nmu_s = -1\nmu_k = -0.5\n"}) {
+    const sweep_spec s = parse_sweep_toml(text, "odd.toml");
+    const auto printed = to_toml(s);
+    EXPECT_EQ(parse_sweep_toml(printed, "roundtrip.toml"), s) << printed;
+  }
+}
+
 TEST(SetLaw, KeepsOneCanonicalOrderAndReplacesAxesValuesAndLaws) {
   sweep_spec s;
   s.axes = {{"lambda", {1.0, 3.8}}, {"mu", {2.0, 5.0}}};

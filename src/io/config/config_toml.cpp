@@ -443,11 +443,11 @@ std::string to_toml(const sweep_spec& s) {
   const auto& b = s.base;
   const std::string c_law = law_line("c");
   out += c_law.empty() ? fmt::format("c = {}\n", toml_float(b.damping)) : c_law;
-  for (const char* name : {"mu_s", "mu_k"}) {
+  for (const char* name : {"mu_s", "mu_k"}) {  // 0 is unset; any other value as given
     const double v = name == std::string_view("mu_s") ? b.static_friction : b.kinetic_friction;
     const std::string line = law_line(name);
     if (!line.empty()) out += line;
-    else if (v > 0) out += fmt::format("{} = {}\n", name, toml_float(v));
+    else if (v != 0) out += fmt::format("{} = {}\n", name, toml_float(v));
   }
   auto array = [](const std::vector<double>& v, std::size_t from, std::size_t count) {
     std::string a = "[";
@@ -459,9 +459,17 @@ std::string to_toml(const sweep_spec& s) {
   if (!b.belt_rates.empty())
     out += fmt::format("belt_rates = {}\n", array(b.belt_rates, 0, b.belt_rates.size()));
   if (!b.belt_generator.empty()) {
-    const std::size_t n = b.levels().size();
+    // The rows as given (r x r, whatever the number of levels: validate()
+    // judges the sizes), so that every parsed generator prints back; a size
+    // that is not a square (only from code) prints as one row, which the
+    // reader refuses.
+    std::size_t r = 1;
+    while ((r + 1) * (r + 1) <= b.belt_generator.size()) ++r;
+    if (r * r != b.belt_generator.size()) r = 1;
+    const std::size_t width = r == 1 ? b.belt_generator.size() : r;
     out += "belt_generator = [";
-    for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + array(b.belt_generator, i * n, n);
+    for (std::size_t i = 0; i < r; ++i)
+      out += (i ? ", " : "") + array(b.belt_generator, i * width, width);
     out += "]\n";
   }
   for (const auto& u : s.uncertain)  // belt levels vI and rates rI
