@@ -302,9 +302,9 @@ def sweep_keywords(draw):
         kw["block_size"] = draw(valid_whole(1, 2**24))
     if draw(st.booleans()):
         # At most 300 bins: the joint (D, X) histogram holds bins^2 counts
-        # per point and per block, which the memory estimate leaves out, so
-        # --bins 100000 (allowed) fails with std::bad_alloc (exit 70) and
-        # 30000 takes > 10 GB (docs/bad-input.md, found here).
+        # per point and per block (--bins 20000 takes 9.6 GB; this test found
+        # that the CLI's memory estimate left them out, and Python's sweep
+        # still has no estimate: docs/bad-input.md).
         kw["bins"] = draw(valid_whole(1, 300))
     kw["max_events"] = MAX_EVENTS
     kw = draw(with_faults(kw, fixed=("ta",)))
