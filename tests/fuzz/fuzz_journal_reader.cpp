@@ -122,7 +122,10 @@ struct journal_fixture {
   std::map<work_unit, std::string> originals;  // serialize(unit, block) of every unit
 
   journal_fixture() {
-    std::string tmpl = (fs::temp_directory_path() / "stickslip-fuzz-journal-XXXXXX").string();
+    // In memory when possible: every input rewrites the journal's files.
+    const fs::path base =
+        fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
+    std::string tmpl = (base / "stickslip-fuzz-journal-XXXXXX").string();
     FUZZ_CHECK(::mkdtemp(tmpl.data()) != nullptr, "mkdtemp failed");
     root = tmpl;
     jdir = io::journal_path(root.string());

@@ -205,7 +205,7 @@ struct merge_fixture {
     a.axes = {axis{"k", {4.0, 9.0}}};
     a.realizations = 6;
     a.block_size = 2;
-    a.histograms.bins = 5;
+    a.histograms.bins = 2;
     a.seed = 7;
     sweep_spec b = a;
     b.seed = 8;
