@@ -40,11 +40,10 @@
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
-#include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/version.hpp"
 #include "stickslip/run/journaled_run.hpp"
-#include "stickslip/run/runner.hpp"
+#include "stickslip/run/result_memory.hpp"
 
 namespace stickslip::app {
 namespace {
@@ -131,43 +130,6 @@ void check_output_dir(const std::string& dir) {
     throw invalid_value("-o (output directory)", dir, "a directory or a path that does not exist");
 }
 
-// The results live in memory until they are written: per grid point the
-// accumulators, four histograms of `bins` counts, the joint (D, X)
-// histograms of bins^2 counts each (allocated for every point, also when the
-// family's statistics are off) and the convergence trace (every block up to
-// 64, then 32 entries per doubling: records_convergence_after), plus the raw
-// records when kept; the writers hold about as much again. Every block in
-// flight (a batch per thread, at most every unit) holds one point's
-// statistics too. An absurd grid or bin count must be refused with a clear
-// error before it exhausts memory (std::bad_alloc or the OOM killer), so
-// estimate and compare with the RAM. (Without the joint histograms,
-// --bins 100000 on one point passed this check and then asked for 80 GB:
-// exit 70, std::bad_alloc.)
-void check_result_memory(const sweep_spec& spec, unsigned threads) {
-  const double points = static_cast<double>(point_count(spec));
-  const double blocks = static_cast<double>(blocks_per_point(spec));
-  const double trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
-  const double bins = static_cast<double>(spec.histograms.bins);
-  const double statistics = 1024.0 + 4.0 * 8.0 * bins +
-                            8.0 * bins * bins * static_cast<double>(joint_histograms().size());
-  const double per_point = statistics + 40.0 * trace;
-  const double records = spec.keep_records ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
-  const double in_flight =
-      std::min(static_cast<double>(run::resolve_threads(threads)) *
-                   static_cast<double>(units_per_batch(spec)),
-               static_cast<double>(unit_count(spec))) *
-      statistics;
-  const double bytes = 2.0 * points * (per_point + records) + in_flight;
-  const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
-                     static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-  if (ram > 0 && bytes > 0.8 * ram)
-    throw error(exit_code::invalid_input,
-                fmt::format("invalid grid size: the results would need about {:.3g} GiB (estimated "
-                            "memory; allowed: <= 80% of this machine's {:.3g} GiB): "
-                            "use fewer grid points or bins",
-                            bytes / (1u << 30), ram / (1u << 30)));
-}
-
 // --resume found this configuration's finished outputs and no journal.
 void report_already_complete(const run::run_plan& plan, const io::run_metadata& written_by) {
   fmt::print(stderr, "stickslip: {} already holds the complete results of this configuration "
@@ -222,7 +184,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   if (exec.is_worker()) return exec.serve();  // rank 0 reports everything
 
   const sweep_spec spec = build_sweep_spec(cmd, o);
-  check_result_memory(spec, threads);
+  run::check_result_memory(spec, threads);  // before DIR is touched
   check_output_dir(o.out_dir);
   run::run_plan plan;
   plan.replace_advice =

@@ -13,6 +13,7 @@
 #include "stickslip/io/output_lock.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
+#include "stickslip/run/result_memory.hpp"
 #include "stickslip/run/work_meter.hpp"
 
 namespace stickslip::run {
@@ -83,6 +84,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     throw invalid_value("--shard", fmt::format("{}/{}", plan.slice->index, plan.slice->count),
                         "no shards with a precision target (--target-ci): the stop rule "
                         "needs every block of a point in one run");
+  check_result_memory(spec, r.threads());  // every front end: sweep, reproduce, Python
   run_outcome out;
   io::journal_contents loaded = load_journal(spec, plan);
   out.metadata = loaded.metadata ? *loaded.metadata : fresh;

@@ -344,6 +344,21 @@ def test_sweep_is_the_cli(cli_path, tmp_path_factory, kw):
         assert_same_dataset(ours, theirs.load())
 
 
+@pytest.mark.skipif(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") > 2**37,
+                    reason="more than 128 GiB of RAM: the 224 GiB estimate is closer to allowed")
+def test_bins_beyond_memory_are_refused_like_the_cli(cli_path, tmp_path):
+    """Found by test_sweep_is_the_cli with bins drawn up to 100000: the joint
+    (D, X) histogram's bins^2 counts were not in the memory estimate, and
+    one point with bins=100000 asked for 80 GB (std::bad_alloc, exit 70)."""
+    p = run_cli(cli_path, ["sweep", "--bins=100000", "--realizations=1", "--ta=1", "--threads=1",
+                           "-o", tmp_path / "cli"])
+    with pytest.raises(stickslip.Error) as e:
+        stickslip.sweep(bins=100000, realizations=1, ta=1, threads=1, output=tmp_path / "py")
+    assert (e.value.exit_code, str(e.value)) == (p.returncode, cli_message(p))
+    assert p.returncode == 2 and "estimated memory" in str(e.value)
+    assert not (tmp_path / "py").exists() and not (tmp_path / "cli").exists()
+
+
 # ------------------------------------------------------------------ what the CLI cannot be given
 NOT_A_NUMBER = st.one_of(
     st.booleans(), st.none(), st.text(alphabet=string.ascii_letters + "+-., ", max_size=6),
