@@ -12,6 +12,8 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 
@@ -44,37 +46,22 @@ struct sensitivity_options {
 
 sweep_spec build_spec(const CLI::App& cmd, const sensitivity_options& o) {
   sweep_spec spec;
-  spec.sensitivity_statistic = o.statistic;
-  spec.realizations = 4096;  // rows
   apply_model_flags(cmd, o.model, spec, /*grids_allowed=*/false);
   spec.seed = resolve_seed(o.model, spec.seed);
   spec.max_events = resolve_max_events(o.model, spec.max_events);
+  sensitivity_choice c;
+  c.statistic = o.statistic;
+  auto rows = [](const char* flag, const std::string& text) {
+    return io::parse_unsigned(flag, text, 1, max_realizations);
+  };
+  if (o.samples_opt->count() > 0) c.samples = rows("--samples", o.samples);
+  if (o.max_opt->count() > 0) c.max_samples = rows("--max-samples", o.max_samples);
+  if (o.min_opt->count() > 0) c.min_samples = rows("--min-samples", o.min_samples);
   if (o.block_opt->count() > 0)
-    spec.block_size = io::parse_unsigned("--block-size", o.block_size, 1, max_block_size);
-  else
-    spec.block_size = 64;
-  if (o.target_opt->count() > 0) {
-    if (o.samples_opt->count() > 0)
-      throw invalid_value("--samples", o.samples,
-                          "not with --target-halfwidth: the stop rule chooses the samples; cap "
-                          "them with --max-samples");
-    spec.target_halfwidth = io::parse_number("--target-halfwidth", o.target_halfwidth);
-    if (!(spec.target_halfwidth > 0.0) || !(spec.target_halfwidth <= 1.0))
-      throw invalid_parameter("--target-halfwidth", spec.target_halfwidth, "0 < H <= 1");
-    spec.realizations = o.max_opt->count() > 0
-                            ? io::parse_unsigned("--max-samples", o.max_samples, 1, max_realizations)
-                            : 1'000'000;
-    spec.min_realizations =
-        o.min_opt->count() > 0 ? io::parse_unsigned("--min-samples", o.min_samples, 2, max_realizations)
-                               : 1000;
-  } else {
-    if (o.max_opt->count() > 0 || o.min_opt->count() > 0)
-      throw invalid_value(o.max_opt->count() > 0 ? "--max-samples" : "--min-samples",
-                          o.max_opt->count() > 0 ? o.max_samples : o.min_samples,
-                          "only with --target-halfwidth H");
-    if (o.samples_opt->count() > 0)
-      spec.realizations = io::parse_unsigned("--samples", o.samples, 2, max_realizations);
-  }
+    c.block_size = io::parse_unsigned("--block-size", o.block_size, 1, max_block_size);
+  if (o.target_opt->count() > 0)
+    c.target_halfwidth = io::parse_number("--target-halfwidth", o.target_halfwidth);
+  set_sensitivity_design(spec, c);
   validate(spec);
   return spec;
 }
@@ -152,7 +139,11 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
     }
     if (out.already_complete) {
       fmt::print(stderr, "stickslip: {} already holds this study's complete results: nothing "
-                         "to do\n", plan.dir);
+                         "to do (summary.json has them)\n", plan.dir);
+      if (o.format == "json") {  // the finished study's numbers, as a run would print them
+        std::ifstream in(std::filesystem::path(plan.dir) / io::summary_json_file);
+        fmt::print("{}", std::string(std::istreambuf_iterator<char>(in), {}));
+      }
       return;
     }
     const result_set& rs = *out.results;
@@ -190,7 +181,7 @@ void add_sensitivity_command(CLI::App& app, const invocation& inv) {
   add_model_flags(*cmd, o.model, flag_values::grid, model_parameters{});
   cmd->add_option("--statistic", o.statistic,
                   fmt::format("the per-realization statistic (default R): {}",
-                              mean_statistic_names()))
+                              sensitivity_statistic_names()))
       ->type_name("NAME");
   o.samples_opt = cmd->add_option("--samples", o.samples,
                                   "design rows N (default 4096); each row runs d + 3 "

@@ -442,16 +442,26 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
                   const py::object& progress, const std::optional<std::string>& belt_start,
                   bool common_random_numbers, const std::string& target_ci,
                   std::uint64_t min_realizations, bool overwrite,
-                  const std::string& sensitivity_statistic, double target_halfwidth) {
+                  const py::object& design) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
   // stickslip.sensitivity(): the CLI's `sensitivity`, a one-point sweep of
-  // design rows (uncertainty/sensitivity_design.hpp); returns its JSON.
-  spec.sensitivity_statistic = sensitivity_statistic;
-  if (!sensitivity_statistic.empty() && target_halfwidth > 0.0) {
-    spec.target_halfwidth = target_halfwidth;
-    spec.min_realizations = min_realizations;
+  // design rows (uncertainty/sensitivity_design.hpp) with the CLI's rules
+  // (set_sensitivity_design); returns its JSON.
+  if (!design.is_none()) {
+    const auto d = design.cast<py::dict>();
+    sensitivity_choice c;
+    c.statistic = d["statistic"].cast<std::string>();
+    auto rows = [&](const char* key) -> std::optional<std::uint64_t> {
+      return d[key].is_none() ? std::nullopt : std::optional(d[key].cast<std::uint64_t>());
+    };
+    c.samples = rows("samples");
+    c.max_samples = rows("max_samples");
+    c.min_samples = rows("min_samples");
+    c.block_size = rows("block_size");
+    if (!d["target_halfwidth"].is_none()) c.target_halfwidth = d["target_halfwidth"].cast<double>();
+    set_sensitivity_design(spec, c);
   }
   // Issue 13: common random numbers, adaptive sampling (realizations is then the cap).
   spec.common_random_numbers = common_random_numbers;
@@ -472,8 +482,8 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   auto before = run::directory_state::of(output);
   std::optional<io::output_lock> lock;
   if (!output.empty()) {
-    lock.emplace(output, sensitivity_statistic.empty() ? "stickslip.sweep (Python)"
-                                                       : "stickslip.sensitivity (Python)");
+    lock.emplace(output, is_sensitivity(spec) ? "stickslip.sensitivity (Python)"
+                                              : "stickslip.sweep (Python)");
     before.journal_existed = io::journal_exists(output);  // under the lock
   }
   bool already_complete = false;
@@ -668,7 +678,7 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
         py::arg("min_realizations") = 1000, py::arg("overwrite") = false,
-        py::arg("sensitivity_statistic") = "", py::arg("target_halfwidth") = 0.0);
+        py::arg("design") = py::none());
   m.def("replay_many", &replay_many_py, py::arg("parameters"), py::arg("seed"),
         py::arg("realizations"), py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"),
         py::arg("switch_times"), py::arg("switch_levels"), py::arg("max_events"),

@@ -289,6 +289,8 @@ KEYWORD_OF_FLAG = {
     "-o": "output", "--resume": "resume=True", "--overwrite": "overwrite=True",
     "--records": "records=True", "--keep-journal": "keep_journal=True",
     "--common-random-numbers": "common_random_numbers=True",
+    "--statistic": "statistic", "--samples": "samples", "--target-halfwidth": "target_halfwidth",
+    "--max-samples": "max_samples", "--min-samples": "min_samples", "--block-size": "block_size",
 }
 # Phrases around a flag that read wrong with a keyword, first.
 PHRASES = [

@@ -3,14 +3,14 @@ import json
 import os
 
 from . import _stickslip
-from ._parameters import (belt_arguments, error, extension, flag, max_events_of, model_arguments,
-                          number, text, whole)
+from ._parameters import (belt_arguments, extension, flag, max_events_of, model_arguments, number,
+                          text, whole)
 from ._parameters import path as _path
 from ._sweep import _progress_bar
 
 
-def sensitivity(*, statistic="R", samples=4096, target_halfwidth=None, max_samples=1_000_000,
-                min_samples=1000, seed=1, threads=0, progress=False, block_size=64,
+def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_samples=None,
+                min_samples=None, seed=1, threads=0, progress=False, block_size=None,
                 max_events=None, output=None, resume=False, keep_journal=False,
                 checkpoint_interval=2.0, overwrite=False, belt_levels=None, belt_rates=None,
                 belt_generator=None, **model):
@@ -25,8 +25,9 @@ def sensitivity(*, statistic="R", samples=4096, target_halfwidth=None, max_sampl
     statistic: the per-realization statistic (default "R").
     samples: design rows N (default 4096); each row runs d + 3 realizations.
     target_halfwidth: instead of samples, run rows until every index and
-        share has a 95% half-width <= this (between min_samples and
-        max_samples rows).
+        share has a 95% half-width <= this (between min_samples, default
+        1000, and max_samples, default 10**6, rows).
+    block_size: rows per work unit (default 64; part of the result's identity).
     output: a folder: also write sensitivity.nc and summary.json there,
         journaling every finished unit (resume, keep_journal,
         checkpoint_interval and overwrite as for stickslip.sweep).
@@ -41,38 +42,34 @@ def sensitivity(*, statistic="R", samples=4096, target_halfwidth=None, max_sampl
     params = model_arguments(model, axes=False)
     if model:
         raise TypeError(f"sensitivity() got unexpected keyword arguments: {', '.join(model)}")
-    if not any(isinstance(v, str) for v in params.values()):
-        raise error("sensitivity: no uncertain input: give at least one model parameter as a "
-                    "law, e.g. mu='uniform(2,7)'")
     belt = belt_arguments(belt_levels, belt_rates, belt_generator)
     base = dict(params)
     base.update(belt)
-    statistic = text("statistic", statistic)
-    if target_halfwidth is not None:
-        halfwidth = number("target_halfwidth", target_halfwidth)
-        if not 0.0 < halfwidth <= 1.0:
-            raise error(f"invalid target_halfwidth: {halfwidth!r} (allowed: 0 < H <= 1)")
-        rows = whole("max_samples", max_samples, 1, _stickslip.max_realizations)
-        minimum = whole("min_samples", min_samples, 2, _stickslip.max_realizations)
-    else:
-        halfwidth = 0.0
-        rows = whole("samples", samples, 2, _stickslip.max_realizations)
-        minimum = 1000
+
+    def rows(name, value):
+        return None if value is None else whole(name, value, 1, _stickslip.max_realizations)
+
+    # The rules and defaults are the library's (set_sensitivity_design), so
+    # refusals are the CLI's, with these keyword names.
+    design = dict(statistic=text("statistic", statistic), samples=rows("samples", samples),
+                  max_samples=rows("max_samples", max_samples),
+                  min_samples=rows("min_samples", min_samples),
+                  block_size=rows("block_size", block_size),
+                  target_halfwidth=None if target_halfwidth is None
+                  else number("target_halfwidth", target_halfwidth))
     given = ", ".join(f"{k}={v!r}" for k, v in base.items())
-    command = f"python: stickslip.sensitivity({given}, statistic={statistic!r}, samples={rows})"
+    command = f"python: stickslip.sensitivity({given}, {', '.join(f'{k}={v!r}' for k, v in design.items() if v is not None)})"
     out = "" if output is None else _path("output", output)
     update, bar = _progress_bar(flag("progress", progress))
     try:
         result = extension.run_sweep(
-            base, [], realizations=rows, seed=whole("seed", seed),
-            block_size=whole("block_size", block_size, 1, _stickslip.max_block_size), bins=50,
+            base, [], realizations=1, seed=whole("seed", seed), block_size=1, bins=50,
             records=False, engine="fast", max_events=max_events_of(max_events),
             threads=whole("threads", threads, 0, 2**16), output=out,
             resume=flag("resume", resume), keep_journal=flag("keep_journal", keep_journal),
             checkpoint_interval=number("checkpoint_interval", checkpoint_interval),
             netcdf_path="", command_line=command, progress=update,
-            min_realizations=minimum, overwrite=flag("overwrite", overwrite),
-            sensitivity_statistic=statistic, target_halfwidth=halfwidth)
+            overwrite=flag("overwrite", overwrite), design=design)
     finally:
         if bar is not None:
             bar.close()

@@ -104,9 +104,13 @@ bad() {  # bad "phrases" ARGS...
 }
 bad "no uncertain input" sensitivity --k 40 --mu 5
 bad "--lambda|has no grid axes" sensitivity --mu 'uniform(2,7)' --lambda 1,2
-bad "--statistic|first_stick_duration" sensitivity --mu 'uniform(2,7)' --statistic first_stick_duration
+bad "--statistic|first_stick_duration|R, sticks_per_time" sensitivity --mu 'uniform(2,7)' --statistic first_stick_duration
 bad "--statistic|no_such" sensitivity --mu 'uniform(2,7)' --statistic no_such
 bad "--m|normal" sensitivity --m 'normal(mean=1,sd=0.1)'
+bad "--statistic|''" sensitivity --mu 'uniform(2,7)' --statistic ''
+bad "--mu|gamma(mean=5,cv=1e-200)|finite" sensitivity --mu 'gamma(mean=5,cv=1e-200)'
+bad "--mu|beta" sensitivity --mu 'beta(mean=5,sd=1e-200,min=2,max=7)'
+bad "--max-samples|only with --target-halfwidth" sensitivity --mu 'uniform(2,7)' --max-samples 7
 bad "--samples|--target-halfwidth" sensitivity --mu 'uniform(2,7)' --samples 10 --target-halfwidth 0.1
 
 finish

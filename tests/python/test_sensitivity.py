@@ -61,12 +61,21 @@ def test_target_halfwidth_stops_when_every_interval_is_narrow_enough():
     (dict(m="normal(mean=1,sd=0.1)"), "normal"),
     (dict(mu="uniform(2,7)", target_halfwidth=2.0), "target_halfwidth"),
     (dict(mu="frobnicate(1,2)"), "frobnicate"),
+    (dict(mu="uniform(2,7)", statistic=""), "statistic"),
+    (dict(mu="gamma(mean=5,cv=1e-200)"), "finite"),
 ])
 def test_bad_input(kwargs, phrase, tmp_path):
     with pytest.raises(stickslip.Error, match=phrase) as e:
         stickslip.sensitivity(**kwargs, samples=10, output=tmp_path / "bad")
     assert e.value.exit_code == 2
     assert not (tmp_path / "bad").exists()
+
+
+def test_samples_beside_a_target_are_refused_not_ignored():
+    with pytest.raises(stickslip.Error, match="samples.*target_halfwidth"):
+        stickslip.sensitivity(mu="uniform(2,7)", samples=100, target_halfwidth=0.3)
+    with pytest.raises(stickslip.Error, match="max_samples.*only with target_halfwidth"):
+        stickslip.sensitivity(mu="uniform(2,7)", max_samples=7)
 
 
 def test_a_grid_is_refused():

@@ -15,6 +15,8 @@
 // at the realization's own window).
 #pragma once
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
@@ -28,6 +30,36 @@ namespace stickslip {
 [[nodiscard]] inline std::uint64_t runs_per_row(const sweep_spec& s) noexcept {
   return s.uncertain.size() + 3;
 }
+
+// What a user chooses about a study's sampling, flag by flag (the CLI's
+// `sensitivity` and Python's stickslip.sensitivity() both go through
+// set_sensitivity_design, so the rules and defaults live here once):
+//   statistic         a per-realization statistic (default R)
+//   samples           N design rows (default 4096), or
+//   target_halfwidth  H, 0 < H <= 1: rows until every index and share has a
+//                     95 % half-width <= H, at least min_samples (default
+//                     1000) and at most max_samples (default 10^6);
+//   block_size        rows per work unit (default 64).
+struct sensitivity_choice {
+  std::string statistic = "R";
+  std::optional<std::uint64_t> samples, max_samples, min_samples, block_size;
+  std::optional<double> target_halfwidth;
+};
+inline constexpr std::uint64_t default_design_rows = 4096;
+inline constexpr std::uint64_t default_design_block = 64;
+inline constexpr std::uint64_t default_design_max_rows = 1'000'000;
+inline constexpr std::uint64_t default_design_min_rows = 1000;
+
+// Makes `s` the design `c` describes. Throws invalid_value naming the flag
+// (--statistic, --samples, --target-halfwidth, --max-samples,
+// --min-samples) for a statistic without one value per realization, or a
+// combination that means nothing (--samples with --target-halfwidth;
+// --max-samples or --min-samples without it).
+void set_sensitivity_design(sweep_spec& s, const sensitivity_choice& c);
+
+// The statistics a study can take: the schema's per-realization ones
+// ("R, sticks_per_time, ..."), joined by ", ".
+[[nodiscard]] std::string sensitivity_statistic_names();
 
 // The statistic of a sensitivity study: a quantity of the schema with one
 // value per realization (R, sticks_per_time, ...). Throws invalid_input

@@ -143,15 +143,30 @@ void check_arguments(const parameter_law& law, std::string_view text, std::strin
                          check_positive_mass(law), x[0], x[1]));
       break;
     case law_family::lognormal:
-    case law_family::gamma:
+    case law_family::gamma: {
       if (!(x[0] > 0.0)) fail("needs mean > 0");
       if (!(x[1] > 0.0)) fail("needs cv > 0");
+      // The derived shape and scale must be ordinary positive doubles, or the
+      // quantile has nothing to compute with (cv = 1e-200 or 1e300).
+      const double c2 = x[1] * x[1];
+      const bool ok = law.family == law_family::gamma
+                          ? std::isnormal(1.0 / c2) && std::isnormal(x[0] * c2)
+                          : std::isnormal(std::log1p(c2)) && std::isfinite(std::log(x[0]));
+      if (!ok) fail("needs a cv whose shape and scale are finite and > 0 (about 1e-150 < cv < 1e150)");
       break;
-    case law_family::beta:
+    }
+    case law_family::beta: {
       if (!(x[2] < x[0] && x[0] < x[3])) fail("needs min < mean < max");
       if (!(x[1] > 0.0 && x[1] * x[1] < (x[0] - x[2]) * (x[3] - x[0])))
         fail("needs 0 < sd^2 < (mean-min)(max-mean)");
+      const double width = x[3] - x[2];
+      const double m = (x[0] - x[2]) / width, sd = x[1] / width;
+      const double nu = m * (1.0 - m) / (sd * sd) - 1.0;
+      if (!(std::isnormal(m * nu) && std::isnormal((1.0 - m) * nu) && std::isfinite(width)))
+        fail("needs an sd whose beta shapes are finite and > 0 (sd not vanishingly small "
+             "against max - min)");
       break;
+    }
   }
 }
 

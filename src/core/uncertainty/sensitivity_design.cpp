@@ -11,14 +11,50 @@
 
 namespace stickslip {
 
+std::string sensitivity_statistic_names() {
+  std::string out;
+  for (const auto& q : quantities())
+    if (q.sampled == sampling::per_realization)
+      out += (out.empty() ? "" : ", ") + std::string(q.summary_name);
+  return out;
+}
+
 const quantity_info& sensitivity_quantity(const sweep_spec& s) {
   const quantity_info* q = find_mean_statistic(s.sensitivity_statistic);
   if (!q || q->sampled != sampling::per_realization)
     throw invalid_value("--statistic", s.sensitivity_statistic,
                         "a statistic with one value for every realization: " +
-                            mean_statistic_names() +
-                            " (first_stick_duration has none for a realization without a stick)");
+                            sensitivity_statistic_names());
   return *q;
+}
+
+void set_sensitivity_design(sweep_spec& s, const sensitivity_choice& c) {
+  s.sensitivity_statistic = c.statistic;
+  (void)sensitivity_quantity(s);  // before anything runs: an empty name is no study
+  s.block_size = c.block_size.value_or(default_design_block);
+  if (c.target_halfwidth) {
+    if (c.samples)
+      throw invalid_value("--samples", std::to_string(*c.samples),
+                          "not with --target-halfwidth: the stop rule chooses the rows; cap "
+                          "them with --max-samples");
+    const double h = *c.target_halfwidth;
+    if (!(h > 0.0 && h <= 1.0)) throw invalid_parameter("--target-halfwidth", h, "0 < H <= 1");
+    s.target_halfwidth = h;
+    s.realizations = c.max_samples.value_or(default_design_max_rows);
+    s.min_realizations = c.min_samples.value_or(default_design_min_rows);
+    if (s.min_realizations < 2 || s.min_realizations > s.realizations)
+      throw invalid_value("--min-samples", std::to_string(s.min_realizations),
+                          "2 .. --max-samples (" + std::to_string(s.realizations) + ")");
+  } else {
+    if (c.max_samples || c.min_samples)
+      throw invalid_value(c.max_samples ? "--max-samples" : "--min-samples",
+                          std::to_string(c.max_samples ? *c.max_samples : *c.min_samples),
+                          "only with --target-halfwidth H");
+    s.realizations = c.samples.value_or(default_design_rows);
+    if (s.realizations < 2)
+      throw invalid_value("--samples", std::to_string(s.realizations),
+                          ">= 2 (variances need two rows)");
+  }
 }
 
 void validate_sensitivity(const sweep_spec& s) {
@@ -39,7 +75,7 @@ void validate_sensitivity(const sweep_spec& s) {
   const std::uint64_t cap = max_realizations / runs_per_row(s);
   if (s.realizations > cap)
     throw invalid_parameter("--samples", static_cast<double>(s.realizations),
-                            "1 .. " + std::to_string(cap) +
+                            "2 .. " + std::to_string(cap) +
                                 " (each row runs d + 3 realizations, and realization indices "
                                 "must stay below 2^40)");
 }

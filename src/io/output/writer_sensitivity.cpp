@@ -163,9 +163,11 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   share("parameter_share", est.parameter_share, "Var E[STAT | theta] / Var STAT");
   share("intrinsic_share", est.intrinsic_share, "E Var(STAT | theta) / Var STAT");
   put_scalar(f, "statistic_mean", est.mean, q.units, "mean of STAT over parameters and realizations");
-  put_scalar(f, "statistic_variance", est.variance, "1", "Var STAT (in the statistic's units squared)");
-  put_scalar(f, "intrinsic_variance", est.intrinsic_variance, "1",
-             "E Var(STAT | theta) (in the statistic's units squared)");
+  // UDUNITS: the statistic's units squared ("1" stays "1").
+  const std::string u = q.units;
+  const std::string squared = u == "1" ? u : "(" + u + ")^2";
+  put_scalar(f, "statistic_variance", est.variance, squared, "Var STAT");
+  put_scalar(f, "intrinsic_variance", est.intrinsic_variance, squared, "E Var(STAT | theta)");
   f.close();
 }
 
