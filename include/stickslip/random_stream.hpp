@@ -15,12 +15,13 @@
 
 namespace stickslip {
 
-// Substream 2 is the Markov belt's (model/belt_chain.hpp); 3 holds the
-// uniforms of the uncertain parameters (uncertainty/uncertain_draws.hpp).
+// Every substream in one place, so that no two uses can collide; the
+// numbers are part of every result's bits and never change.
 enum class substream : std::uint64_t {
   initial_conditions = 0,
   belt_switches = 1,
-  uncertain_parameters = 3
+  belt_levels = 2,           // the Markov belt's next-level draws (model/belt_chain.hpp)
+  uncertain_parameters = 3   // uncertain parameters' uniforms (uncertainty/uncertain_draws.hpp)
 };
 
 // A 64-bit identity of a grid point: a hash of the bit patterns of its model

@@ -125,6 +125,13 @@ void validate(const sweep_spec& s);
 [[nodiscard]] std::size_t point_count(const sweep_spec& s) noexcept;
 [[nodiscard]] std::vector<std::size_t> point_index(const sweep_spec& s, std::size_t point);
 [[nodiscard]] model_parameters point_parameters(const sweep_spec& s, std::size_t point);
+// The parameters a point's histogram ranges come from (point_statistics):
+// point_parameters, except that at a point with laws each uncertain
+// parameter sits at its law's 0.001 or 0.999 quantile, whichever widens the
+// ranges (a larger friction, mass, gravity, damping or window; a smaller
+// stiffness, belt speed or rate), so that the mixture's durations and onset
+// positions fall inside the bins (the median model's ranges cut ~12 % off).
+[[nodiscard]] model_parameters histogram_parameters(const sweep_spec& s, std::size_t point);
 [[nodiscard]] std::uint64_t blocks_per_point(const sweep_spec& s) noexcept;
 
 struct work_unit {

@@ -567,7 +567,7 @@ void check_prefix_shape(const sweep_spec& s, const merged_prefix& p) {
   const std::uint64_t expected = std::min(s.realizations, p.blocks * s.block_size);
   if (p.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", p.stats.realizations, expected));
-  const point_statistics fresh(point_parameters(s, p.point), s.histograms, s.family_statistics);
+  const point_statistics fresh(histogram_parameters(s, p.point), s.histograms, s.family_statistics);
   if (auto why = shape_difference(p.stats, fresh)) throw bad(*why);
   if (p.stats.family_statistics != fresh.family_statistics)
     throw bad("another selection of statistics");
@@ -587,7 +587,7 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   const std::uint64_t expected = std::min(s.realizations, first + s.block_size) - first;
   if (b.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", b.stats.realizations, expected));
-  const point_statistics fresh(point_parameters(s, u.point), s.histograms);
+  const point_statistics fresh(histogram_parameters(s, u.point), s.histograms);
   if (auto why = shape_difference(b.stats, fresh)) throw bad(*why);
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))

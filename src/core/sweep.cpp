@@ -218,6 +218,19 @@ model_parameters point_parameters(const sweep_spec& s, std::size_t point) {
   return p.is_paper_model() ? paper_form(p) : p;
 }
 
+model_parameters histogram_parameters(const sweep_spec& s, std::size_t point) {
+  model_parameters p = point_parameters(s, point);
+  if (s.uncertain.empty()) return p;
+  for (const auto& u : s.uncertain) {
+    const auto& sym = u.symbol;
+    const bool smaller = sym == "k" || sym == "V" || sym == "lambda" || sym == "r1" || sym == "r2";
+    const bool larger = sym == "mu" || sym == "mu_s" || sym == "mu_k" || sym == "m" ||
+                        sym == "g" || sym == "c" || sym == "ta";
+    if (smaller || larger) set_parameter(p, sym, quantile(u.law, smaller ? 0.001 : 0.999));
+  }
+  return p;
+}
+
 std::uint64_t blocks_per_point(const sweep_spec& s) noexcept {
   return (s.realizations + s.block_size - 1) / s.block_size;
 }
@@ -247,8 +260,9 @@ block_result simulate_block(const sweep_spec& s, const work_unit& u) {
 }
 
 std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
-  // Points with laws (and sensitivity designs) run one realization at a
-  // time: no lanes to keep busy, and a finer grain for the stop rules.
+  // Points with laws (and sensitivity designs) run on the scalar engine:
+  // one unit per batch, no lanes to keep busy, a finer grain for the stop
+  // rules.
   if (!s.uncertain.empty()) return 1;
   return s.engine == sweep_engine::fast ? 20 : 1;  // 20 x 50 realizations
 }
@@ -355,7 +369,7 @@ ordered_merger::ordered_merger(const sweep_spec& s)
       finished_(point_count(s)) {
   points_.reserve(point_count(s));
   for (std::size_t i = 0; i < point_count(s); ++i)
-    points_.emplace_back(point_parameters(s, i), s.histograms, s.family_statistics);
+    points_.emplace_back(histogram_parameters(s, i), s.histograms, s.family_statistics);
 }
 
 bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept {

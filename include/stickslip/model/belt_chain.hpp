@@ -29,7 +29,7 @@ namespace stickslip {
 
 // The substream of the next-level draws (after initial_conditions = 0 and
 // belt_switches = 1 of random_stream.hpp).
-inline constexpr substream belt_level_substream = static_cast<substream>(2);
+inline constexpr substream belt_level_substream = substream::belt_levels;
 
 struct level_switch {
   double time;        // when the belt jumps

@@ -193,14 +193,24 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
     if (std::find(omitted.begin(), omitted.end(), sym) == omitted.end()) symbols.emplace_back(sym);
   for (const auto& sym : swept_symbols(rs.spec))
     if (std::find(symbols.begin(), symbols.end(), sym) == symbols.end()) symbols.push_back(sym);
+  // A parameter set by a law has no one value: the variable holds its law's
+  // median (what the point's ETA and derived scales use) and says so.
+  const auto by_laws = symbols_set_by_laws(rs.spec.uncertain);
   for (const auto& sym : symbols) {
     const auto& info = info_for(sym);
+    const bool uncertain = std::find(by_laws.begin(), by_laws.end(), sym) != by_laws.end();
     auto v = add_double(f, parameter_variable_name(sym), l.grid, info.units,
                         parameter_long_name(info, sym),
-                        fmt::format("model parameter {} at each grid point: {}", sym,
-                                    info.description),
+                        uncertain ? fmt::format("the median of the law of model parameter {} "
+                                                "(uncertain: each realization draws its own "
+                                                "value; see the uncertain_parameters attribute): "
+                                                "{}",
+                                                sym, info.description)
+                                  : fmt::format("model parameter {} at each grid point: {}", sym,
+                                                info.description),
                         false);
     v.putAtt("symbol", sym);
+    if (uncertain) v.putAtt("value_is", "median of the law");
     put_grid<double>(v, rs, [&](const point_result& p) { return parameter_value(p.parameters, sym); });
   }
   auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
