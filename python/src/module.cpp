@@ -22,6 +22,7 @@
 #include <thread>
 #include <type_traits>
 
+#include "stickslip/run/result_memory.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
@@ -470,6 +471,9 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
     spec.min_realizations = min_realizations;
   }
   validate(spec);
+  // Refused before anything is allocated, with or without an output folder
+  // (run_journaled checks it too; the in-memory path below does not go there).
+  run::check_result_memory(spec, threads);
   if (!(checkpoint_interval >= 0) || checkpoint_interval > 86400)
     throw invalid_parameter("checkpoint_interval", checkpoint_interval, "0 .. 86400 seconds");
   // The command line's rule for an output directory (stickslip sweep -o DIR,

@@ -81,3 +81,11 @@ def test_samples_beside_a_target_are_refused_not_ignored():
 def test_a_grid_is_refused():
     with pytest.raises(stickslip.Error):
         stickslip.sensitivity(mu="uniform(2,7)", lam=[1.0, 2.0], samples=10)
+
+
+def test_a_sweep_too_big_for_memory_is_refused_without_an_output_folder():
+    # The in-memory path (no output=) checks the memory estimate too: it
+    # asked for ~80 GB and raised MemoryError before.
+    with pytest.raises(stickslip.Error, match="invalid grid size") as e:
+        stickslip.sweep(bins=100000, realizations=1)
+    assert e.value.exit_code == 2
