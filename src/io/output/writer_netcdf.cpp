@@ -760,9 +760,14 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
 void write_netcdf_temporary(const result_set& rs, const run_metadata& meta,
                             const std::string& path) {
   check_shape(rs);
+  write_netcdf_temporary_with(path, [&](const std::string& tmp) { write_netcdf_file(rs, meta, tmp); });
+}
+
+void write_netcdf_temporary_with(const std::string& path,
+                                 const std::function<void(const std::string&)>& fill) {
   const std::string tmp = temporary_path(path);
   try {
-    write_netcdf_file(rs, meta, tmp);
+    fill(tmp);
     sync_file(tmp, path);
   } catch (const nc::exceptions::NcException& e) {
     remove_file_quietly(tmp);

@@ -175,20 +175,8 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
 
 void write_sensitivity_temporary(const result_set& rs, const run_metadata& meta,
                                  const std::string& path) {
-  const std::string tmp = temporary_path(path);
-  try {
-    write_sensitivity_file(rs, meta, tmp);
-    sync_file(tmp, path);
-  } catch (const nc::exceptions::NcException& e) {
-    remove_file_quietly(tmp);
-    throw io_error(path, fmt::format("NetCDF: {}", e.what()));
-  } catch (const stickslip::error&) {
-    remove_file_quietly(tmp);
-    throw;
-  } catch (const std::exception& e) {
-    remove_file_quietly(tmp);
-    throw io_error(path, e.what());
-  }
+  write_netcdf_temporary_with(
+      path, [&](const std::string& tmp) { write_sensitivity_file(rs, meta, tmp); });
 }
 
 void fill_sensitivity_json(text_sink& out, const result_set& rs, const run_metadata* meta) {

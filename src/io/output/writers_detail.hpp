@@ -4,6 +4,7 @@
 // descriptions, come from one table in the core (statistics_schema.hpp), so
 // results.nc, summary.json and summary.csv name things the same way.
 #pragma once
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +53,10 @@ void check_shape(const result_set& rs);
 // On failure the temporary is removed and io_error(path, ...) thrown.
 void write_netcdf_temporary(const result_set& rs, const run_metadata& meta,
                             const std::string& path);
+// The same for any NetCDF file `fill` writes to the temporary path it is
+// given: NetCDF and other failures become io_error(path, ...).
+void write_netcdf_temporary_with(const std::string& path,
+                                 const std::function<void(const std::string&)>& fill);
 void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta,
                        const output_options& options);
 void fill_summary_csv(text_sink& out, const result_set& rs);
