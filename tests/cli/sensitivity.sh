@@ -63,7 +63,7 @@ run_ok "${A[@]}" --threads 2 -o two
 expect_eq "indices with 1 and 2 threads" "$(indices two/summary.json)" "$(indices one/summary.json)"
 
 # kill -9 part-way, then --resume: the same indices.
-"$BIN" "${A[@]/600/3000}" --threads 2 -o killed --checkpoint-interval 0 2>/dev/null & pid=$!
+"$BIN" "${A[@]/600/3000}" --threads 2 -o killed --checkpoint-interval 0 >/dev/null 2>&1 & pid=$!
 sleep 0.7; kill -9 $pid 2>/dev/null; { wait $pid; } 2>/dev/null
 run_ok "${A[@]/600/3000}" --threads 2 -o straight
 run_ok "${A[@]/600/3000}" --threads 1 -o killed --resume
