@@ -87,6 +87,27 @@ PY
 }
 same_sweep() { sabotage "$2"; "$PY" "$CMP_SWEEP" "$1" "$2" >/dev/null 2>>"$W/compare.err"; }
 same_repro() { sabotage "$2"; "$PY" "$CMP_REPRO" "$1" "$2" >/dev/null 2>>"$W/compare.err"; }
+# same_study A B: two sensitivity outputs hold the same estimates (summary.json
+# without its run metadata and timing) and the same sensitivity.nc variables.
+same_study() {
+  [[ ${FAULT_SABOTAGE:-0} == 1 ]] && echo '{}' >"$2/summary.json"
+  "$PY" - "$1" "$2" >/dev/null 2>>"$W/compare.err" <<'PY'
+import json, os, sys, netCDF4, numpy as np
+a, b = sys.argv[1:]
+def est(d):
+    j = json.load(open(os.path.join(d, "summary.json")))
+    j.pop("run", None); j.pop("elapsed_seconds", None)
+    return j
+def nc(d):
+    with netCDF4.Dataset(os.path.join(d, "sensitivity.nc")) as ds:
+        out = {}
+        for k, v in ds.variables.items():
+            x = np.asarray(v[...])
+            out[k] = x.tolist() if x.dtype == object else x.tobytes()  # strings: by value
+        return out
+sys.exit(0 if est(a) == est(b) and nc(a) == nc(b) else 1)
+PY
+}
 # run_bg ARGS...: start ARGS in the background (stderr in $W/bg.err); sets $pid
 run_bg() { "$@" 2>"$W/bg.err" & pid=$!; BG+=("$pid"); }
 # wait_rc PID: waits for PID (started by this shell); its exit status in $rc
@@ -139,6 +160,8 @@ J=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size
    --threads 2 --seed 7)                                   # 80 units (merged-prefix journal)
 M=(sweep --lambda log:0.1:30:20 --mu 0.5,5 --realizations 600 --seed 5 --checkpoint-interval 0
    --threads 1)                                            # 240 units, ~4 s under mpirun -np 2
+S=(sensitivity --k 40 --ta 20 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 8000
+   --block-size 50 --threads 2 --seed 13 --no-figure)    # 160 units, 40000 realizations, ~0.6 s
 T=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 8000 --block-size 100 --records
    --threads 1 --seed 9)                                   # ~2 s
 
@@ -173,6 +196,30 @@ row_kill_sweep() {
   done
   A=("${with_records[@]}")
   notes="$hits of $((2 * N)) kills hit a running process (uninterrupted run ${t_ref} ms; odd trials with --records, even ones with the merged-prefix journal)"
+}
+
+row_kill_sensitivity() {
+  local N; N=$(trials 50)
+  "$BIN" "${S[@]}" -o ref_s >/dev/null 2>&1 || { notes="reference run failed"; lost=1; return; }
+  local t0 t_ref; t0=$(now_ms); "${NICE[@]}" "$BIN" "${S[@]}" -o ref_s_t >/dev/null 2>&1; t_ref=$(( $(now_ms) - t0 ))
+  local hits=0 i k rc ci
+  for ((i = 1; i <= N; i++)); do
+    trial_ok=1; rm -rf kss
+    for k in 1 2; do
+      ci=$(( RANDOM % 2 ? 0 : 5 ))
+      local extra=(); ((k == 2)) && extra=(--resume)
+      run_bg "${NICE[@]}" "$BIN" "${S[@]}" "${extra[@]}" --checkpoint-interval "0.0$ci" -o kss
+      sleep "$(secs "$(rand_ms $((t_ref * 6 / 5)))")"
+      kill -9 "$pid" 2>/dev/null
+      wait_rc "$pid"
+      if ((rc == 137)); then hits=$((hits + 1)); elif ((rc != 0)); then bad $i "run $k: exit $rc: $(head -c 200 "$W/bg.err")"; fi
+    done
+    "$BIN" "${S[@]}" --resume -o kss >/dev/null 2>"$W/final.err" || bad $i "final --resume: exit $?: $(head -c 300 "$W/final.err")"
+    [[ -e kss/.journal ]] && bad $i "journal left after the final --resume"
+    same_study ref_s kss || bad $i "estimates differ from the uninterrupted study"
+    n=$i; ((trial_ok)) || lost=$((lost + 1))
+  done
+  notes="$hits of $((2 * N)) kills hit a running process (uninterrupted run ${t_ref} ms)"
 }
 
 row_kill_reproduce() {
@@ -505,6 +552,7 @@ row_two_writers() {
 # ------------------------------------------------------------------ the table
 run_row kill_sweep "kill -9 of \`sweep\` (twice per trial), then \`--resume\`" row_kill_sweep
 run_row kill_reproduce "kill -9 of \`reproduce --quick\`, then \`--resume\`" row_kill_reproduce
+run_row kill_sensitivity "kill -9 of \`sensitivity\` (twice per trial), then \`--resume\`" row_kill_sensitivity
 run_row disk_journal "disk full while journaling (exit 3), then \`--resume\` with room" row_disk_journal
 run_row disk_output "disk full while writing outputs (exit 3), then \`--resume\` with room" row_disk_output
 run_row damage_segment "journal segment: random bytes flipped or cut, then \`--resume\`" row_damage_segment
