@@ -122,10 +122,6 @@ void validate(const sweep_spec& s) {
                                 " axis: mu sets mu_s and mu_k both");
   if (s.realizations < 1)
     throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
-  if (!target_quantity(s) && !is_sensitivity(s) && s.target_halfwidth != 0.0)
-    throw invalid_parameter("target half-width", s.target_halfwidth,
-                            "0 (unset) without a target statistic (target_ci) or a sensitivity "
-                            "study: there is nothing to stop on");
   if (is_sensitivity(s) && s.target_halfwidth != 0.0 &&
       (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth)))
     throw invalid_parameter("target half-width", s.target_halfwidth, "finite and > 0");
