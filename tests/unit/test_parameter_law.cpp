@@ -168,7 +168,7 @@ TEST(ParameterLaw, CanonicalTextRoundTripsToTheBit) {
           parameter_law{law_family::normal, {a, s}},
           parameter_law{law_family::truncnormal, {a, s, a - s, b}},
           parameter_law{law_family::lognormal, {a, s}}, parameter_law{law_family::gamma, {b, s}},
-          parameter_law{law_family::beta, {0.5 * (a + b), 1e-4 * s, a, b}}}) {
+          parameter_law{law_family::beta, {0.5 * (a + b), 0.1 * s * (b - a), a, b}}}) {
       const std::string text = to_string(law);
       const parameter_law back = parse_law(text, "x");
       ASSERT_EQ(back.family, law.family) << text;

@@ -150,9 +150,10 @@ void check_arguments(const parameter_law& law, std::string_view text, std::strin
       // quantile has nothing to compute with (cv = 1e-200 or 1e300).
       const double c2 = x[1] * x[1];
       const bool ok = law.family == law_family::gamma
-                          ? std::isnormal(1.0 / c2) && std::isnormal(x[0] * c2)
+                          ? std::isnormal(1.0 / c2) && std::isnormal(x[0] * c2) && 1.0 / c2 <= 1e10
                           : std::isnormal(std::log1p(c2)) && std::isfinite(std::log(x[0]));
-      if (!ok) fail("needs a cv whose shape and scale are finite and > 0 (about 1e-150 < cv < 1e150)");
+      if (!ok) fail("needs a cv whose shape and scale are ordinary positive numbers (gamma: 1e-5 <= cv "
+           "< 1e150; lognormal: 1e-150 < cv < 1e150)");
       break;
     }
     case law_family::beta: {
@@ -162,9 +163,12 @@ void check_arguments(const parameter_law& law, std::string_view text, std::strin
       const double width = x[3] - x[2];
       const double m = (x[0] - x[2]) / width, sd = x[1] / width;
       const double nu = m * (1.0 - m) / (sd * sd) - 1.0;
-      if (!(std::isnormal(m * nu) && std::isnormal((1.0 - m) * nu) && std::isfinite(width)))
-        fail("needs an sd whose beta shapes are finite and > 0 (sd not vanishingly small "
-             "against max - min)");
+      // Shapes above 1e10 are a point mass for any use here, and Boost's
+      // quantile iterates for minutes on them: refused, like shapes that vanish.
+      if (!(std::isnormal(m * nu) && std::isnormal((1.0 - m) * nu) && std::isfinite(width) &&
+            m * nu <= 1e10 && (1.0 - m) * nu <= 1e10))
+        fail("needs an sd whose beta shapes lie in (0, 1e10] (sd not vanishingly small "
+             "against max - min and mean - min)");
       break;
     }
   }
