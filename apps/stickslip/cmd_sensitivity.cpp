@@ -21,6 +21,7 @@
 #include "execution.hpp"
 #include "model_flags.hpp"
 #include "progress.hpp"
+#include "run_wiring.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/metadata.hpp"
@@ -113,19 +114,8 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
       "another -o DIR";
   plan.resume = o.resume;
   plan.overwrite = o.overwrite;
-  const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);
-  if (!(interval >= 0) || interval > 86400)
-    throw invalid_parameter("--checkpoint-interval", interval, "0 .. 86400 seconds");
-  plan.checkpoint_interval = std::chrono::duration<double>(interval);
-  plan.stop = &stop;
-  plan.report = [](const std::string& line) {
-    fmt::print(stderr, "stickslip: journal: {}\n", line);
-  };
   progress_bar bar;
-  if (bar.active())
-    plan.progress = [&bar](std::uint64_t d, std::uint64_t total, double work) {
-      bar.update(d, total, work);
-    };
+  wire_run_plan(plan, o.checkpoint_interval, stop, bar);
   try {
     const auto out = run::sweep_into(spec, plan,
                                      io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
@@ -158,12 +148,7 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
     else
       print_text(rs, out, o.out_dir);
   } catch (const error& e) {
-    bar.finish();
-    if (e.code() == exit_code::io_failure) {
-      exec.release();
-      exit_after_failed_write(e);
-    }
-    throw;
+    end_failed_run(e, bar, exec);
   }
 }
 

@@ -33,6 +33,7 @@
 #include "model_flags.hpp"
 #include "execution.hpp"
 #include "progress.hpp"
+#include "run_wiring.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/journal.hpp"
@@ -167,10 +168,6 @@ void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_ou
              out.elapsed_this_run, point_count(spec), where, resumed, plan.dir);
 }
 
-void print_journal_note(const std::string& line) {
-  fmt::print(stderr, "stickslip: journal: {}\n", line);
-}
-
 void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invocation& inv) {
   // Past `ulimit -f` a write must fail with EFBIG (reported), not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
@@ -196,17 +193,8 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   plan.writer = plan.slice ? "stickslip sweep --shard " + o.shard : std::string("stickslip sweep");
   plan.resume = o.resume;
   plan.overwrite = o.overwrite;
-  const double interval = io::parse_number("--checkpoint-interval", o.checkpoint_interval);
-  if (!(interval >= 0) || interval > 86400)
-    throw invalid_parameter("--checkpoint-interval", interval, "0 .. 86400 seconds");
-  plan.checkpoint_interval = std::chrono::duration<double>(interval);
-  plan.stop = &stop;
-  plan.report = print_journal_note;
   progress_bar bar;
-  if (bar.active())
-    plan.progress = [&bar](std::uint64_t d, std::uint64_t total, double work) {
-      bar.update(d, total, work);
-    };
+  wire_run_plan(plan, o.checkpoint_interval, stop, bar);
 
   try {
     const auto out = run::sweep_into(spec, plan, io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
@@ -214,12 +202,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
     bar.finish();
     report(spec, plan, out, exec.runner());
   } catch (const error& e) {
-    bar.finish();
-    if (e.code() == exit_code::io_failure) {
-      exec.release();  // std::_Exit skips the destructors: let the MPI workers return first
-      exit_after_failed_write(e);
-    }
-    throw;
+    end_failed_run(e, bar, exec);
   }
 }
 
