@@ -50,12 +50,8 @@ class byte_writer {
  public:
   void raw(std::string_view s) { out_.append(s); }
   void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void u64(std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
+  void u32(std::uint32_t v) { little_endian<4>(v); }
+  void u64(std::uint64_t v) { little_endian<8>(v); }
   void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
   void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
   void str(std::string_view s) {
@@ -70,6 +66,14 @@ class byte_writer {
   [[nodiscard]] bytes take() { return std::move(out_); }
 
  private:
+  // One append per word rather than one push_back per byte: journals and
+  // merges encode millions of words.
+  template <int N>
+  void little_endian(std::uint64_t v) {
+    char b[N];
+    for (int i = 0; i < N; ++i) b[i] = static_cast<char>(static_cast<std::uint8_t>(v >> (8 * i)));
+    out_.append(b, N);
+  }
   bytes out_;
 };
 
