@@ -166,7 +166,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   // a reversal (reported when count_reversal; a belt switch that lands
   // exactly on x' = v reverses without a slip reversal event).
   auto contact_at = [&](double from_sigma, bool count_reversal) {
-    const auto c = detail::physics::resolve_contact(x, from_sigma, v, a);
+    const auto c = detail::physics::resolve_contact(t, x, from_sigma, v, a);
     x = c.x;
     sigma = c.sigma;
     switch (c.outcome) {

@@ -450,7 +450,7 @@ class lane_engine {
   // contact_at_switch).
   void root_contact(int l, double from_sigma, bool count_reversal = true) {
     mir_[l] = 0.0;
-    const auto c = physics::resolve_contact(x_[l], from_sigma, v_[l], a_);
+    const auto c = physics::resolve_contact(t_[l], x_[l], from_sigma, v_[l], a_);
     x_[l] = c.x;
     auto outcome = c.outcome;
     // a level 0 has no outward edge (simulate_model): its band edge sticks
@@ -506,6 +506,7 @@ class lane_engine {
     const vec GRZ = Family && !equal_friction_ ? zero : one;
     const vec ARV = Family && !equal_friction_ ? one : zero;
     const vec MIR = Family && !mirror_belt_ ? zero : one;
+    const vec NEAR = Set(d, 0x1p-49), TINY = Set(d, 0x1p-900);
     vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], sq[K];
     vphysics::slip_orbit<vec> o[K];
     mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K], arv[K];
@@ -604,7 +605,20 @@ class lane_engine {
                                                    hn::VecFromMask(d, hn::Ge(x_root, mA)),
                                                    hn::VecFromMask(d, hn::Le(x_root, A))));
       const vec x_cl = Min(Max(x_root, mA), A);
-      mask on_edge = hn::Le(Sub(A, Mul(s[k], x_cl)), zero);
+      // physics::resolve_contact: on the outward edge, or so near it that the
+      // stick's break time rounds to the contact time (no stick: a grazing
+      // touch). The division runs only when some lane is that near: a lane
+      // whose gap exceeds |v| t 2^-49 breaks strictly after t (and a t below
+      // 2^-900, where that bound underflows, always checks).
+      const vec gap = Sub(A, Mul(s[k], x_cl));
+      const vec speed = Family ? hn::Abs(v[k]) : VV;
+      mask on_edge = hn::Le(gap, zero);
+      const mask near = hn::And(
+          hn::AndNot(stick[k], sl_root[k]), hn::Or(hn::Le(gap, Mul(speed, Mul(t_root[k], NEAR))), hn::Lt(t_root[k], TINY)));
+      if (!hn::AllFalse(d, hn::AndNot(on_edge, near)))
+        on_edge = hn::Or(on_edge, hn::And(near, hn::Le(vphysics::stick_edge_time(
+                                                           t_root[k], A, s[k], x_cl, speed),
+                                                       t_root[k])));
       if constexpr (Family) on_edge = hn::AndNot(hn::Eq(v[k], zero), on_edge);  // none at 0
       const mask onset = hn::AndNot(on_edge, in_m);
       const mask edge = hn::And(on_edge, in_m);
@@ -612,7 +626,7 @@ class lane_engine {
 
       // new state, slip lanes
       const vec vn = Family ? IfThenElse(hn::Eq(v[k], V1), V2, V1) : hn::Neg(v[k]);
-      vec nx = IfThenElse(sroot, IfThenElse(in_m, x_cl, x_root), xr[k]);
+      vec nx = IfThenElse(sroot, IfThenElse(in_m, IfThenElse(edge, Mul(s[k], A), x_cl), x_root), xr[k]);
       vec nz = IfThenElse(sroot, v[k], zr[k]);
       vec nt = IfThenElse(sroot, t_root[k], IfThenElse(ssw, tsw[k], TA));
       vec nv = IfThenElse(ssw, vn, v[k]);

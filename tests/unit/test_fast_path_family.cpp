@@ -224,6 +224,37 @@ TEST(FastPathFamily, StartsOnTheBeltVelocity) {
         }
 }
 
+// A contact whose stick would last less than the resolution of t is a
+// grazing touch in both engines (tests/regression/
+// test_stick_shorter_than_time_resolution.cpp): mu_s one ulp above mu_k, a
+// start stuck on the inner edge, no switch before t_a. With mu_s = mu_k
+// (1 + 1e-9) the sticks last 4e-11 s and both engines keep them.
+TEST(FastPathFamily, SticksShorterThanTheTimeResolutionAgree) {
+  const double mu_k = 0.88670581033261642;
+  for (const double mu_s : {std::nextafter(mu_k, 1.0), mu_k * (1.0 + 1e-9)}) {
+    sweep_spec s;
+    s.base.mass = 0.0228760208502688;
+    s.base.stiffness = 1000.0;
+    s.base.kinetic_friction = mu_k;
+    s.base.static_friction = mu_s;
+    s.base.belt_levels = {0.01, 0.0};
+    s.base.belt_rates = {1e-3, 1e-3};
+    s.base.window = 0.1;
+    s.seed = 5;
+    s.initial.belt_start = 1;
+    s.initial.velocity_min = s.initial.velocity_max = 0.01;
+    s.initial.position_min = s.initial.position_max = -0.00019898898893724184;
+    SCOPED_TRACE("mu_s " + std::to_string(mu_s));
+    event_counts kinds;
+    EXPECT_GT(expect_traces_agree(s, 0, 4, kinds), 0u);
+    if (mu_s == std::nextafter(mu_k, 1.0)) {
+      EXPECT_EQ(kinds.stick_onsets, 0);
+    } else {
+      EXPECT_GT(kinds.stick_onsets, 0);
+    }
+  }
+}
+
 // Every SIMD target this CPU runs, forced one at a time (lane layouts of 8, 4,
 // 2 and 1 doubles), each against simulate_model on that target.
 TEST(FastPathFamily, EveryFieldEqualsSimulateModelOnEveryTarget) {

@@ -45,23 +45,30 @@ struct start_mode {
   return {mode::slip, v > z ? 1.0 : -1.0, false, false};
 }
 
-// Relative rest x' = v reached at x by a slip of direction from_sigma: on the
-// band's side (x >= -a for sigma = +1, x <= a for -1) the mass sticks at x
-// clamped to the band, except on the outward edge a - sgn(v) x <= 0, where it
-// only grazes (sigma = sgn v); beyond it the slip reverses (sigma = -from_sigma,
+// Relative rest x' = v reached at time t and position x by a slip of
+// direction from_sigma: on the band's side (x >= -a for sigma = +1, x <= a
+// for -1) the mass sticks at x clamped to the band, except where that stick
+// would have no length: on the outward edge a - sgn(v) x <= 0, or so close to
+// it that the stick's break time t + (a - sgn(v) x) / |v| rounds to t. There
+// it only grazes (sigma = sgn v, x = sgn(v) a, the state the stick's break
+// would leave): a touch of x' = v for no representable time is not a stick,
+// so no onset, no break and no stick episode of zero length between two
+// slips. Beyond the band's side the slip reverses (sigma = -from_sigma,
 // x unchanged).
 enum class contact_outcome : unsigned char { stick, grazing, reversal };
 struct contact {
   contact_outcome outcome;
   double x, sigma;
 };
-[[nodiscard, gnu::always_inline]] inline contact resolve_contact(double x, double from_sigma, double v,
-                                             double a) noexcept {
+[[nodiscard, gnu::always_inline]] inline contact resolve_contact(double t, double x,
+                                                                 double from_sigma, double v,
+                                                                 double a) noexcept {
   const bool inside = from_sigma > 0 ? x >= -a : x <= a;
   if (!inside) return {contact_outcome::reversal, x, -from_sigma};
   const double xc = std::clamp(x, -a, a);
   const double s = v > 0 ? 1.0 : -1.0;
-  if (a - s * xc <= 0.0) return {contact_outcome::grazing, xc, s};
+  if (a - s * xc <= 0.0 || stick_edge_time(t, a, s, xc, std::abs(v)) <= t)
+    return {contact_outcome::grazing, s * a, s};
   return {contact_outcome::stick, xc, from_sigma};
 }
 

@@ -87,6 +87,19 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     mirror = false;
     acceleration = sigma * edge_acceleration_size;
   };
+  // A stick from a contact here would have no length: on the outward edge,
+  // or so near it that the stick's break time (the stick branch's t_edge)
+  // rounds to t. Such a touch of x' = v is not a stick: the mass leaves the
+  // edge at once, from the state the break would leave
+  // (physics::resolve_contact, the same rule for the paper's engines).
+  auto stick_has_no_length = [&] {
+    return on_outward_edge() ||
+           (v != 0.0 && t + (as - sign_of(v) * (x - b)) / std::abs(v) <= t);
+  };
+  auto leave_edge_at_once = [&] {
+    if (!on_outward_edge()) x = b + sign_of(v) * as;
+    leave_edge();
+  };
   // Resolve the mode at relative velocity zero (x' == v), arriving with from_sigma.
   auto resolve_at_contact = [&](double from_sigma) {
     const bool inside = from_sigma > 0 ? x - b >= -as : x - b <= as;
@@ -255,8 +268,8 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       grazing = after_reversal = mirror = false;
       if (z == v) {  // measure zero: landed exactly on relative rest
         resolve_at_contact(x - b > 0 ? -1.0 : 1.0);
-        if (m == mode::stick && on_outward_edge()) {
-          leave_edge();
+        if (m == mode::stick && stick_has_no_length()) {
+          leave_edge_at_once();
         } else if (m == mode::stick) {
           ++counts.stick_onsets;
           obs.on_event(event{event_kind::stick_onset, t, x, z, v});
@@ -277,8 +290,8 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     after_reversal = mirror = false;
     resolve_at_contact(from_sigma);
     if (m == mode::stick) {
-      if (on_outward_edge()) {  // a zero-length stick: slip on from the edge
-        leave_edge();
+      if (stick_has_no_length()) {  // a zero-length stick: slip on from the edge
+        leave_edge_at_once();
         continue;
       }
       ++counts.stick_onsets;
