@@ -17,6 +17,7 @@ void add_reproduce_command(CLI::App& app, const invocation& inv);
 void add_merge_command(CLI::App& app, const invocation& inv);
 void add_peak_command(CLI::App& app, const invocation& inv);
 void add_sensitivity_command(CLI::App& app, const invocation& inv);
+void add_plot_command(CLI::App& app, const invocation& inv);
 
 // Reports a failed output write and leaves without the libraries' exit
 // handlers (failed_write.cpp explains why).

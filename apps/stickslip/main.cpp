@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   stickslip::app::add_merge_command(app, inv);
   stickslip::app::add_peak_command(app, inv);
   stickslip::app::add_sensitivity_command(app, inv);
+  stickslip::app::add_plot_command(app, inv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
