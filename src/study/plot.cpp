@@ -228,24 +228,35 @@ const io::result_variable& histogram_of(const io::result_file& f, const std::str
   throw invalid_value("--histogram", name, "a statistic with a histogram in " + f.path() + ": " + names);
 }
 
-curve_plot plan_histogram(const io::result_file& f, const plot_request& r) {
-  const auto& density = histogram_of(f, r.histogram);
+// Curves of `q` along its own dimension `x_dim` (time, bins, durations) at
+// each --at point and --by value, titled and labelled from the variables.
+std::pair<curve_request, figure_text> along(const io::result_file& f, const quantity& q,
+                                            const std::string& x_dim, const plot_request& r,
+                                            curve_style style) {
   curve_request c;
-  c.q = quantity{r.histogram, &density, "", "", ""};
-  c.x_dim = density.dims.back();
+  c.q = q;
+  c.x_dim = x_dim;
   c.by_dim = r.by;
-  if (!c.by_dim.empty()) require_dim(density, "--by", c.by_dim);
-  if (const auto* bins = f.variable(density.coordinates); bins && bins->dims == density.dims)
-    c.x_var = bins->name;
+  if (!c.by_dim.empty()) require_dim(*q.value, "--by", c.by_dim);
   c.at = parse_all(r.at);
-  c.style = curve_style::histogram;
+  c.style = style;
   c.logx = r.logx;
   figure_text t;
+  t.title = q.value->long_name;
+  t.xlabel = detail::axis_of(f, x_dim).label;
+  t.ylabel = detail::axis_label(*q.value);
+  return {std::move(c), std::move(t)};
+}
+
+curve_plot plan_histogram(const io::result_file& f, const plot_request& r) {
+  const auto& density = histogram_of(f, r.histogram);
+  auto [c, t] = along(f, quantity{r.histogram, &density, "", "", ""}, density.dims.back(), r,
+                      curve_style::histogram);
+  if (const auto* bins = f.variable(density.coordinates); bins && bins->dims == density.dims) {
+    c.x_var = bins->name;
+    t.xlabel = detail::axis_label(*bins);
+  }
   t.stem = r.histogram + "_histogram";
-  t.title = density.long_name;
-  t.xlabel = c.x_var.empty() ? detail::axis_of(f, c.x_dim).label
-                             : detail::axis_label(*f.variable(c.x_var));
-  t.ylabel = detail::axis_label(density);
   return build_curves(f, c, std::move(t));
 }
 
@@ -255,20 +266,10 @@ curve_plot plan_time(const io::result_file& f, const plot_request& r) {
                 fmt::format("cannot plot --time: {} has no 'time' dimension; time-resolved "
                             "statistics are written by `stickslip sweep --observe-times GRID`",
                             f.path()));
-  curve_request c;
-  c.q = detail::find_quantity(f, "--y", r.y.empty() ? "stick_probability" : r.y);
-  require_dim(*c.q.value, "--y", "time");
-  c.x_dim = "time";
-  c.by_dim = r.by;
-  if (!c.by_dim.empty()) require_dim(*c.q.value, "--by", c.by_dim);
-  c.at = parse_all(r.at);
-  c.style = curve_style::lines;
-  c.logx = r.logx;
-  figure_text t;
-  t.stem = c.q.asked + "_vs_time";
-  t.title = c.q.value->long_name;
-  t.xlabel = detail::axis_of(f, "time").label;
-  t.ylabel = detail::axis_label(*c.q.value);
+  const auto q = detail::find_quantity(f, "--y", r.y.empty() ? "stick_probability" : r.y);
+  require_dim(*q.value, "--y", "time");
+  auto [c, t] = along(f, q, "time", r, curve_style::lines);
+  t.stem = q.asked + "_vs_time";
   return build_curves(f, c, std::move(t));
 }
 
@@ -285,19 +286,9 @@ curve_plot plan_survival(const io::result_file& f, const plot_request& r) {
                             "curves are written by `stickslip sweep --statistics survival`",
                             r.survival, f.path(), var));
   }
-  curve_request c;
-  c.q = detail::find_quantity(f, "--survival", var);
-  c.x_dim = c.q.value->dims.back();
-  c.by_dim = r.by;
-  if (!c.by_dim.empty()) require_dim(*c.q.value, "--by", c.by_dim);
-  c.at = parse_all(r.at);
-  c.style = curve_style::steps;
-  c.logx = r.logx;
-  figure_text t;
+  const auto q = detail::find_quantity(f, "--survival", var);
+  auto [c, t] = along(f, q, q.value->dims.back(), r, curve_style::steps);
   t.stem = var;
-  t.title = c.q.value->long_name;
-  t.xlabel = detail::axis_of(f, c.x_dim).label;
-  t.ylabel = detail::axis_label(*c.q.value);
   return build_curves(f, c, std::move(t));
 }
 

@@ -19,12 +19,13 @@ std::string exact(double x) { return std::isnan(x) ? "NaN" : fmt::format("{}", x
 
 std::string label(const std::string& s) { return detail::gp_string(literal_text(s)); }
 
-// The head of a figure's script: the shared preamble (named for this
-// command), its caption as comments, title and axis labels.
+// The head of a figure's script: the shared preamble, which names
+// `stickslip reproduce` as its writer (these figures come from plot and
+// sensitivity too), and the caption as a comment.
 std::string script_head(const figure& f, const figure_text& t) {
   std::string pre = detail::gp_preamble(f, width, height);
   const std::string by = "`stickslip reproduce`";
-  if (const auto at = pre.find(by); at != std::string::npos) pre.replace(at, by.size(), "`stickslip plot`");
+  if (const auto at = pre.find(by); at != std::string::npos) pre.replace(at, by.size(), "`stickslip`");
   return pre + "# " + t.caption + "\n";
 }
 

@@ -12,11 +12,22 @@ source "$(dirname "$0")/lib.sh" "$@"
 
 run_ok sweep --lambda log:0.5:10:5 --mu 2,5 --k 40 --realizations 200 --seed 1 -o sw
 
-# check_images STEM LABEL...: STEM.png and STEM.svg look like images and the
-# SVG holds every LABEL (axis labels with units).
-check_images() {
+# blocks(PATH): the rows of numbers of each block (gnuplot index) of a .dat.
+cat >datfile.py <<'PY'
+def blocks(path):
+    text = open(path).read().split("\n\n\n")
+    return [[[float(v) for v in line.split()] for line in b.splitlines()
+             if line and not line.startswith("#")] for b in text if b.strip()]
+PY
+
+# check_figure STEM LABEL...: stdout lists STEM's four files, one line each;
+# STEM.png and STEM.svg look like images and the SVG holds every LABEL (axis
+# labels with units).
+check_figure() {
   local stem=$1
   shift
+  expect_eq "files printed for $stem" "$(cat "$WORK/stdout")" \
+    "$(printf '%s\n' "$stem.dat" "$stem.gp" "$stem.png" "$stem.svg")"
   checks=$((checks + 1))
   "$PY" - "$stem" "$@" <<'PY' || fail "images of $stem"
 import sys, xml.etree.ElementTree as E
@@ -31,24 +42,16 @@ for label in labels:
 PY
 }
 
-# check_listed STEM: stdout lists STEM's four files, one line each.
-check_listed() {
-  expect_eq "files printed for $1" "$(cat "$WORK/stdout")" \
-    "$(printf '%s\n' "$1.dat" "$1.gp" "$1.png" "$1.svg")"
-}
-
 # Curves with bands: the oracle compares each curve with results.nc.
 run_ok plot sw --y R --x lambda --by mu
-check_listed sw/plots/R_vs_lambda_by_mu
-check_images sw/plots/R_vs_lambda_by_mu "switch rate lambda (1/s)" "mean stick fraction (1)" "mu = 5"
+check_figure sw/plots/R_vs_lambda_by_mu "switch rate lambda (1/s)" "mean stick fraction (1)" "mu = 5"
 grep -q "set logscale x" sw/plots/R_vs_lambda_by_mu.gp || fail "log:a:b:n lambda is not drawn on a log axis"
 checks=$((checks + 1))
 "$PY" - <<'PY' || fail "the curves' .dat differ from results.nc"
 import netCDF4
+from datfile import blocks
 ds = netCDF4.Dataset("sw/results.nc")
-blocks = [b for b in open("sw/plots/R_vs_lambda_by_mu.dat").read().split("\n\n\n") if b.strip()]
-rows = [[[float(v) for v in l.split()] for l in b.splitlines() if l and not l.startswith("#")]
-        for b in blocks]
+rows = blocks("sw/plots/R_vs_lambda_by_mu.dat")
 assert len(rows) == 2, len(rows)
 for j in range(2):  # mu = 2, 5
     got = list(zip(*rows[j]))
@@ -59,16 +62,14 @@ for j in range(2):  # mu = 2, 5
 PY
 
 run_ok plot sw --y stick_duration --x mu --at lambda=10
-check_listed sw/plots/stick_duration_vs_mu_at_lambda10
-check_images sw/plots/stick_duration_vs_mu_at_lambda10 "friction coefficient mu (1)" "mean stick duration (s)" "at lambda = 10"
+check_figure sw/plots/stick_duration_vs_mu_at_lambda10 "friction coefficient mu (1)" "mean stick duration (s)" "at lambda = 10"
 if grep -q "set logscale x" sw/plots/stick_duration_vs_mu_at_lambda10.gp; then
   fail "two mu values are drawn on a log axis"
 fi
 
 # Heat map: every cell's value is results.nc's.
 run_ok plot sw --map --y R --x lambda --by mu
-check_listed sw/plots/R_map_lambda_mu
-check_images sw/plots/R_map_lambda_mu "switch rate lambda (1/s)" "friction coefficient mu (1)"
+check_figure sw/plots/R_map_lambda_mu "switch rate lambda (1/s)" "friction coefficient mu (1)"
 checks=$((checks + 1))
 "$PY" - <<'PY' || fail "the map's .dat differs from results.nc"
 import netCDF4
@@ -85,15 +86,13 @@ PY
 # Histograms at two points; the nearest grid lambda to 3.8 is 4.729.
 run_ok plot sw --histogram D --at lambda=3.8,mu=5 --at lambda=0.5,mu=5
 stem=sw/plots/D_histogram_at_lambda4.729_mu5_at_lambda0.5_mu5
-check_listed $stem
-check_images $stem "stick duration (s)" "density of D (1/s)" "lambda = 4.729 (nearest to 3.8), mu = 5"
+check_figure $stem "stick duration (s)" "density of D (1/s)" "lambda = 4.729 (nearest to 3.8), mu = 5"
 checks=$((checks + 1))
 "$PY" - $stem.dat <<'PY' || fail "the histogram's .dat differs from results.nc"
 import sys, netCDF4
+from datfile import blocks
 ds = netCDF4.Dataset("sw/results.nc")
-blocks = [b for b in open(sys.argv[1]).read().split("\n\n\n") if b.strip()]
-for block, i in zip(blocks, [3, 0]):  # lambda index 3 (4.729) and 0 (0.5), mu = 5
-    rows = [[float(v) for v in l.split()] for l in block.splitlines() if l and not l.startswith("#")]
+for rows, i in zip(blocks(sys.argv[1]), [3, 0]):  # lambda index 3 (4.729) and 0 (0.5), mu = 5
     assert [r[0] for r in rows] == [float(v) for v in ds["stick_duration_bin"][i, 1, :]]
     assert [r[1] for r in rows] == [float(v) for v in ds["stick_duration_density"][i, 1, :]]
 PY
@@ -107,8 +106,7 @@ checks=$((checks + 1))
 # Sensitivity: bars of the first- and total-order indices with their CIs.
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'uniform(0.5,5)' --samples 1000 --seed 1 --no-figure -o sens
 run_ok plot sens
-check_listed sens/plots/sensitivity_first_order_total_order
-check_images sens/plots/sensitivity_first_order_total_order "uncertain model parameter" "index (1)" "first order"
+check_figure sens/plots/sensitivity_first_order_total_order "uncertain model parameter" "index (1)" "first order"
 checks=$((checks + 1))
 "$PY" - <<'PY' || fail "the bars' .dat differ from sensitivity.nc"
 import netCDF4, shlex
@@ -149,15 +147,13 @@ d.close()
 PY
 run_ok plot tm --time --at lambda=3.8,mu=5 --at lambda=0.5,mu=2
 stem=tm/plots/stick_probability_vs_time_at_lambda3.8_mu5_at_lambda0.5_mu2
-check_listed $stem
-check_images $stem "observation time (s)" "stick probability (1)" "lambda = 3.8, mu = 5"
+check_figure $stem "observation time (s)" "stick probability (1)" "lambda = 3.8, mu = 5"
 checks=$((checks + 1))
 "$PY" - $stem.dat <<'PY' || fail "the time curves' .dat differ from the file"
 import sys, netCDF4
+from datfile import blocks
 ds = netCDF4.Dataset("tm/results.nc")
-blocks = [b for b in open(sys.argv[1]).read().split("\n\n\n") if b.strip()]
-for block, (i, j) in zip(blocks, [(1, 1), (0, 0)]):
-    rows = [[float(v) for v in l.split()] for l in block.splitlines() if l and not l.startswith("#")]
+for rows, (i, j) in zip(blocks(sys.argv[1]), [(1, 1), (0, 0)]):
     p, se = ds["stick_probability"][i, j, :], ds["stick_probability_std_error"][i, j, :]
     z = 1.959963984540054
     assert [r[1] for r in rows] == [float(v) for v in p]
@@ -165,8 +161,7 @@ for block, (i, j) in zip(blocks, [(1, 1), (0, 0)]):
     assert [r[3] for r in rows] == [float(a) + z * float(b) for a, b in zip(p, se)]
 PY
 run_ok plot tm --survival stick --at mu=5 --by lambda
-check_listed tm/plots/stick_survival_by_lambda_at_mu5
-check_images tm/plots/stick_survival_by_lambda_at_mu5 "stick duration (s)" "stick survival probability (1)" "lambda = 10"
+check_figure tm/plots/stick_survival_by_lambda_at_mu5 "stick duration (s)" "stick survival probability (1)" "lambda = 10"
 
 # Refusals: exit 2, the message, and no OUT.
 # refused "PHRASE|..." ARGS...: `plot ARGS -o none` exits 2 naming every
