@@ -140,20 +140,17 @@ void add_plot_command(CLI::App& app, const invocation&) {
       ->type_name("POINT")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  auto* map = cmd->add_flag("--map", r.map, "a heat map of --y over --x and --by");
-  auto* hist = cmd->add_option("--histogram", r.histogram,
+  cmd->add_flag("--map", r.map, "a heat map of --y over --x and --by");
+  cmd->add_option("--histogram", r.histogram,
                                "the histogram of STAT (name or symbol: D, H, X, ...) at each --at")
                    ->type_name("STAT");
-  auto* time = cmd->add_flag("--time", r.time,
+  cmd->add_flag("--time", r.time,
                              "--y (default stick_probability) against time at each --at "
                              "(results of sweep --observe-times)");
-  auto* surv = cmd->add_option("--survival", r.survival,
+  cmd->add_option("--survival", r.survival,
                                "the Kaplan-Meier curve NAME_survival at each --at (stick or "
                                "slip; results with survival statistics)")
                    ->type_name("stick|slip");
-  map->excludes(hist)->excludes(time)->excludes(surv);
-  hist->excludes(time)->excludes(surv);
-  time->excludes(surv);
   cmd->add_flag("--logx", r.logx,
                 "log-scale x (default: on when the x axis is log-spaced, as log:a:b:n grids are)");
   cmd->add_option("-o,--output", o->out_dir, "directory for the figures (default DIR/plots)")

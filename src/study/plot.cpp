@@ -304,6 +304,14 @@ std::string find_result_file(const std::string& dir) {
 }
 
 plot_figure plan_plot(const io::result_file& f, const plot_request& r) {
+  std::vector<std::string> kinds;
+  if (r.map) kinds.emplace_back("--map");
+  if (!r.histogram.empty()) kinds.push_back("--histogram " + r.histogram);
+  if (r.time) kinds.emplace_back("--time");
+  if (!r.survival.empty()) kinds.push_back("--survival " + r.survival);
+  if (kinds.size() > 1)
+    throw invalid_value(kinds[1].substr(0, kinds[1].find(' ')), kinds[1] + " with " + kinds[0],
+                        "one figure kind at a time: --map, --histogram, --time or --survival");
   if (f.dimension("input") && f.variable("first_order")) return detail::plan_sensitivity_bars(f, r);
   if (!r.histogram.empty()) return plan_histogram(f, r);
   if (!r.survival.empty()) return plan_survival(f, r);

@@ -189,6 +189,7 @@ refused "invalid --at: 'lambda=0.1'|[0.5, 10]" sw --y R --x mu --at lambda=0.1
 refused "invalid --at: 'k=40'|lambda, mu" sw --y R --x lambda --at k=40
 refused "varies over lambda|--by lambda|--at lambda=VALUE" sw --histogram D --at mu=5
 refused "invalid --at: 'lambda3'|NAME=VALUE" sw --y R --x mu --at lambda3
+refused "invalid --histogram: '--histogram D with --map'|one figure kind at a time" sw --map --histogram D
 refused "no 'time' dimension|stickslip sweep --observe-times" sw --time --at lambda=1,mu=5
 refused "no 'stick_survival' variable|--statistics survival" sw --survival stick --at lambda=1,mu=5
 refused "invalid --survival: 'slip'|stick" tm --survival slip --at lambda=1,mu=5
