@@ -134,7 +134,7 @@ class damped_oscillator {
       // this is the piece [0, horizon] the loop below would solve.
       const damped_state s_hi = state_at_horizon();
       if ((a0 > 0.0 && s_hi.acceleration > 0.0) || (a0 < 0.0 && s_hi.acceleration < 0.0)) {
-        if (sigma * (v - s_hi.velocity) <= 0.0)
+        if (returned(g_lo, sigma * (v - s_hi.velocity)))
           return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, false, at_root);
         if (horizon_state) *horizon_state = s_hi;
         return inf;
@@ -157,7 +157,7 @@ class damped_oscillator {
                        : state_from(y0, z0, std::exp(-gamma_ * hi), sign * first.cos,
                                     sign * first.sin / rate_);
         const double g_hi = sigma * (v - s_hi.velocity);
-        if (g_hi <= 0.0)
+        if (returned(g_lo, g_hi))
           return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, !at_horizon, at_root);
         if (at_horizon) {
           if (horizon_state) *horizon_state = s_hi;
@@ -173,7 +173,7 @@ class damped_oscillator {
     if (extremum < horizon) {
       const damped_state s_hi = advance(y0, z0, extremum);
       const double g_hi = sigma * (v - s_hi.velocity);
-      if (g_hi <= 0.0)
+      if (returned(g_lo, g_hi))
         return solve_monotone(y0, z0, v, sigma, lo, g_lo, extremum, s_hi, true, at_root);
       lo = extremum;
       g_lo = g_hi;
@@ -185,6 +185,17 @@ class damped_oscillator {
   struct basis {
     double f0, f1, g0, g1;
   };
+
+  // Whether g = sigma (v - x') went from g_lo at the start of a piece to
+  // g_hi <= 0 at its end: a return to x' = v within it. From a start exactly
+  // at x' = v (g_lo == 0: leaving an edge or a reversal) g_hi == 0 is not a
+  // return: x' has not yet left v by a representable amount (near the edge
+  // with mu_s a few ulps above mu_k, x' - v ~ omega_0^2 v t^2 / 2 stays below
+  // ulp(v) for nanoseconds), and a root there would put the mass back at
+  // the edge while the belt moves on.
+  [[nodiscard]] static bool returned(double g_lo, double g_hi) noexcept {
+    return g_hi < 0.0 || (g_hi == 0.0 && g_lo > 0.0);
+  }
 
   struct under_extremum {
     double theta, cos, sin;  // the first extremum's phase omega_d t_1 > 0
@@ -224,7 +235,7 @@ class damped_oscillator {
                                     damped_state* horizon_state, double lo = 0.0) const noexcept {
     if (!(lo < horizon)) return std::numeric_limits<double>::infinity();
     const damped_state s_hi = advance(y0, z0, horizon);
-    if (sigma * (v - s_hi.velocity) <= 0.0)
+    if (returned(g_lo, sigma * (v - s_hi.velocity)))
       return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, false, at_root);
     if (horizon_state) *horizon_state = s_hi;
     return std::numeric_limits<double>::infinity();
