@@ -185,7 +185,8 @@ struct checker : realization_observer {
     FUZZ_CHECK(!(have_event && e.time == last_event.time && e.kind == event_kind::stick_break &&
                  last_event.kind == event_kind::stick_onset),
                "a stick of no length at t = %.17g (an onset and a break at one time)", e.time);
-    if (have_event && e.time == last_event.time && e.kind == event_kind::stick_onset) {
+    if (have_event && e.time == last_event.time && e.kind == event_kind::stick_onset &&
+        (last_event.kind == event_kind::stick_break || last_event.kind == event_kind::belt_switch)) {
       dropped_time = e.time;  // a slip (after a break or a switch) that began and ended at one t
       have_dropped = true;
     }

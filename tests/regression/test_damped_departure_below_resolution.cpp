@@ -9,6 +9,8 @@
 // at the end of a short piece (the next switch 3.7e-10 s on) for a return,
 // the contact clamped x back to the edge, and the mass stayed there while
 // the belt moved on, in ever shorter pieces up to the work bound.
+// A first fix (g == 0 at the end is no return) still took the horizons where
+// the rounding gives x' one ulp beyond v for a return.
 // Oracles: the Taylor expansion of x' about the start (x' - v below half
 // an ulp of v over the short horizon, so no return can be resolved there),
 // the motion to the horizon at the belt's speed, and, over a long horizon,
@@ -59,6 +61,36 @@ TEST(DampedDepartureBelowResolution, NoReturnBeforeTheVelocityLeavesTheBelt) {
   // the mass went with the belt: x moved v horizon
   ASSERT_FALSE(std::isnan(at_horizon.velocity));
   EXPECT_NEAR(at_horizon.y - e.y0, e.v * horizon, 1e-15 * e.v * horizon + 1e-18);
+}
+
+// Any short horizon: the computed x' at its end is v, or one or two ulps
+// either side of it (the basis terms nearly cancel), while the Taylor bound
+// keeps the true departure below a quarter ulp. No horizon gives a return.
+TEST(DampedDepartureBelowResolution, NoReturnWhateverTheRoundingAtTheHorizon) {
+  const edge_departure e;
+  const detail::damped_oscillator o(e.m.natural_frequency(), e.m.decay_rate());
+  const double jerk = -o.omega_squared() * e.v - 2.0 * o.gamma() * e.a0;
+  const double quarter_ulp = 0.25 * (std::nextafter(e.v, 2.0 * e.v) - e.v);
+  int below = 0, above = 0, equal = 0;
+  for (int i = 0; i <= 2000; ++i) {
+    const double horizon = 1e-10 + 1e-9 * i / 2000.0;
+    if (std::abs(e.a0 * horizon + 0.5 * jerk * horizon * horizon) >= quarter_ulp) continue;
+    const double x_dot = o.advance(e.y0, e.v, horizon).velocity;
+    (x_dot < e.v ? below : x_dot > e.v ? above : equal) += 1;
+    detail::damped_state root{};
+    const double tau = o.first_rest(e.y0, e.v, e.a0, e.v, e.sigma, horizon, root);
+    EXPECT_EQ(tau, std::numeric_limits<double>::infinity())
+        << "horizon " << horizon << ": a return at " << tau;
+  }
+  // the rounding takes every sign in this range (the case g_hi < 0, i.e. x'
+  // above v for sigma = 1, is the one a sign test alone gets wrong)
+  EXPECT_GT(above, 0);
+  EXPECT_GT(equal, 0);
+  EXPECT_GT(below + above + equal, 500);
+  // the reviewer's horizon, where the rounding gives g < 0
+  detail::damped_state root{};
+  EXPECT_EQ(o.first_rest(e.y0, e.v, e.a0, e.v, e.sigma, 1.002e-10, root),
+            std::numeric_limits<double>::infinity());
 }
 
 // Over a long horizon the slip never comes back to v: damping shrinks every

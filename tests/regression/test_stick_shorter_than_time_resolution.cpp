@@ -3,9 +3,9 @@
 //
 // Found by fuzz_model_family: with mu_s one ulp above mu_k the slip that
 // leaves the outward band edge (x' = v, x'' = sgn(v) (mu_k - mu_s) g) comes
-// back to x' = v at 2 a_k - a_s, a few ulps inside the edge. The stick from
-// there would break after (a_s - x) / |v| ~ 1e-20 s, which rounds to zero at
-// t ~ 0.07: the engines reported a stick onset and a stick break at one time
+// back to x' = v at 2 a_k - a_s, a few ulps (~5e-20 m) inside the edge. The
+// stick from there would break after (a_s - x) / |v| ~ 5.4e-18 s, below half
+// an ulp of t (6.9e-18 s at t ~ 0.07), so its break time rounds to t: the engines reported a stick onset and a stick break at one time
 // and dropped the stick [t, t], so `simulate` printed three slips in a row
 // (S_T = 1, S_L = 3). A touch of x' = v for no representable time is a
 // grazing touch, not a stick (the engines' rule for the outward edge): the

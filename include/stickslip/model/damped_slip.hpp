@@ -20,9 +20,13 @@
 // extremum cost one exp). The first root of sigma (v - x') = 0 is found piece
 // by piece: a piece whose end has sigma (v - x') <= 0 holds exactly one root
 // (monotone), which Halley's iteration safeguarded by the bracket solves to a
-// few ulps. No root is missed, since every piece is checked at its end.
+// few ulps. No root is missed, since every piece is checked at its end. A
+// slip that starts exactly at x' = v and leaves it (g = 0, g' > 0) has no
+// root on its first piece, where g only grows: whatever sign the rounding
+// gives its end, that piece is not searched (first_rest, `leaving`).
 // Derivations: docs/model.md, "Slip" of "The model family".
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -104,9 +108,9 @@ class damped_oscillator {
     return inf;
   }
 
-  // The first t in (0, horizon] where sigma (v - x'(t)) <= 0, or +infinity,
-  // for a slip that starts strictly on its sigma side or exactly at x' = v
-  // moving into it (g(0) >= 0, leaving). a0 = x''(0) is passed in so that a
+  // The first t in (0, horizon] where sigma (v - x'(t)) returns to 0, or
+  // +infinity, for a slip that starts strictly on its sigma side or exactly
+  // at x' = v moving into it (g(0) >= 0, leaving). a0 = x''(0) is passed in so that a
   // start at a band edge can give its exact value (0 when mu_s = mu_k).
   // On return `at_root` holds the state there; when there is no root, the
   // state at the horizon goes to `*horizon_state` (if given), so that the
@@ -118,6 +122,13 @@ class damped_oscillator {
     const double w1 = -w2_ * z0 - 2.0 * gamma_ * a0;
     double lo = 0.0;
     double g_lo = sigma * (v - z0);
+    // Leaving x' = v (g(0) = 0, g'(0) = -sigma a0 > 0): on the first piece x''
+    // keeps the sign of a0, so g only grows there and holds no return, even
+    // where x' - v is below the resolution of x' and its computed end value
+    // is 0 or negative by rounding (an edge departure with mu_s a few ulps
+    // above mu_k: x' - v ~ omega_0^2 v t^2 / 2 for nanoseconds). A root there
+    // would put the mass back at the edge while the belt moves on.
+    const bool leaving = g_lo == 0.0 && sigma * a0 < 0.0;
     // The state at the horizon, computed at most once.
     damped_state s_horizon{};
     bool have_s_horizon = false;
@@ -134,7 +145,7 @@ class damped_oscillator {
       // this is the piece [0, horizon] the loop below would solve.
       const damped_state s_hi = state_at_horizon();
       if ((a0 > 0.0 && s_hi.acceleration > 0.0) || (a0 < 0.0 && s_hi.acceleration < 0.0)) {
-        if (returned(g_lo, sigma * (v - s_hi.velocity)))
+        if (!leaving && returned(g_lo, sigma * (v - s_hi.velocity)))
           return solve_monotone(y0, z0, v, sigma, lo, g_lo, horizon, s_hi, false, at_root);
         if (horizon_state) *horizon_state = s_hi;
         return inf;
@@ -156,15 +167,16 @@ class damped_oscillator {
             at_horizon ? state_at_horizon()
                        : state_from(y0, z0, std::exp(-gamma_ * hi), sign * first.cos,
                                     sign * first.sin / rate_);
+        const bool first_leaving = leaving && n == 0.0;
         const double g_hi = sigma * (v - s_hi.velocity);
-        if (returned(g_lo, g_hi))
+        if (!first_leaving && returned(g_lo, g_hi))
           return solve_monotone(y0, z0, v, sigma, lo, g_lo, hi, s_hi, !at_horizon, at_root);
         if (at_horizon) {
           if (horizon_state) *horizon_state = s_hi;
           return inf;
         }
         lo = hi;
-        g_lo = g_hi;
+        g_lo = first_leaving ? std::max(g_hi, 0.0) : g_hi;
         sign = -sign;
       }
     }
@@ -173,10 +185,13 @@ class damped_oscillator {
     if (extremum < horizon) {
       const damped_state s_hi = advance(y0, z0, extremum);
       const double g_hi = sigma * (v - s_hi.velocity);
-      if (returned(g_lo, g_hi))
+      if (!leaving && returned(g_lo, g_hi))
         return solve_monotone(y0, z0, v, sigma, lo, g_lo, extremum, s_hi, true, at_root);
       lo = extremum;
-      g_lo = g_hi;
+      g_lo = leaving ? std::max(g_hi, 0.0) : g_hi;
+    } else if (leaving) {  // [0, horizon] is the first piece
+      if (horizon_state) *horizon_state = state_at_horizon();
+      return inf;
     }
     return horizon_only(y0, z0, v, sigma, g_lo, horizon, at_root, horizon_state, lo);
   }

@@ -14,9 +14,10 @@
 // Slip with sigma = sgn(v - x'): harmonic about sigma a_k when c = 0 (the
 //   paper's rotation, the same code and the same bits as simulate()), damped
 //   otherwise (damped_slip.hpp: closed forms and certified root isolation).
-// At x' = v: a stick if |F| <= mu_s m g, except at the outward band edge
-//   (sgn(v) (x - b) = a_s, v != 0), where the stick would last zero time: the
-//   slip goes on with sigma = sgn(v), like after a break. Otherwise the slip
+// At x' = v: a stick if |F| <= mu_s m g, except where the stick would last
+//   zero time: at the outward band edge (sgn(v) (x - b) = a_s, v != 0) or so
+//   near it that its break time rounds to t; there the mass leaves from the
+//   edge with sigma = sgn(v), like after a break. Otherwise the slip
 //   reverses: sigma = sgn(F) (a slip_reversal).
 // After a break (or an outward-edge touch) the relative acceleration is
 //   x'' = sgn(v) (mu_k - mu_s) g. With mu_s = mu_k it is 0: the orbit only
@@ -97,7 +98,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
            (v != 0.0 && t + (as - sign_of(v) * (x - b)) / std::abs(v) <= t);
   };
   auto leave_edge_at_once = [&] {
-    if (!on_outward_edge()) x = b + sign_of(v) * as;
+    x = b + sign_of(v) * as;
     leave_edge();
   };
   // Resolve the mode at relative velocity zero (x' == v), arriving with from_sigma.
