@@ -21,9 +21,9 @@
 // by piece: a piece whose end has sigma (v - x') <= 0 holds exactly one root
 // (monotone), which Halley's iteration safeguarded by the bracket solves to a
 // few ulps. No root is missed, since every piece is checked at its end. A
-// slip that starts exactly at x' = v and leaves it (g = 0, g' > 0) has no
-// root on its first piece, where g only grows: whatever sign the rounding
-// gives its end, that piece is not searched (first_rest, `leaving`).
+// slip whose g starts >= 0 and grows (g' > 0) has no root on its first
+// piece, where x'' keeps its sign: whatever sign the rounding gives its end,
+// that piece is not searched (first_rest, `leaving`).
 // Derivations: docs/model.md, "Slip" of "The model family".
 #pragma once
 #include <algorithm>
@@ -122,13 +122,14 @@ class damped_oscillator {
     const double w1 = -w2_ * z0 - 2.0 * gamma_ * a0;
     double lo = 0.0;
     double g_lo = sigma * (v - z0);
-    // Leaving x' = v (g(0) = 0, g'(0) = -sigma a0 > 0): on the first piece x''
-    // keeps the sign of a0, so g only grows there and holds no return, even
-    // where x' - v is below the resolution of x' and its computed end value
-    // is 0 or negative by rounding (an edge departure with mu_s a few ulps
-    // above mu_k: x' - v ~ omega_0^2 v t^2 / 2 for nanoseconds). A root there
-    // would put the mass back at the edge while the belt moves on.
-    const bool leaving = g_lo == 0.0 && sigma * a0 < 0.0;
+    // Moving away from x' = v (g(0) >= 0, g'(0) = -sigma a0 > 0): on the first
+    // piece x'' keeps the sign of a0, so g only grows there and holds no
+    // return, even where g is within the resolution of x' and its computed
+    // end value is 0 or negative by rounding (an edge departure with mu_s a
+    // few ulps above mu_k: x' - v ~ omega_0^2 v t^2 / 2 for nanoseconds; or
+    // x' within an ulp of a level just switched back to). A root there would
+    // clamp the mass back into the band while the belt moves on.
+    const bool leaving = g_lo >= 0.0 && sigma * a0 < 0.0;
     // The state at the horizon, computed at most once.
     damped_state s_horizon{};
     bool have_s_horizon = false;
