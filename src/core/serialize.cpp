@@ -87,6 +87,11 @@ mean_variance get_mean_variance(reader& r) {
   const auto n = r.u64("accumulator count");
   const double mean = r.f64("accumulator mean");
   const double m2 = r.f64("accumulator M2");
+  // put() writes an empty accumulator as (0, +0.0, +0.0): anything else with a
+  // zero count would be read as an accumulator that writes other bytes.
+  if (n == 0 && (std::bit_cast<std::uint64_t>(mean) != 0 || std::bit_cast<std::uint64_t>(m2) != 0))
+    throw corrupt(fmt::format("empty accumulator with mean {} and M2 {}", mean, m2));
+  if (m2 < 0) throw corrupt(fmt::format("accumulator M2 {} is negative", m2));
   return mean_variance::from_raw(n, mean, m2);
 }
 
@@ -276,7 +281,10 @@ point_statistics get_statistics(reader& r) {
       if (i >= n || (k > 0 && i <= last))
         throw corrupt(fmt::format("{}: cell index {} out of order or range", j.name, i));
       last = i;
-      cells[static_cast<std::size_t>(i)] = r.u64(j.name);
+      const auto count = r.u64(j.name);
+      if (count == 0)  // put() lists only the non-zero cells
+        throw corrupt(fmt::format("{}: cell {} listed with a zero count", j.name, i));
+      cells[static_cast<std::size_t>(i)] = count;
     }
     h.set_raw(std::move(cells));
     s.*j.counts = std::move(h);
