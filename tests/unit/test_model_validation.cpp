@@ -63,6 +63,23 @@ TEST(ModelValidation, NonPositiveKineticFriction) {
   expect_mentions(rejection(m), {"mu_k", "0", "> 0"});
 }
 
+// A belt so slow against the band that a slip would be shorter than the
+// resolution of t (fuzz_model_family's dropped slip and missed damped return,
+// both at omega_0 a_s / |v| ~ 1e52). The bound sits at 1e12; resting levels
+// (v = 0) are not moving levels and stay allowed.
+TEST(ModelValidation, ABeltTooSlowForTheResolutionOfTime) {
+  oscillator_model m;  // m = k = 1: omega_0 = 1, a_s = mu_s g
+  m.static_friction = m.kinetic_friction = 5.0;
+  const double band_speed = m.natural_frequency() * m.static_band_half_width();
+  m.belt = markov_belt{{0.0, -band_speed * 1.0001e-12}, {-1, 1, 1, -1}};
+  EXPECT_NO_THROW(validate(m));
+  m.belt.levels[1] = -band_speed * 0.9999e-12;
+  expect_mentions(rejection(m), {"belt level v2", "omega_0 a_s / 1e12", "resolution of t"});
+  model_parameters paper;  // V: the paper's belt +V, -V
+  paper.belt_speed = 1e-12;
+  expect_mentions(rejection(model_of(paper)), {"belt level v1", "V for the paper's belt"});
+}
+
 TEST(ModelValidation, FewerThanTwoLevels) {
   expect_mentions(rejection(markov_belt{{1.0}, {0.0}}), {"belt levels", "1", "at least 2"});
 }

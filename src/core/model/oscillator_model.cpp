@@ -93,6 +93,18 @@ void validate(const oscillator_model& m) {
   require_scale("a_k = mu_k m g / k", m.kinetic_offset());
   require_scale("a_s = mu_s m g / k", m.static_band_half_width());
   require_scale("omega_0 = sqrt(k/m)", m.natural_frequency());
+  const double band_speed = m.natural_frequency() * m.static_band_half_width();
+  for (std::size_t i = 0; i < m.belt.levels.size(); ++i) {
+    const double v = m.belt.levels[i];
+    if (v == 0.0 || band_speed <= max_band_to_belt_ratio * std::abs(v)) continue;
+    throw invalid_parameter(
+        fmt::format("belt level v{} (V for the paper's belt)", i + 1), v,
+        fmt::format("0 or |value| >= omega_0 a_s / 1e12 = {:.6g} m/s (omega_0 = sqrt(k/m) = "
+                    "{:.6g}, a_s = mu_s m g / k = {:.6g}): a slower belt makes slips shorter "
+                    "than the resolution of t",
+                    band_speed / max_band_to_belt_ratio, m.natural_frequency(),
+                    m.static_band_half_width()));
+  }
   if (m.damping > 0.0) {
     require_scale("c", m.damping);
     require_scale("gamma = c / (2 m)", m.decay_rate());
