@@ -34,7 +34,9 @@ namespace stickslip {
 // Version 2: the layout id follows the version.
 // 8: a spec's uncertain parameters and sensitivity statistic, the design's
 // moments in point statistics, the drawn values in records.
-inline constexpr std::uint32_t serial_format_version = 8;
+// 9: a spec's statistics selection and survival grid, the survival counts
+// in point statistics.
+inline constexpr std::uint32_t serial_format_version = 9;
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.
 [[nodiscard]] std::uint64_t layout_id() noexcept;

@@ -27,6 +27,7 @@
 #include "stickslip/accumulators/histogram2d.hpp"
 #include "stickslip/accumulators/mean_variance.hpp"
 #include "stickslip/accumulators/score_moments.hpp"
+#include "stickslip/accumulators/survival_counts.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/integrator.hpp"
@@ -42,6 +43,19 @@ struct histogram_spec {
   double stick_duration_max = 0.0;  // 0 = d_max
   double slip_duration_max = 0.0;   // 0 = min(t_a, 5/lambda)
   friend bool operator==(const histogram_spec&, const histogram_spec&) = default;
+};
+
+// The grid of the survival group (sweep --statistics survival;
+// survival_estimate.hpp): `bins` equal bins over [0, stick_duration_max] for
+// the stick durations D and over [0, slip_duration_max] for the slip
+// durations H, the same at every grid point so that the curves share one
+// duration coordinate. 0 = automatic: resolve_survival_grid (sweep.hpp) sets
+// the largest d_max and the largest t_a over the grid's points.
+struct survival_spec {
+  std::size_t bins = 200;
+  double stick_duration_max = 0.0;
+  double slip_duration_max = 0.0;
+  friend bool operator==(const survival_spec&, const survival_spec&) = default;
 };
 
 struct realization_record {
@@ -79,6 +93,10 @@ struct realization_samples {
   // n x n), for belts of more than two levels with the family statistics;
   // else empty (two levels alternate: N and the start level give them).
   const std::vector<std::uint32_t>& jumps;
+  // Whether the last entry of `sticks` (of `slips`) is the episode cut by
+  // t_a: right-censored at the duration it had reached (survival_counts).
+  bool last_stick_censored = false;
+  bool last_slip_censored = false;
 };
 
 struct convergence_point {
@@ -114,6 +132,8 @@ class point_statistics {
   // observer skips its bookkeeping (paper_statistics_observer); the
   // reference engines drop theirs there too (sweep.cpp).
   [[nodiscard]] bool keeps_causal_score() const noexcept { return family_statistics || means_only; }
+  // Sizes the survival counts (empty, not selected, by default) on the grid `g`.
+  void select_survival(const survival_spec& g);
   // Add one finished realization. Precondition: one level fraction per level.
   void add(const realization_samples& r, double window);
   // Exact merge (see mean_variance). Precondition: same binning.
@@ -156,6 +176,8 @@ class point_statistics {
   bool stationary_start = true;  // the start level drawn from the stationary law
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
+  // The survival group (select_survival): D_i and H_i ended or censored.
+  survival_counts stick_survival, slip_survival;
   bool family_statistics = true;               // add() fills the five above
   bool means_only = false;                     // add() fills per-realization moments only
   std::uint64_t realizations = 0;
@@ -230,6 +252,7 @@ class realization_observer : public observer_base {
         rec_.first_stick_censored = e.censored;
       }
       ++rec_.sticks;
+      stick_cut_ = e.censored;
       total_stick_ += d;
       if constexpr (Causal) {
         rec_.stick_switch_moment += e.switches_before * d;
@@ -241,6 +264,7 @@ class realization_observer : public observer_base {
       }
     } else if (rec_.sticks > 0) {  // slips after the first stick
       ++rec_.slips;
+      slip_cut_ = e.censored;
       if constexpr (Durations) slips_.push_back(d);
     }
   }
@@ -278,7 +302,7 @@ class realization_observer : public observer_base {
   }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
   [[nodiscard]] realization_samples samples() const noexcept {
-    return {rec_, sticks_, slips_, onsets_, level_fraction_, jumps_};
+    return {rec_, sticks_, slips_, onsets_, level_fraction_, jumps_, stick_cut_, slip_cut_};
   }
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }
@@ -287,6 +311,7 @@ class realization_observer : public observer_base {
  private:
   double window_, kinetic_force_, damping_, mass_, stiffness_;
   bool family_;
+  bool stick_cut_ = false, slip_cut_ = false;  // the last stick / slip is cut by t_a
   double total_stick_ = 0, slip_travel_ = 0, damping_work_ = 0;
   realization_record rec_;
   std::vector<double> sticks_, slips_, onsets_;

@@ -6,7 +6,7 @@
 // (statistics.hpp), and its tests. The order of the rows is the order of the
 // serialized accumulators and of the output columns.
 //
-// Four kinds of rows:
+// Five kinds of rows:
 //   quantity  a value of a realization (R, S_T/t_a, S_L/t_a, D_i, D_1, H_i,
 //             X_i, W_f, W_c), accumulated as mean/variance and, when binned,
 //             as a histogram;
@@ -17,7 +17,10 @@
 //             (D_i, X_i), counted together in the binnings of their 1-D
 //             histograms;
 //   counter   an integer summed over realizations (no-stick realizations,
-//             censored first sticks, events by kind).
+//             censored first sticks, events by kind);
+//   survival law  the durations of the sticks or of the counted slips,
+//             binned as ended or censored by t_a (the survival group, off
+//             unless selected: sweep_spec::statistics).
 // The paper's definitions are in statistics.hpp and docs/model.md.
 #pragma once
 #include <array>
@@ -112,6 +115,19 @@ struct joint_histogram_info {
   std::size_t x, y;           // rows of quantity_table
   sampling x_sampled, y_sampled;
   histogram2d point_statistics::*counts;
+};
+
+// A duration law with right censoring (the survival group, --statistics
+// survival): the counts of ended and censored episodes on the survival grid
+// (survival_spec) and their Kaplan-Meier estimate (survival_estimate.hpp).
+struct survival_info {
+  const char* name;         // results.nc "<name>_survival", "<name>_at_risk", ...
+  const char* coordinate;   // the duration coordinate and dimension of the curve
+  const char* symbol;       // the paper's symbol of the duration
+  const char* episodes;     // which episodes are counted
+  sampling sampled;         // per_stick or per_counted_slip
+  double survival_spec::*upper;  // the end of the grid
+  survival_counts point_statistics::*counts;
 };
 
 namespace detail::schema {
@@ -217,6 +233,17 @@ inline constexpr std::array<counter_info, 6> counter_table{{
      [](ps& s) noexcept -> std::uint64_t& { return s.events.slip_reversals; }},
 }};
 
+inline constexpr std::array<survival_info, 2> survival_table{{
+    {"stick", "stick_duration", "D",
+     "every stick of positive length (those of stick_duration); the stick still going on at "
+     "t_a is censored at the duration it had reached",
+     sampling::per_stick, &survival_spec::stick_duration_max, &ps::stick_survival},
+    {"slip", "slip_duration", "H",
+     "every counted slip (those of slip_duration: beginning after the first stick); the slip "
+     "still going on at t_a is censored at the duration it had reached",
+     sampling::per_counted_slip, &survival_spec::slip_duration_max, &ps::slip_survival},
+}};
+
 }  // namespace detail::schema
 
 // The rows. The tables are constexpr so that point_statistics::add can
@@ -237,6 +264,9 @@ static_assert(quantity_table[3].sampled == sampling::per_stick &&
 }
 [[nodiscard]] inline std::span<const joint_histogram_info> joint_histograms() noexcept {
   return joint_table;
+}
+[[nodiscard]] inline std::span<const survival_info> survival_laws() noexcept {
+  return detail::schema::survival_table;
 }
 
 // The statistics whose mean the precision tools aim at (`sweep --target-ci

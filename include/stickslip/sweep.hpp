@@ -15,6 +15,7 @@
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/statistics.hpp"
+#include "stickslip/statistics_groups.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/uncertainty/parameter_law.hpp"
 
@@ -107,8 +108,26 @@ struct sweep_spec {
   // first block after which every index and share has a 95 % half-width
   // <= target_halfwidth (and at least min_realizations rows are merged).
   std::string sensitivity_statistic;
+  // The optional groups of statistics (statistics_groups.hpp; `default` is
+  // always on): part of the results' identity, like every field above.
+  statistics_selection statistics;
+  // The survival group's grid, shared by all points (statistics.hpp); used
+  // only with statistics.survival. Its automatic (0) ends are resolved by
+  // resolve_survival_grid before a run (validate() requires them).
+  survival_spec survival;
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
+
+// Sets the automatic (0) ends of s.survival: the largest d_max
+// (max_stick_duration) and the largest t_a over the grid's points (with laws,
+// at the quantiles histogram_parameters widens the ranges to). Nothing
+// without the survival group.
+void resolve_survival_grid(sweep_spec& s);
+
+// Sizes the accumulators of the selected groups of `s` in fresh statistics
+// of one of its points (every place that makes a point's statistics calls
+// it, so blocks, merged prefixes and the merger agree on the shape).
+void select_statistics(point_statistics& stats, const sweep_spec& s);
 
 // The key of the random streams of point p: point_key(p), or
 // common_stream_key with common random numbers.

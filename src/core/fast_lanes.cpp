@@ -830,6 +830,7 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   for (std::uint64_t b = 0; b < count; ++b) {
     outs[b].stats = point_statistics(p, s.histograms, s.family_statistics,
                                      s.initial.belt_start == 0, s.means_only);
+    select_statistics(outs[b].stats, s);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;

@@ -145,6 +145,59 @@ sobol_moments get_sobol_moments(reader& r) {
   }
 }
 
+// Survival counts (accumulators/survival_counts.hpp): whether selected;
+// then the upper end, the bins, the overflow of ended and of censored
+// episodes, and sparsely (a block fills few of the bins) the number of bins
+// with a count, then (bin, ended, censored) for each, in bin order.
+void put(writer& w, const survival_counts& c) {
+  w.u8(c.selected() ? 1 : 0);
+  if (!c.selected()) return;
+  w.f64(c.upper());
+  w.u64(c.bins());
+  w.u64(c.ended().overflow());
+  w.u64(c.censored().overflow());
+  std::uint64_t filled = 0;
+  auto counted = [&](std::size_t j) { return c.ended().count(j) != 0 || c.censored().count(j) != 0; };
+  for (std::size_t j = 0; j < c.bins(); ++j) filled += counted(j) ? 1 : 0;
+  w.u64(filled);
+  for (std::size_t j = 0; j < c.bins(); ++j)
+    if (counted(j)) {
+      w.u64(j);
+      w.u64(c.ended().count(j));
+      w.u64(c.censored().count(j));
+    }
+}
+survival_counts get_survival_counts(reader& r, std::string_view name) {
+  const std::string what = fmt::format("{} survival counts", name);
+  if (!r.boolean(what)) return {};
+  const double upper = r.f64(what);
+  if (!(upper > 0) || !std::isfinite(upper))
+    throw corrupt(fmt::format("{}: upper end {} is not finite and > 0", what, upper));
+  const auto bins = r.u64(what);
+  if (bins < 1 || bins > max_histogram_bins)
+    throw corrupt(fmt::format("{}: {} bins", what, bins));
+  const auto ended_over = r.u64(what), censored_over = r.u64(what);
+  std::vector<std::uint64_t> ended(bins, 0), censored(bins, 0);
+  const auto filled = r.count(what, 24);
+  std::uint64_t last = 0;
+  for (std::size_t k = 0; k < filled; ++k) {
+    const auto j = r.u64(what);
+    if (j >= bins || (k > 0 && j <= last))
+      throw corrupt(fmt::format("{}: bin {} out of order or range", what, j));
+    last = j;
+    ended[j] = r.u64(what);
+    censored[j] = r.u64(what);
+    if (ended[j] == 0 && censored[j] == 0)  // put() lists only the bins with a count
+      throw corrupt(fmt::format("{}: bin {} listed without a count", what, j));
+  }
+  histogram e(0.0, upper, bins), c(0.0, upper, bins);
+  e.set_raw(std::move(ended), 0, ended_over);
+  c.set_raw(std::move(censored), 0, censored_over);
+  survival_counts out(upper, bins);
+  out.set_raw(std::move(e), std::move(c));
+  return out;
+}
+
 void put(writer& w, const point_statistics& s) {
   for (const auto& q : quantities()) put(w, s.*q.moments);
   for (const auto& q : quantities())
@@ -199,6 +252,7 @@ void put(writer& w, const point_statistics& s) {
         w.u64(cells[i]);
       }
   }
+  for (const auto& l : survival_laws()) put(w, s.*l.counts);
   w.u64(s.convergence.size());
   for (const auto& c : s.convergence) {
     w.u64(c.realizations);
@@ -289,6 +343,7 @@ point_statistics get_statistics(reader& r) {
     h.set_raw(std::move(cells));
     s.*j.counts = std::move(h);
   }
+  for (const auto& l : survival_laws()) s.*l.counts = get_survival_counts(r, l.name);
   const auto n = r.count("convergence trace", 40);
   s.convergence.resize(n);
   for (auto& c : s.convergence) {
@@ -419,6 +474,10 @@ bytes serialize(const sweep_spec& s) {
     put_values(w, u.law.arguments);
   }
   w.str(s.sensitivity_statistic);
+  w.u8(to_bits(s.statistics));
+  w.u64(s.survival.bins);
+  w.f64(s.survival.stick_duration_max);
+  w.f64(s.survival.slip_duration_max);
   return w.take();
 }
 
@@ -478,6 +537,11 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
                                 to_string(u.law.family)));
   }
   s.sensitivity_statistic = r.str("sensitivity statistic");
+  if (const auto bits = r.u8("statistics selection"); !from_bits(bits, s.statistics))
+    throw corrupt(fmt::format("statistics selection {:#04x} names unknown groups", bits));
+  s.survival.bins = static_cast<std::size_t>(r.u64("survival bins"));
+  s.survival.stick_duration_max = r.f64("survival stick_duration_max");
+  s.survival.slip_duration_max = r.f64("survival slip_duration_max");
   r.finish("sweep spec");
   return s;
 }
@@ -529,6 +593,10 @@ std::optional<std::string> shape_difference(const point_statistics& got,
   for (const auto& q : quantities())
     if (q.density && !(got.*q.density).same_binning(fresh.*q.density))
       return fmt::format("histogram binning of {} differs", q.name);
+  for (const auto& l : survival_laws())
+    if (!(got.*l.counts).same_binning(fresh.*l.counts))
+      return fmt::format("{} survival grid differs (another statistics selection or survival "
+                         "grid)", l.name);
   for (const auto& l : level_quantities())
     if ((got.*l.moments).size() != (fresh.*l.moments).size())
       return fmt::format("{} values of {}, the point has {} belt levels", (got.*l.moments).size(),
@@ -575,7 +643,8 @@ void check_prefix_shape(const sweep_spec& s, const merged_prefix& p) {
   const std::uint64_t expected = std::min(s.realizations, p.blocks * s.block_size);
   if (p.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", p.stats.realizations, expected));
-  const point_statistics fresh(histogram_parameters(s, p.point), s.histograms, s.family_statistics);
+  point_statistics fresh(histogram_parameters(s, p.point), s.histograms, s.family_statistics);
+  select_statistics(fresh, s);
   if (auto why = shape_difference(p.stats, fresh)) throw bad(*why);
   if (p.stats.family_statistics != fresh.family_statistics)
     throw bad("another selection of statistics");
@@ -595,7 +664,8 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   const std::uint64_t expected = std::min(s.realizations, first + s.block_size) - first;
   if (b.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", b.stats.realizations, expected));
-  const point_statistics fresh(histogram_parameters(s, u.point), s.histograms);
+  point_statistics fresh(histogram_parameters(s, u.point), s.histograms);
+  select_statistics(fresh, s);
   if (auto why = shape_difference(b.stats, fresh)) throw bad(*why);
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");
   if (b.records.size() != (s.keep_records ? expected : 0))
@@ -707,6 +777,14 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
   if (a.sensitivity_statistic != b.sensitivity_statistic)
     return fmt::format("sensitivity statistic: '{}' vs '{}'", a.sensitivity_statistic,
                        b.sensitivity_statistic);
+  if (!(a.statistics == b.statistics))
+    return fmt::format("statistics: {} vs {}", to_string(a.statistics), to_string(b.statistics));
+  if (a.statistics.survival && !(a.survival == b.survival))
+    return fmt::format("survival grid: {} bins on [0, {}] s and [0, {}] s vs {} bins on [0, {}] s "
+                       "and [0, {}] s",
+                       a.survival.bins, a.survival.stick_duration_max,
+                       a.survival.slip_duration_max, b.survival.bins,
+                       b.survival.stick_duration_max, b.survival.slip_duration_max);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

@@ -34,6 +34,10 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
                                   this->*quantity_table[j.y].density);
 }
 
+void point_statistics::select_survival(const survival_spec& g) {
+  for (const auto& l : survival_laws()) this->*l.counts = survival_counts(g.*l.upper, g.bins);
+}
+
 namespace {
 
 // A two-level belt alternates: of its N switches, ceil(N/2) leave the start
@@ -181,6 +185,13 @@ void point_statistics::add(const realization_samples& in, double window) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
   }(std::make_index_sequence<counter_table.size()>{});
+  for (const auto& l : survival_laws())
+    if (auto& counts = this->*l.counts; counts.selected()) {
+      const bool sticks = l.sampled == sampling::per_stick;
+      const auto& xs = sticks ? in.sticks : in.slips;
+      const bool cut = sticks ? in.last_stick_censored : in.last_slip_censored;
+      for (std::size_t i = 0; i < xs.size(); ++i) counts.add(xs[i], cut && i + 1 == xs.size());
+    }
   if (keeps_causal_score() && expected_switches > 0.0 && belt_rates[0] == 0.0 &&
       generator.empty()) {
     // The causal score of R (causal_score_moments): M(t) = N(t)/lambda - t,
@@ -235,6 +246,7 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
     for (std::size_t i = 0; i < (this->*l.moments).size(); ++i)
       (this->*l.moments)[i] += (o.*l.moments)[i];
   for (const auto& j : joint_histograms()) this->*j.counts += o.*j.counts;
+  for (const auto& l : survival_laws()) this->*l.counts += o.*l.counts;
   if (generator.empty()) {
     generator = o.generator;
     generator_start_terms = o.generator_start_terms;
@@ -281,6 +293,7 @@ void realization_observer::reset(std::uint64_t realization, double x0, double xd
   rec_.belt_start = belt;
   sticks_.clear();
   slips_.clear();
+  stick_cut_ = slip_cut_ = false;
 }
 
 void realization_observer::finish() noexcept {

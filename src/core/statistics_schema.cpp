@@ -43,6 +43,11 @@ std::uint64_t statistics_schema_id() noexcept {
       f.add("level quantity");
       f.add(l.name);
     }
+    for (const auto& l : survival_laws()) {
+      f.add("survival law");
+      f.add(l.name);
+      f.byte(static_cast<unsigned char>(l.sampled));
+    }
     for (const auto& j : joint_table) {
       f.add("joint histogram");
       f.add(j.name);

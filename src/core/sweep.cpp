@@ -78,7 +78,40 @@ void check_coupled_axes(const sweep_spec& s, const model_parameters& first) {
   }
 }
 
+// The survival grid of a run: its ends resolved (resolve_survival_grid).
+void validate_survival_grid(const survival_spec& g) {
+  if (g.bins < 1 || g.bins > max_histogram_bins)
+    throw invalid_value("survival bins", std::to_string(g.bins),
+                        "1 .. " + std::to_string(max_histogram_bins));
+  for (const auto& l : survival_laws())
+    if (const double upper = g.*l.upper; !(upper > 0) || !std::isfinite(upper))
+      throw invalid_parameter(std::string("survival ") + l.coordinate + "_max", upper,
+                              "finite and > 0 (0 = automatic is resolved by "
+                              "resolve_survival_grid before a run)");
+}
+
 }  // namespace
+
+void resolve_survival_grid(sweep_spec& s) {
+  if (!s.statistics.survival) return;
+  // The rest of the spec first: its points must exist (and be few enough)
+  // before they are visited.
+  sweep_spec rest = s;
+  rest.statistics.survival = false;
+  validate(rest);
+  double stick = 0.0, slip = 0.0;
+  for (std::size_t i = 0; i < point_count(s); ++i) {
+    const model_parameters p = histogram_parameters(s, i);
+    stick = std::max(stick, p.max_stick_duration());
+    slip = std::max(slip, p.window);
+  }
+  if (s.survival.stick_duration_max == 0.0) s.survival.stick_duration_max = stick;
+  if (s.survival.slip_duration_max == 0.0) s.survival.slip_duration_max = slip;
+}
+
+void select_statistics(point_statistics& stats, const sweep_spec& s) {
+  if (s.statistics.survival) stats.select_survival(s.survival);
+}
 
 void validate(const sweep_spec& s) {
   // The first grid point stands for the base: a base value that every axis
@@ -148,6 +181,7 @@ void validate(const sweep_spec& s) {
   if (!(s.histograms.slip_duration_max >= 0) || !std::isfinite(s.histograms.slip_duration_max))
     throw invalid_parameter("slip_duration_max", s.histograms.slip_duration_max,
                             "finite and >= 0 (0 = automatic)");
+  if (s.statistics.survival) validate_survival_grid(s.survival);
   // 2^53: event counts are exact in doubles up to there (the lane engine
   // keeps them in SIMD registers); no realization comes near it.
   if (s.max_events < 1 || s.max_events > max_event_bound)
@@ -301,6 +335,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   block_result out;
   out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
                                s.means_only);
+  select_statistics(out.stats, s);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
@@ -328,6 +363,7 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   block_result out;
   out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
                                s.means_only);
+  select_statistics(out.stats, s);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
@@ -364,8 +400,10 @@ ordered_merger::ordered_merger(const sweep_spec& s)
     : spec_(&s), records_(point_count(s)), next_block_(point_count(s), 0),
       finished_(point_count(s)) {
   points_.reserve(point_count(s));
-  for (std::size_t i = 0; i < point_count(s); ++i)
+  for (std::size_t i = 0; i < point_count(s); ++i) {
     points_.emplace_back(histogram_parameters(s, i), s.histograms, s.family_statistics);
+    select_statistics(points_.back(), s);
+  }
 }
 
 bool records_convergence_after(std::uint64_t b, std::uint64_t total) noexcept {

@@ -47,6 +47,23 @@ sweep_spec stickless_paper_spec() {
   return s;
 }
 
+// The paper model with the survival group: its sparse ended/censored counts
+// (sweep_spec::statistics, survival_counts) and the grid in the spec.
+sweep_spec survival_paper_spec() {
+  sweep_spec s;
+  s.base.window = 6.0;
+  s.base.stiffness = 40.0;
+  s.realizations = 3;
+  s.block_size = 3;
+  s.histograms.bins = 3;
+  s.seed = 13;
+  s.statistics.survival = true;
+  s.survival.bins = 7;
+  resolve_survival_grid(s);
+  validate(s);
+  return s;
+}
+
 class UnitRecordDecoding : public ::testing::TestWithParam<sweep_spec (*)()> {};
 
 TEST_P(UnitRecordDecoding, EveryAcceptedSingleByteChangeReadsBackAsWritten) {
@@ -94,6 +111,7 @@ TEST_P(UnitRecordDecoding, EveryAcceptedSingleByteChangeOfTheHeaderReadsBackAsWr
 }
 
 INSTANTIATE_TEST_SUITE_P(Units, UnitRecordDecoding,
-                         ::testing::Values(&damped_family_spec, &stickless_paper_spec));
+                         ::testing::Values(&damped_family_spec, &stickless_paper_spec,
+                                           &survival_paper_spec));
 
 }  // namespace

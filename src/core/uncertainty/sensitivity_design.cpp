@@ -87,6 +87,7 @@ block_result simulate_block_sensitivity(const sweep_spec& s, const work_unit& u)
   block_result out;
   // Shaped like the merger's point (ordered_merger), so that += applies.
   out.stats = point_statistics(histogram_parameters(s, u.point), s.histograms, s.family_statistics);
+  select_statistics(out.stats, s);
   out.stats.sensitivity = sobol_moments(d);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
