@@ -63,6 +63,8 @@ struct sweep_options {
   std::string checkpoint_interval = "2";   // seconds between journal segments
   bool common_random_numbers = false;
   std::string target_ci, max_realizations, min_realizations;
+  std::string statistics, survival_bins;
+  CLI::Option *statistics_opt = nullptr, *survival_bins_opt = nullptr;
   CLI::Option *crn_opt = nullptr, *target_opt = nullptr, *max_real_opt = nullptr,
               *min_real_opt = nullptr;
   CLI::Option *config_opt = nullptr, *realizations_opt = nullptr, *block_size_opt = nullptr,
@@ -95,6 +97,18 @@ void apply_precision_flags(const sweep_options& o, sweep_spec& spec) {
         io::parse_unsigned("--min-realizations", o.min_realizations, 2, max_realizations);
 }
 
+// --statistics LIST [--survival-bins N] (over the configuration's).
+void apply_statistics_flags(const sweep_options& o, sweep_spec& spec) {
+  if (o.statistics_opt->count() > 0)
+    spec.statistics = parse_statistics_selection("--statistics", o.statistics);
+  if (o.survival_bins_opt->count() == 0) return;
+  if (!spec.statistics.survival)
+    throw invalid_value("--survival-bins", o.survival_bins,
+                        "only with the survival statistics (--statistics survival or all)");
+  spec.survival.bins = static_cast<std::size_t>(
+      io::parse_unsigned("--survival-bins", o.survival_bins, 1, max_histogram_bins));
+}
+
 // (a) The resolved, validated spec: defaults < --config file < --preset < flags.
 sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   sweep_spec spec = o.config_opt->count() > 0 ? io::read_sweep_toml_file(o.config) : sweep_spec{};
@@ -118,6 +132,8 @@ sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
         io::parse_belt_start("--belt-start", o.belt_start, spec.base.levels().size());
   if (o.engine_opt->count() > 0) spec.engine = io::parse_engine("--engine", o.engine);
   apply_precision_flags(o, spec);
+  apply_statistics_flags(o, spec);
+  resolve_survival_grid(spec);
   validate(spec);
   return spec;
 }
@@ -245,6 +261,19 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                                  "fast (default: SIMD lanes) or reference (one realization at a "
                                  "time, the plain exact path); results are bit-identical")
                      ->type_name("NAME");
+  o.statistics_opt =
+      cmd->add_option("--statistics", o.statistics,
+                      fmt::format("groups of statistics, a comma list of {}: default (always "
+                                  "on), survival (Kaplan-Meier survival of stick and slip "
+                                  "durations, censored at t_a; docs/outputs.md) (default: "
+                                  "default)",
+                                  statistics_group_names()))
+          ->type_name("LIST");
+  o.survival_bins_opt = cmd->add_option("--survival-bins", o.survival_bins,
+                                        "bins of the survival grid: [0, d_max] for sticks, "
+                                        "[0, t_a] for slips, the largest over the grid (default "
+                                        "200)")
+                            ->type_name("N");
   const char* precision = "Precision (docs/precision.md)";
   o.crn_opt = cmd->add_flag("--common-random-numbers", o.common_random_numbers,
                             "realization r of every grid point uses the same random numbers "

@@ -163,6 +163,30 @@ PY
 run_ok plot tm --survival stick --at mu=5 --by lambda
 check_figure tm/plots/stick_survival_by_lambda_at_mu5 "stick duration (s)" "stick survival probability (1)" "lambda = 10"
 
+# Survival curves from a real sweep with --statistics survival (the names
+# the sweep writes are the ones plot reads): the .dat equals results.nc.
+run_ok sweep --preset paper-figures --lambda 0.5,3.8 --mu 5 --ta 20 --realizations 100 --seed 2 \
+  --statistics survival --survival-bins 20 -o sv
+run_ok plot sv --survival stick --by lambda
+check_figure sv/plots/stick_survival_by_lambda "stick duration (s)" "stick survival probability (1)" \
+  "lambda = 3.8"
+run_ok plot sv --survival slip --at lambda=0.5
+check_figure sv/plots/slip_survival_at_lambda0.5 "slip duration (s)" "slip survival probability (1)"
+checks=$((checks + 1))
+"$PY" - <<'PY' || fail "the survival curves' .dat differ from results.nc"
+import netCDF4
+from datfile import blocks
+ds = netCDF4.Dataset("sv/results.nc")
+rows = blocks("sv/plots/stick_survival_by_lambda.dat")
+assert len(rows) == 2, len(rows)
+for i in range(2):  # steps: (e_0, S_0), then (e_j, S_j-1), (e_j, S_j) for each edge
+    got = list(zip(*rows[i][0::2]))
+    want = [ds["stick_duration"][:], ds["stick_survival"][i, :], ds["stick_survival_ci95_low"][i, :],
+            ds["stick_survival_ci95_high"][i, :]]
+    for g, w in zip(got, want):
+        assert list(g) == [float(v) for v in w], (g, w)
+PY
+
 # Refusals: exit 2, the message, and no OUT.
 # refused "PHRASE|..." ARGS...: `plot ARGS -o none` exits 2 naming every
 # phrase and creates nothing.

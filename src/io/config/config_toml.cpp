@@ -261,6 +261,21 @@ std::vector<double> read_axis_values(const context& cx, const std::string& dotte
   return values;
 }
 
+// [sweep] statistics: an array of group names, or one name.
+std::vector<std::string> read_names(const context& cx, const std::string& dotted,
+                                    const toml::node& n) {
+  if (const auto* one = n.as_string()) return {one->get()};
+  const auto* a = n.as_array();
+  if (!a) cx.wrong(dotted, n, "an array of names, e.g. [\"survival\"]");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* s = a->get(i)->as_string();
+    if (!s) cx.wrong(fmt::format("{}[{}]", dotted, i), *a->get(i), "a name string");
+    names.push_back(s->get());
+  }
+  return names;
+}
+
 std::vector<std::string> read_order(const context& cx, const toml::node& n) {
   const auto* a = n.as_array();
   if (!a) cx.wrong("grid.order", n, "an array of parameter symbols");
@@ -349,6 +364,8 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       // statistic whose Sobol' indices are estimated; realizations = rows.
       if (!n.is_string()) cx.wrong(dotted, n, "a string naming a statistic, e.g. \"R\"");
       s.sensitivity_statistic = n.as_string()->get();
+    } else if (key == "statistics") {
+      s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
     } else if (key == "target_halfwidth") {
       // The sensitivity study's stop rule (every index's 95 % half-width);
       // a sweep's is target_ci, which carries its own half-width.
@@ -360,22 +377,26 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       cx.unknown_key(dotted, k,
                      "[sweep] takes realizations, seed, block_size, max_events, keep_records, "
                      "engine, common_random_numbers, target_ci, min_realizations, "
-                     "sensitivity_statistic, target_halfwidth");
+                     "sensitivity_statistic, target_halfwidth, statistics");
   }
 }
 
-void read_histograms(const context& cx, const toml::table& t, histogram_spec& h) {
+// [histograms] and [survival] (histogram_spec, survival_spec): bins and the
+// ends of the duration ranges (0 = automatic); validate() checks the ends.
+template <class Grid>
+void read_duration_grid(const context& cx, const toml::table& t, const std::string& table,
+                        Grid& g) {
   for (auto&& [k, n] : t) {
     const std::string key(k.str());
-    const std::string dotted = "histograms." + key;
+    const std::string dotted = table + "." + key;
     if (key == "bins")
-      h.bins = static_cast<std::size_t>(read_u64(cx, dotted, n, 1, max_histogram_bins));
+      g.bins = static_cast<std::size_t>(read_u64(cx, dotted, n, 1, max_histogram_bins));
     else if (key == "stick_duration_max")
-      h.stick_duration_max = read_number(cx, dotted, n);
+      g.stick_duration_max = read_number(cx, dotted, n);
     else if (key == "slip_duration_max")
-      h.slip_duration_max = read_number(cx, dotted, n);
+      g.slip_duration_max = read_number(cx, dotted, n);
     else
-      cx.unknown_key(dotted, k, "[histograms] takes bins, stick_duration_max, slip_duration_max");
+      cx.unknown_key(dotted, k, "[" + table + "] takes bins, stick_duration_max, slip_duration_max");
   }
 }
 
@@ -415,9 +436,13 @@ sweep_spec parse_sweep_toml(std::string_view toml_text, std::string_view origin)
     else if (key == "sweep")
       read_sweep(cx, as_table(cx, key, n), s);
     else if (key == "histograms")
-      read_histograms(cx, as_table(cx, key, n), s.histograms);
+      read_duration_grid(cx, as_table(cx, key, n), key, s.histograms);
+    else if (key == "survival")
+      read_duration_grid(cx, as_table(cx, key, n), key, s.survival);
     else
-      cx.unknown_key(key, k, "the tables are [model], [initial], [grid], [sweep], [histograms]");
+      cx.unknown_key(key, k,
+                     "the tables are [model], [initial], [grid], [sweep], [histograms], "
+                     "[survival]");
   }
   return s;
 }
@@ -514,9 +539,19 @@ std::string to_toml(const sweep_spec& s) {
     out += fmt::format("min_realizations = {}\n", toml_u64(s.min_realizations));
   if (!s.sensitivity_statistic.empty())
     out += fmt::format("sensitivity_statistic = \"{}\"\n", s.sensitivity_statistic);
+  if (!(s.statistics == statistics_selection{})) {
+    out += "statistics = [";
+    const auto names = selected_group_names(s.statistics);
+    for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format("{}\"{}\"", i ? ", " : "", names[i]);
+    out += "]\n";
+  }
   out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
                      toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
                      toml_float(s.histograms.slip_duration_max));
+  if (s.statistics.survival || !(s.survival == survival_spec{}))
+    out += fmt::format("\n[survival]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
+                       toml_u64(s.survival.bins), toml_float(s.survival.stick_duration_max),
+                       toml_float(s.survival.slip_duration_max));
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include "json_emitter.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/survival_estimate.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "writers_detail.hpp"
 
@@ -169,6 +170,26 @@ void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
   j.end_object();
 }
 
+// The survival group: results.nc's variables of each law at the edges of
+// parameters.survival's duration coordinates.
+void emit_survival(json_emitter& j, const point_statistics& s) {
+  for (const auto& law : survival_laws()) {
+    const auto k = kaplan_meier(s.*law.counts);
+    const std::string name = law.name;
+    for (const auto& col : survival_curve_columns) {
+      j.key(name + col.suffix);
+      j.begin_array();
+      for (double v : k.*col.values) j.value(v);
+      j.end_array();
+    }
+    j.key(name + "_at_risk");
+    j.begin_array();
+    for (auto n : k.at_risk) j.value(n);
+    j.end_array();
+    j.member(name + "_restricted_mean", k.restricted_mean);
+  }
+}
+
 // The point's parameters and realizations, every quantity of the schema,
 // the counters that belong to no group, the sample counts of the quantities
 // not sampled once per realization ("samples"), then each group of counters
@@ -212,6 +233,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
   }
   emit_score_estimates(j, p);
   if (slopes) emit_crn_slopes(j, spec, *slopes);
+  if (spec.statistics.survival) emit_survival(j, s);
   // Joint histograms, when asked: counts[i][k] of x bin i and y bin k (in
   // range), and the samples outside either range.
   for (const auto& jh : joint_histograms()) {
@@ -299,6 +321,22 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
     j.member("halfwidth", s.target_halfwidth);
     j.member("min_realizations", s.min_realizations);
     j.member("max_realizations", s.realizations);
+    j.end_object();
+  }
+  j.key("statistics");
+  j.begin_array();
+  for (const auto& name : selected_group_names(s.statistics)) j.value(name);
+  j.end_array();
+  if (s.statistics.survival) {
+    j.key("survival");
+    j.begin_object();
+    j.member("bins", static_cast<std::uint64_t>(s.survival.bins));
+    for (const auto& law : survival_laws()) {
+      j.key(law.coordinate);  // the edges, the curves' durations [s]
+      j.begin_array();
+      for (double e : survival_edges(s.survival.*law.upper, s.survival.bins)) j.value(e);
+      j.end_array();
+    }
     j.end_object();
   }
   j.key("histograms");

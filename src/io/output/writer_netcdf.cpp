@@ -19,6 +19,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/survival_estimate.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
 #include "writers_detail.hpp"
@@ -614,6 +615,53 @@ void write_joint_histograms(nc::NcFile& f, const layout_info& l, const result_se
   }
 }
 
+// The survival group: per law (stick, slip) a duration coordinate (the edges
+// of the survival grid, shared by all points), the Kaplan-Meier curve with
+// its interval and the numbers at risk over it, and the restricted mean.
+void write_survival(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  if (!rs.spec.statistics.survival) return;
+  const auto& g = rs.spec.survival;
+  for (const auto& law : survival_laws()) {
+    const std::string name = law.name, coordinate = law.coordinate;
+    const auto edges = survival_edges(g.*law.upper, g.bins);
+    const auto dim = f.addDim(coordinate, edges.size());
+    auto c = f.addVar(coordinate, nc::ncDouble, dim);
+    std::string words = coordinate;
+    std::replace(words.begin(), words.end(), '_', ' ');
+    describe(c, "s", words,
+             fmt::format("{} {}: the edges of the survival grid, {} bins on [0, {}] s, at "
+                         "which the survival curve is evaluated",
+                         words, law.symbol, g.bins, g.*law.upper));
+    c.putVar(edges.data());
+    const auto dims = with(l.grid, dim);
+    // One Kaplan-Meier curve per point and variable: O(bins) each.
+    auto curve_of = [&](const point_result& p) { return kaplan_meier(p.stats.*law.counts); };
+    for (const auto& col : survival_curve_columns) {
+      auto v = add_double(f, name + col.suffix, dims, "1", name + " " + col.long_name,
+                          fmt::format("{}; episodes: {}", col.description, law.episodes));
+      put_rows<double>(v, rs, edges.size(), [&](const point_result& p, std::vector<double>& row) {
+        row = curve_of(p).*col.values;
+      });
+    }
+    auto at_risk = add_count(f, name + "_at_risk", dims, name + "s at risk",
+                             fmt::format("episodes at risk at each edge e: those of duration "
+                                         ">= e, ended or censored; episodes: {}",
+                                         law.episodes));
+    put_rows<long long>(at_risk, rs, edges.size(),
+                        [&](const point_result& p, std::vector<long long>& row) {
+                          const auto k = curve_of(p);
+                          for (std::size_t j = 0; j < row.size(); ++j)
+                            row[j] = static_cast<long long>(k.at_risk[j]);
+                        });
+    auto mean = add_double(f, name + "_restricted_mean", l.grid, "s",
+                           "restricted mean " + words,
+                           fmt::format("integral of {}_survival over [0, {}] s: the mean of "
+                                       "min({}, {} s)",
+                                       name, g.*law.upper, law.symbol, g.*law.upper));
+    put_grid<double>(mean, rs, [&](const point_result& p) { return curve_of(p).restricted_mean; });
+  }
+}
+
 void write_convergence(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto dims = with(l.grid, l.trace);
   const std::string when = fmt::format(
@@ -698,6 +746,12 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     f.putAtt("target_ci_halfwidth", nc::ncDouble, s.target_halfwidth);
     f.putAtt("min_realizations", nc::ncUint64, static_cast<unsigned long long>(s.min_realizations));
   }
+  f.putAtt("statistics", to_string(s.statistics));
+  if (s.statistics.survival) {
+    f.putAtt("survival_bins", nc::ncUint64, static_cast<unsigned long long>(s.survival.bins));
+    f.putAtt("survival_stick_duration_max", nc::ncDouble, s.survival.stick_duration_max);
+    f.putAtt("survival_slip_duration_max", nc::ncDouble, s.survival.slip_duration_max);
+  }
   f.putAtt("histogram_bins", nc::ncUint64, static_cast<unsigned long long>(s.histograms.bins));
   f.putAtt("histogram_stick_duration_max", nc::ncDouble, s.histograms.stick_duration_max);
   f.putAtt("histogram_slip_duration_max", nc::ncDouble, s.histograms.slip_duration_max);
@@ -751,6 +805,7 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_histograms(f, l, rs);
   write_level_statistics(f, l, rs);
   write_joint_histograms(f, l, rs);
+  write_survival(f, l, rs);
   write_convergence(f, l, rs);
   f.close();
 }
