@@ -443,7 +443,8 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
                   const py::object& progress, const std::optional<std::string>& belt_start,
                   bool common_random_numbers, const std::string& target_ci,
                   std::uint64_t min_realizations, bool overwrite,
-                  const py::object& design) {
+                  const py::object& design, const std::vector<std::string>& statistics,
+                  std::size_t survival_bins) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
@@ -470,6 +471,10 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
     io::parse_target_ci("target_ci", target_ci, spec);
     spec.min_realizations = min_realizations;
   }
+  // The CLI's --statistics and --survival-bins (their checks and messages).
+  spec.statistics = parse_statistics_selection("statistics", statistics);
+  spec.survival.bins = survival_bins;
+  resolve_survival_grid(spec);
   validate(spec);
   // Refused before anything is allocated, with or without an output folder
   // (run_journaled checks it too; the in-memory path below does not go there).
@@ -682,7 +687,8 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("command_line"), py::arg("progress"), py::arg("belt_start") = py::none(),
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
         py::arg("min_realizations") = 1000, py::arg("overwrite") = false,
-        py::arg("design") = py::none());
+        py::arg("design") = py::none(), py::arg("statistics") = std::vector<std::string>{},
+        py::arg("survival_bins") = survival_spec{}.bins);
   m.def("replay_many", &replay_many_py, py::arg("parameters"), py::arg("seed"),
         py::arg("realizations"), py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"),
         py::arg("switch_times"), py::arg("switch_levels"), py::arg("max_events"),

@@ -33,6 +33,20 @@ def _python_names(ds):
     return ds.assign_coords(lam=("lambda", lam.values, dict(lam.attrs))).swap_dims({"lambda": "lam"})
 
 
+def _statistics_names(statistics):
+    """statistics=: None, a name or a list of names (checked by the library,
+    with the CLI's message)."""
+    if statistics is None:
+        return []
+    names = [statistics] if isinstance(statistics, str) else statistics
+    try:
+        names = list(names)
+    except TypeError:
+        raise error(f"invalid statistics: {statistics!r} (allowed: a list of group names: "
+                    f"default, survival, all)") from None
+    return [text("statistics", n) for n in names]
+
+
 def _progress_bar(enabled):
     if not enabled:
         return None, None
@@ -73,7 +87,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
           records=False, engine="fast", max_events=None, output=None, resume=False,
           keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
           belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
-          min_realizations=1000, overwrite=False, **model):
+          min_realizations=1000, overwrite=False, statistics=None, survival_bins=200, **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
 
@@ -116,6 +130,14 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     target_ci: "STAT:HALFWIDTH" (e.g. "R:0.002"): each point runs until the
         95% half-width of the mean of STAT meets it; `realizations` is then
         the cap per point, min_realizations (default 1000) the minimum.
+    statistics: the groups of statistics, a list of names (or one name):
+        "default" (always on), "survival" (Kaplan-Meier survival of the stick
+        and slip durations with censoring at t_a: stick_survival,
+        stick_survival_ci95_low/high, stick_at_risk, stick_restricted_mean
+        over stick_duration, slip_* over slip_duration), "all"; the CLI's
+        --statistics (docs/outputs.md).
+    survival_bins: bins of the survival grid (default 200; the CLI's
+        --survival-bins).
 
     Returns an xarray.Dataset with the variables, coordinates and attributes of
     the results.nc the CLI writes for the same arguments; the lambda dimension
@@ -148,7 +170,9 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         target_ci="" if target_ci is None else text("target_ci", target_ci),
         min_realizations=whole("min_realizations", min_realizations, 2,
                                _stickslip.max_realizations),
-        overwrite=flag("overwrite", overwrite))
+        overwrite=flag("overwrite", overwrite),
+        statistics=_statistics_names(statistics),
+        survival_bins=whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins))
     update, bar = _progress_bar(flag("progress", progress))
     try:
         with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:
