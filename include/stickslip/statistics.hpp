@@ -176,10 +176,10 @@ class point_statistics {
   bool stationary_start = true;  // the start level drawn from the stationary law
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
-  // The survival group (select_survival): D_i and H_i ended or censored.
-  survival_counts stick_survival, slip_survival;
   bool family_statistics = true;               // add() fills the five above
   bool means_only = false;                     // add() fills per-realization moments only
+  // The survival group (select_survival): D_i and H_i ended or censored.
+  survival_counts stick_survival, slip_survival;
   std::uint64_t realizations = 0;
   std::uint64_t no_stick = 0;              // realizations without any stick
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
@@ -252,7 +252,9 @@ class realization_observer : public observer_base {
         rec_.first_stick_censored = e.censored;
       }
       ++rec_.sticks;
-      stick_cut_ = e.censored;
+      // Only the last episode is cut; a branch, not a store per episode:
+      // the lane engine passes the flag as a constant, so it folds away.
+      if (e.censored) stick_cut_ = true;
       total_stick_ += d;
       if constexpr (Causal) {
         rec_.stick_switch_moment += e.switches_before * d;
@@ -264,7 +266,7 @@ class realization_observer : public observer_base {
       }
     } else if (rec_.sticks > 0) {  // slips after the first stick
       ++rec_.slips;
-      slip_cut_ = e.censored;
+      if (e.censored) slip_cut_ = true;
       if constexpr (Durations) slips_.push_back(d);
     }
   }
