@@ -70,7 +70,8 @@ class damped_oscillator {
     const basis b = at(t);
     const double y = y0 * b.f0 + z0 * b.f1;
     const double z = y0 * b.g0 + z0 * b.g1;
-    return {y, z, -w2_ * y - 2.0 * gamma_ * z};
+    if (b.scale == 1.0) return {y, z, -w2_ * y - 2.0 * gamma_ * z};
+    return {b.scale * y, b.scale * z, b.scale * (-w2_ * y - 2.0 * gamma_ * z)};
   }
 
   // The first zero t > after of x''(t), given x''(0) = w0 and
@@ -111,13 +112,15 @@ class damped_oscillator {
   // The first t in (0, horizon] where sigma (v - x'(t)) returns to 0, or
   // +infinity, for a slip that starts strictly on its sigma side or exactly
   // at x' = v moving into it (g(0) >= 0, leaving). a0 = x''(0) is passed in so that a
-  // start at a band edge can give its exact value (0 when mu_s = mu_k).
+  // start at a band edge can give its exact value (0 when mu_s = mu_k);
+  // a0_rounding bounds the error of a computed a0 (0: exact).
   // On return `at_root` holds the state there; when there is no root, the
   // state at the horizon goes to `*horizon_state` (if given), so that the
   // engine does not compute it again.
   [[nodiscard]] double first_rest(double y0, double z0, double a0, double v, double sigma,
                                   double horizon, damped_state& at_root,
-                                  damped_state* horizon_state = nullptr) const noexcept {
+                                  damped_state* horizon_state = nullptr,
+                                  double a0_rounding = 0.0) const noexcept {
     constexpr double inf = std::numeric_limits<double>::infinity();
     const double w1 = -w2_ * z0 - 2.0 * gamma_ * a0;
     double lo = 0.0;
@@ -129,15 +132,13 @@ class damped_oscillator {
     // few ulps above mu_k: x' - v ~ omega_0^2 v t^2 / 2 for nanoseconds; or
     // x' within an ulp of a level just switched back to). A root there would
     // clamp the mass back into the band while the belt moves on.
-    // a0 = x''(0) = -omega_0^2 y0 - 2 gamma z0 carries the rounding of its
-    // two terms: within it (a start a rounding away from the band's edge,
-    // where a0 is 0 in exact arithmetic) its sign says nothing, and the slip
-    // is leaving only if g'' = -sigma w1 > 0 as well (w1 = x'''(0)).
-    // fuzz_model_family found a start at x' = v on that edge with a0 = +9e-16
-    // by rounding and w1 < 0: x' falls away from v at once, and taking that
-    // slip for leaving lost its return.
-    const double a0_rounding = 8.0 * std::numeric_limits<double>::epsilon() *
-                               (w2_ * std::abs(y0) + 2.0 * gamma_ * std::abs(z0));
+    // A computed a0 carries the rounding of its terms (a0_rounding, from the
+    // caller: 0 when a0 is exact): within it (a start a rounding away from
+    // the band's edge, where a0 is 0 in exact arithmetic) its sign says
+    // nothing, and the slip is leaving only if g'' = -sigma w1 > 0 as well
+    // (w1 = x'''(0)). fuzz_model_family found starts at x' = v on that edge
+    // with a0 = +9e-16 and +1.1e-15 by rounding and w1 < 0: x' falls away
+    // from v at once, and taking such a slip for leaving lost its return.
     const bool a0_decided = std::abs(a0) > a0_rounding;
     const bool leaving =
         g_lo >= 0.0 && sigma * a0 < 0.0 && (a0_decided || sigma * w1 < 0.0);
@@ -209,9 +210,16 @@ class damped_oscillator {
   }
 
  private:
+  // f0..g1 times scale. scale is 1 unless the decay factor is below
+  // tiny_decay: then f0..g1 are formed without it and the state is scaled
+  // last, so that its sign survives (at e^{-gamma t} ~ 1e-300 the products
+  // e S, e C are subnormal, and their sums could come out of either sign:
+  // fuzz_model_family found a return to x' = v on a resting level, v = 0,
+  // missed that way at gamma t_a = 735).
   struct basis {
-    double f0, f1, g0, g1;
+    double f0, f1, g0, g1, scale = 1.0;
   };
+  static constexpr double tiny_decay = 1e-150;
 
   // Whether g = sigma (v - x') went from g_lo at the start of a piece to
   // g_hi <= 0 at its end: a return to x' = v within it. From a start exactly
@@ -250,6 +258,11 @@ class damped_oscillator {
   // C = cos omega_d t, S = sin(omega_d t) / omega_d).
   [[nodiscard]] damped_state state_from(double y0, double z0, double e, double c,
                                         double s) const noexcept {
+    if (e < tiny_decay) {  // as advance: the sign of a subnormal state survives
+      const basis b = scaled(e, c, s);
+      const double y = y0 * b.f0 + z0 * b.f1, z = y0 * b.g0 + z0 * b.g1;
+      return {e * y, e * z, e * (-w2_ * y - 2.0 * gamma_ * z)};
+    }
     const double e_s = e * s, e_c = e * c;
     const double y = y0 * (e_c + gamma_ * e_s) + z0 * e_s;
     const double z = y0 * (-w2_ * e_s) + z0 * (e_c - gamma_ * e_s);
@@ -279,12 +292,14 @@ class damped_oscillator {
         const double e = std::exp(-gamma_ * t);
         double sn, cs;
         ::sincos(rate_ * t, &sn, &cs);
+        if (e < tiny_decay) return scaled(e, cs, sn / rate_);
         e_s = e * sn / rate_;
         e_c = e * cs;
         break;
       }
       case damping_regime::critical: {
         const double e = std::exp(-gamma_ * t);
+        if (e < tiny_decay) return scaled(e, 1.0, t);
         e_s = e * t;
         e_c = e;
         break;
@@ -299,10 +314,15 @@ class damped_oscillator {
         const double spread = 2.0 * rate_ * t;
         if (spread < 1.0) {
           const double e2 = std::exp(r2_ * t), em = std::expm1(spread);
+          if (e2 < tiny_decay) return scaled(e2, 1.0 + 0.5 * em, em / (2.0 * rate_));
           e_s = e2 * em / (2.0 * rate_);
           e_c = e2 + 0.5 * (e2 * em);
         } else {
           const double e1 = std::exp(r1_ * t), e2 = std::exp(r2_ * t);
+          if (e1 < tiny_decay) {  // e2 / e1 = e^{-spread} < 1
+            const double ratio = std::exp(-spread);
+            return scaled(e1, 0.5 * (1.0 + ratio), (1.0 - ratio) / (2.0 * rate_));
+          }
           e_s = (e1 - e2) / (2.0 * rate_);
           e_c = 0.5 * (e1 + e2);
         }
@@ -310,6 +330,10 @@ class damped_oscillator {
       }
     }
     return {e_c + gamma_ * e_s, e_s, -w2_ * e_s, e_c - gamma_ * e_s};
+  }
+  // The basis of C and S without the decay factor e, which is kept apart.
+  [[nodiscard]] basis scaled(double e, double c, double s) const noexcept {
+    return {c + gamma_ * s, s, -w2_ * s, c - gamma_ * s, e};
   }
 
   // One root of g(t) = sigma (v - x'(t)) in (lo, hi], g(lo) > 0 >= g(hi), g

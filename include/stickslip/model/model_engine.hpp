@@ -73,9 +73,16 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
   bool grazing = false;       // no return to x' = v before the next switch
   bool after_reversal = false;
   bool mirror = false;        // undamped slip from a stick inside the kinetic band, v -> -v
-  double acceleration = 0.0;  // x'' at the start of a damped slip
+  double acceleration = 0.0;           // x'' at the start of a damped slip
+  double acceleration_rounding = 0.0;  // a bound on its rounding (0: exact)
 
-  auto generic_acceleration = [&] { return -w2 * (x - sigma * ak) - 2.0 * gamma * z; };
+  // x'' from the state, and a bound on the rounding of its terms (y = x -
+  // sigma a_k cancels: its error is that of x and a_k, not of y).
+  auto set_generic_acceleration = [&] {
+    acceleration = -w2 * (x - sigma * ak) - 2.0 * gamma * z;
+    acceleration_rounding = 8.0 * std::numeric_limits<double>::epsilon() *
+                            (w2 * (std::abs(x) + ak) + 2.0 * gamma * std::abs(z));
+  };
   auto sign_of = [](double u) { return u > 0 ? 1.0 : -1.0; };
   auto on_outward_edge = [&] { return v != 0.0 && as - sign_of(v) * (x - b) <= 0.0; };
   // Slip away from the outward band edge at x' = v (after a break, or a
@@ -87,6 +94,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     after_reversal = !equal_friction;
     mirror = false;
     acceleration = sigma * edge_acceleration_size;
+    acceleration_rounding = 0.0;
   };
   // A stick from a contact here would have no length: on the outward edge,
   // or so near it that the stick's break time (the stick branch's t_edge)
@@ -111,7 +119,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       m = mode::slip;
       sigma = -from_sigma;
       after_reversal = true;
-      acceleration = generic_acceleration();
+      set_generic_acceleration();
     }
   };
 
@@ -123,11 +131,11 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     m = mode::slip;
     sigma = sign_of(x - b);
     after_reversal = true;
-    acceleration = generic_acceleration();
+    set_generic_acceleration();
   } else {
     m = mode::slip;
     sigma = v > z ? 1.0 : -1.0;
-    acceleration = generic_acceleration();
+    set_generic_acceleration();
   }
 
   episode ep{m, 0.0, 0.0, x, v, false};
@@ -186,7 +194,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         // it first turns through the far side and returns after half a
         // period at x = 2c - x: the general root (root_angle gives pi).
         mirror = !damped && v == -old_v && sigma * (x - sigma * ak) < 0.0;
-        acceleration = generic_acceleration();
+        set_generic_acceleration();
         close_episode(t, mode::slip);
       } else {  // the stick breaks at the band edge; exact state
         piece(mode::stick, t_edge - t, b + s * as, v);
@@ -229,8 +237,9 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     if (damped && !grazing) {
       detail::damped_state at_root{};
       at_horizon.velocity = std::numeric_limits<double>::quiet_NaN();
-      const double tau = oscillator.first_rest(y, z, acceleration, v, sigma,
-                                               std::min(t_switch, ta) - t, at_root, &at_horizon);
+      const double tau =
+          oscillator.first_rest(y, z, acceleration, v, sigma, std::min(t_switch, ta) - t, at_root,
+                                &at_horizon, acceleration_rounding);
       if (tau < inf) {
         t_root = t + tau;
         x_root = center + at_root.y;
@@ -278,7 +287,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         }
       } else {
         sigma = v > z ? 1.0 : -1.0;
-        acceleration = generic_acceleration();
+        set_generic_acceleration();
       }
       continue;
     }
