@@ -80,6 +80,18 @@ TEST(ModelValidation, ABeltTooSlowForTheResolutionOfTime) {
   expect_mentions(rejection(model_of(paper)), {"belt level v1", "V for the paper's belt"});
 }
 
+// Over-damped relaxation faster than the resolution of t (fuzz_model_family:
+// c = 9.7e15, m = 0.078, t_a = 0.52, a return 1.5e-16 s after the start).
+TEST(ModelValidation, DampingFasterThanTheResolutionOfTime) {
+  oscillator_model m;
+  m.window = 0.5;
+  m.damping = 2.0 * m.mass * 1e12 / m.window;  // gamma t_a = 1e12 exactly
+  EXPECT_NO_THROW(validate(m));
+  m.damping *= 1.0001;
+  expect_mentions(rejection(m), {"c (damping)", "gamma t_a = c t_a / (2 m) <= 1e12",
+                                 "resolution of t"});
+}
+
 TEST(ModelValidation, FewerThanTwoLevels) {
   expect_mentions(rejection(markov_belt{{1.0}, {0.0}}), {"belt levels", "1", "at least 2"});
 }

@@ -80,7 +80,8 @@ struct oscillator_model {
 // its value and the allowed range: m, k, g, t_a finite and > 0; c finite and
 // >= 0; mu_k finite and > 0; mu_s finite and >= mu_k; the belt as below; the
 // derived scales within [min_magnitude, max_magnitude] like the paper model;
-// every moving belt level |v| >= omega_0 a_s / max_band_to_belt_ratio.
+// every moving belt level |v| >= omega_0 a_s / max_band_to_belt_ratio;
+// with damping, sqrt(k/m) t_a <= 1e6 and gamma t_a <= max_decay_periods.
 void validate(const oscillator_model& model);
 // The largest omega_0 a_s / |v|: radians of the oscillation while a moving
 // belt level crosses the static band. Beyond it a slip can be shorter than
@@ -89,6 +90,10 @@ void validate(const oscillator_model& model);
 // the paper's k and mu near 1e7; fuzz_model_family found such slips (and a
 // missed damped return) only near 1e52.
 inline constexpr double max_band_to_belt_ratio = 1e12;
+// The largest gamma t_a = c t_a / (2 m) of a damped model: the slip's fastest
+// relaxation time stays above 1e-12 t_a, which t resolves anywhere in the
+// window.
+inline constexpr double max_decay_periods = 1e12;
 // n >= 2 levels, finite and pairwise distinct; Q is n x n, off-diagonal
 // rates finite and >= 0, every level left at a finite rate > 0, and each row
 // sums to 0 within a relative 1e-12 of its largest entry.

@@ -119,6 +119,18 @@ void validate(const oscillator_model& m) {
           fmt::format("with damping c > 0, sqrt(k/m) t_a <= 1e6, i.e. k <= {:.6g} for m = {:.6g} "
                       "and t_a = {:.6g} (the damped engine visits every half-period of a slip)",
                       1e12 * m.mass / (m.window * m.window), m.mass, m.window));
+    // An over-damped slip relaxes on the time scale 1 / (2 gamma): beyond
+    // gamma t_a = 1e12 its return to x' = v can fall below the resolution of
+    // t (fuzz_model_family found c = 9.7e15, m = 0.078, t_a = 0.52: a return
+    // 1.5e-16 s after the start, which the certified search could not
+    // isolate in a 0.26-s bracket). Users' models are far below (c / m =
+    // 1e3, t_a = 1e4: 5e6).
+    if (m.decay_rate() * m.window > max_decay_periods)
+      throw invalid_parameter(
+          "c (damping)", m.damping,
+          fmt::format("gamma t_a = c t_a / (2 m) <= 1e12, i.e. c <= {:.6g} for m = {:.6g} and "
+                      "t_a = {:.6g} (faster relaxation falls below the resolution of t)",
+                      2.0 * m.mass * max_decay_periods / m.window, m.mass, m.window));
   }
 }
 
