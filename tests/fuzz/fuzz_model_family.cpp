@@ -34,8 +34,8 @@
 // event, and simulate_block must give the same bytes with either engine
 // (sweep_engine::reference runs simulate_block_family).
 // The inputs of faults it found are in the corpus (known-*: the two found
-// at omega a_s / |v| ~ 1e52 are now refused by validate()). FUZZ_TRACE=1 prints what an input
-// decodes to and every event, episode and piece.
+// at omega a_s / |v| ~ 1e52 are now refused by validate()). FUZZ_TRACE=1
+// prints what an input decodes to and every event, episode and piece.
 #include <algorithm>
 #include <bit>
 #include <cmath>

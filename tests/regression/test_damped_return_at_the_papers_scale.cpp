@@ -11,6 +11,7 @@
 
 #include <cmath>
 
+#include "regression/slip_rk4.hpp"
 #include "stickslip/model/damped_slip.hpp"
 #include "stickslip/model/oscillator_model.hpp"
 #include "stickslip/parameters.hpp"
@@ -30,22 +31,16 @@ TEST(DampedReturnAtThePapersScale, TheFirstReturnAfterASwitchAgreesWithRK4) {
   const double y0 = x0 - sigma * m.kinetic_offset();
   const double a0 = -o.omega_squared() * y0 - 2.0 * o.gamma() * z0;
   // RK4 oracle, step h: the first crossing of x' = v, interpolated.
-  double y = y0, z = z0, t = 0.0, oracle = 0.0;
+  regression::slip_rk4 rk{o.omega_squared(), o.gamma(), y0, z0};
+  double t = 0.0, oracle = 0.0;
   const double h = 1e-8;
-  auto f = [&](double yy, double zz) { return -o.omega_squared() * yy - 2.0 * o.gamma() * zz; };
   for (int i = 0; i < 1000000; ++i) {
-    const double k1y = z, k1z = f(y, z);
-    const double k2y = z + 0.5 * h * k1z, k2z = f(y + 0.5 * h * k1y, z + 0.5 * h * k1z);
-    const double k3y = z + 0.5 * h * k2z, k3z = f(y + 0.5 * h * k2y, z + 0.5 * h * k2z);
-    const double k4y = z + h * k3z, k4z = f(y + h * k3y, z + h * k3z);
-    const double yn = y + h / 6.0 * (k1y + 2.0 * k2y + 2.0 * k3y + k4y);
-    const double zn = z + h / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
-    if (i > 100 && zn - v <= 0.0) {
-      oracle = t + h * (z - v) / (z - zn);
+    const double z = rk.z;
+    rk.step(h);
+    if (i > 100 && rk.z - v <= 0.0) {
+      oracle = t + h * (z - v) / (z - rk.z);
       break;
     }
-    y = yn;
-    z = zn;
     t += h;
   }
   ASSERT_GT(oracle, 4e-4);

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "regression/recorded.hpp"
+#include "regression/slip_rk4.hpp"
 #include "stickslip/model/belt_chain.hpp"
 #include "stickslip/model/damped_slip.hpp"
 #include "stickslip/model/model_engine.hpp"
@@ -70,19 +71,11 @@ std::vector<fuzzer_case> cases() {
                   72.763674035560328, -0.00067130230499550078)};
 }
 
-// x' at t from (y0, x'0) by RK4 on the first-order system, n steps.
+// x' at t from (y0, x'0) by RK4, n steps.
 double rk4_velocity(double w2, double gamma, double y, double z, double t, int n) {
-  const double h = t / n;
-  auto f = [&](double yy, double zz) { return -w2 * yy - 2.0 * gamma * zz; };
-  for (int i = 0; i < n; ++i) {
-    const double k1y = z, k1z = f(y, z);
-    const double k2y = z + 0.5 * h * k1z, k2z = f(y + 0.5 * h * k1y, z + 0.5 * h * k1z);
-    const double k3y = z + 0.5 * h * k2z, k3z = f(y + 0.5 * h * k2y, z + 0.5 * h * k2z);
-    const double k4y = z + h * k3z, k4z = f(y + h * k3y, z + h * k3z);
-    y += h / 6.0 * (k1y + 2.0 * k2y + 2.0 * k3y + k4y);
-    z += h / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
-  }
-  return z;
+  regression::slip_rk4 rk{w2, gamma, y, z};
+  for (int i = 0; i < n; ++i) rk.step(t / n);
+  return rk.z;
 }
 
 TEST(DampedStartOnTheEdgeByRounding, TheReturnIsFoundWithinAMillisecond) {

@@ -67,11 +67,7 @@ class damped_oscillator {
   // The slip state after time t from (y0, z0): y and x' from the basis, x''
   // from the equation of motion.
   [[nodiscard]] damped_state advance(double y0, double z0, double t) const noexcept {
-    const basis b = at(t);
-    const double y = y0 * b.f0 + z0 * b.f1;
-    const double z = y0 * b.g0 + z0 * b.g1;
-    if (b.scale == 1.0) return {y, z, -w2_ * y - 2.0 * gamma_ * z};
-    return {b.scale * y, b.scale * z, b.scale * (-w2_ * y - 2.0 * gamma_ * z)};
+    return state_of(y0, z0, at(t));
   }
 
   // The first zero t > after of x''(t), given x''(0) = w0 and
@@ -258,15 +254,16 @@ class damped_oscillator {
   // C = cos omega_d t, S = sin(omega_d t) / omega_d).
   [[nodiscard]] damped_state state_from(double y0, double z0, double e, double c,
                                         double s) const noexcept {
-    if (e < tiny_decay) {  // as advance: the sign of a subnormal state survives
-      const basis b = scaled(e, c, s);
-      const double y = y0 * b.f0 + z0 * b.f1, z = y0 * b.g0 + z0 * b.g1;
-      return {e * y, e * z, e * (-w2_ * y - 2.0 * gamma_ * z)};
-    }
-    const double e_s = e * s, e_c = e * c;
-    const double y = y0 * (e_c + gamma_ * e_s) + z0 * e_s;
-    const double z = y0 * (-w2_ * e_s) + z0 * (e_c - gamma_ * e_s);
-    return {y, z, -w2_ * y - 2.0 * gamma_ * z};
+    return state_of(y0, z0, e < tiny_decay ? scaled(e, c, s) : decayed(e * c, e * s));
+  }
+  // The state from (y0, z0) through a basis: y and x' from it, x'' from the
+  // equation of motion, all times the basis's scale last.
+  [[nodiscard]] damped_state state_of(double y0, double z0, const basis& b) const noexcept {
+    const double y = y0 * b.f0 + z0 * b.f1;
+    const double z = y0 * b.g0 + z0 * b.g1;
+    const double a = -w2_ * y - 2.0 * gamma_ * z;
+    if (b.scale == 1.0) return {y, z, a};
+    return {b.scale * y, b.scale * z, b.scale * a};
   }
 
   // The last piece, from lo to the horizon, has no extremum inside.
@@ -329,11 +326,17 @@ class damped_oscillator {
         break;
       }
     }
+    return decayed(e_c, e_s);
+  }
+  // The basis from e C and e S (the decay factor inside), or from C and S
+  // with the decay factor e kept apart.
+  [[nodiscard]] basis decayed(double e_c, double e_s) const noexcept {
     return {e_c + gamma_ * e_s, e_s, -w2_ * e_s, e_c - gamma_ * e_s};
   }
-  // The basis of C and S without the decay factor e, which is kept apart.
   [[nodiscard]] basis scaled(double e, double c, double s) const noexcept {
-    return {c + gamma_ * s, s, -w2_ * s, c - gamma_ * s, e};
+    basis b = decayed(c, s);
+    b.scale = e;
+    return b;
   }
 
   // One root of g(t) = sigma (v - x'(t)) in (lo, hi], g(lo) > 0 >= g(hi), g
