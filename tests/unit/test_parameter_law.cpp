@@ -8,12 +8,14 @@
 //   - the Kolmogorov-Smirnov distance of 100k draws of the random streams
 //     against those CDFs (tolerance: the 99.9 % critical value 1.95/sqrt n);
 //   - parse/print round trips to the bit, and every bad input's message.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -133,6 +135,54 @@ TEST(ParameterLaw, QuantileInvertsAnIndependentCdf) {
     EXPECT_GE(quantile(law, random_stream::open_uniform(0)), lo) << c.text;
     EXPECT_LE(quantile(law, random_stream::open_uniform(~std::uint64_t{0})), hi) << c.text;
   }
+}
+
+// A truncnormal that holds its mean, drawn near u = 1: the upper tail
+// 1 - F(x) must be 1 - u to relative precision. Computed as Phi^-1 of a
+// probability near 1, it lost all digits, and at the largest draw with a
+// far upper end (b = 2e299 sd, fuzz_family_toml) Phi rounded to 1 and
+// Boost.Math threw (exit 70). Oracle: F from std::erfc, written here.
+TEST(ParameterLaw, TruncatedNormalKeepsItsUpperTailDigits) {
+  {
+    const auto law = parse_law("truncnormal(mean=0,sd=1,min=-10,max=10)", "x");
+    const double mass = normal_cdf(10) - normal_cdf(-10);
+    for (double t : {1e-6, 1e-9, 1e-12, 1e-15}) {
+      const double u = 1 - t, tail = 1 - u;  // 1 - u exactly (Sterbenz)
+      const double x = quantile(law, u);
+      const double upper = (0.5 * std::erfc(x / std::numbers::sqrt2) -
+                            0.5 * std::erfc(10 / std::numbers::sqrt2)) / mass;
+      EXPECT_NEAR(upper / tail, 1.0, 1e-9) << "1 - u = " << tail;
+    }
+  }
+  const auto law = parse_law("truncnormal(min=1e-300,mean=1e-61,max=1e300,sd=5.0)", "V");
+  const double u = random_stream::open_uniform(~std::uint64_t{0});
+  double x = 0;
+  ASSERT_NO_THROW(x = quantile(law, u));
+  // Half a normal above its mean: P(X > x) = 2 Q(x / sd) = 1 - u.
+  EXPECT_NEAR(std::erfc(x / 5.0 / std::numbers::sqrt2) / (1 - u), 1.0, 1e-9) << x;
+}
+
+// Beta shapes where Boost.Math's inverse gives up (fuzz_family_toml; both
+// were internal errors, exit 70). Oracles: near 0 the beta CDF is
+// x^p / (p B(p, q)) (1 + O(x)), with B from std::lgamma; and a shape of
+// 7.6e-93 leaves 1 - F(x) < 1e-88 for every x > 0, so the largest draw is
+// the smallest positive double above min.
+TEST(ParameterLaw, BetaQuantileWhereBoostGivesUp) {
+  const double p = 1.02596, q = 3.47656e-05, m = p / (p + q);
+  const auto law = parse_law(
+      fmt::format("beta(mean={},sd={},min=0,max=1)", m, std::sqrt(m * (1 - m) / (p + q + 1))), "x");
+  const double log_beta = std::lgamma(p) + std::lgamma(q) - std::lgamma(p + q);
+  for (double u : {random_stream::open_uniform(0), 1.2015583915594926e-17, 1e-12}) {
+    double x = 0;
+    ASSERT_NO_THROW(x = quantile(law, u)) << u;
+    const double cdf = std::exp(p * std::log(x) - std::log(p) - log_beta);
+    EXPECT_NEAR(cdf / u, 1.0, 1e-6) << "u = " << u << ", x = " << x;
+  }
+  const auto flat = parse_law(
+      "beta(min=1e-300,mean=1.3050275395632785e-154,max=1e-61,sd=1.3842526091178292e-108)", "m");
+  double top = 0;
+  ASSERT_NO_THROW(top = quantile(flat, random_stream::open_uniform(~std::uint64_t{0})));
+  EXPECT_EQ(top, 1e-300 + 1e-61 * std::numeric_limits<double>::denorm_min());
 }
 
 TEST(ParameterLaw, DrawsFollowTheLawByKolmogorovSmirnov) {

@@ -10,9 +10,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <tuple>
@@ -198,6 +200,33 @@ boost::math::gamma_distribution<double, law_policy> gamma_law(const parameter_la
   return {1.0 / c2, law.arguments[0] * c2};
 }
 
+// The quantile of a gamma or beta law at u. Boost.Math's inverses give up
+// on some valid shapes (beta(1.03, 3.5e-5) at u = 5.6e-17: "evaluation
+// exceeded 200 iterations"; a shape of 7.6e-93 near u = 1: "range arguments
+// in wrong order"; both found by fuzz_family_toml). There, the smallest x in
+// [lo, hi] with F(x) >= u is found by bisection on the bits of x (which
+// order non-negative doubles): at most 64 CDF evaluations, deterministic,
+// and exact to the double. Above the median the complement is compared,
+// 1 - u being exact there, so the upper tail keeps its digits.
+template <class Law>
+double inverse_cdf(const Law& law, double u, double lo, double hi) {
+  try {
+    return boost::math::quantile(law, u);
+  } catch (const std::exception&) {
+  }
+  auto at_or_above = [&](double x) {
+    return u <= 0.5 ? boost::math::cdf(law, x) >= u
+                    : boost::math::cdf(boost::math::complement(law, x)) <= 1.0 - u;
+  };
+  std::uint64_t a = std::bit_cast<std::uint64_t>(lo), b = std::bit_cast<std::uint64_t>(hi);
+  while (a < b) {
+    const std::uint64_t mid = a + (b - a) / 2;
+    if (at_or_above(std::bit_cast<double>(mid))) b = mid;
+    else a = mid + 1;
+  }
+  return std::bit_cast<double>(a);
+}
+
 }  // namespace
 
 const char* to_string(law_family f) noexcept { return info_of(f).name; }
@@ -305,17 +334,29 @@ double quantile(const parameter_law& law, double u) {
       // z = Phi^-1(Phi(a) + u (Phi(b) - Phi(a))), in the reflected frame
       // when the interval lies above the mean (standardize).
       const auto s = standardize(law);
-      const double p = s.reflected ? s.pb - u * (s.pb - s.pa) : s.pa + u * (s.pb - s.pa);
-      double z = boost::math::quantile(standard_normal, std::clamp(p, s.pa, s.pb));
+      const double mass = s.pb - s.pa;
+      const double p = s.reflected ? s.pb - u * mass : s.pa + u * mass;
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      double z;
+      if (p <= 0.5) {
+        z = p <= 0.0 ? -inf : boost::math::quantile(standard_normal, std::clamp(p, s.pa, s.pb));
+      } else {
+        // Above the median Phi(z) is rounded near 1 (to 1 itself when b is far
+        // out, where Boost.Math would throw): invert the upper tail instead,
+        // Q(z) = Q(b) + (1 - u)(Phi(b) - Phi(a)). Only an interval that holds
+        // the mean gets here, never the reflected frame (b <= 0 there).
+        const double q = upper_tail(s.b) + (1.0 - u) * mass;
+        z = q <= 0.0 ? inf : boost::math::quantile(boost::math::complement(standard_normal, std::min(q, 0.5)));
+      }
       if (s.reflected) z = -z;
       return std::clamp(x[0] + x[1] * z, x[2], x[3]);
     }
     case law_family::lognormal:
       return boost::math::quantile(log_normal(law), u);
     case law_family::gamma:
-      return boost::math::quantile(gamma_law(law), u);
+      return inverse_cdf(gamma_law(law), u, 0.0, std::numeric_limits<double>::max());
     case law_family::beta:
-      return std::clamp(x[2] + (x[3] - x[2]) * boost::math::quantile(unit_beta(law), u), x[2], x[3]);
+      return std::clamp(x[2] + (x[3] - x[2]) * inverse_cdf(unit_beta(law), u, 0.0, 1.0), x[2], x[3]);
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
