@@ -45,9 +45,15 @@ endforeach()
 install(TARGETS stickslip RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 # Public headers: include/stickslip (core, io/, detail/), the generated
-# version header, and the MPI backend's header when it is built.
+# version header, and the MPI backend's header when it is built. Not the
+# lane engine's own headers: fast_math_simd.hpp includes Highway, which
+# stickslip links PRIVATE, and fast_block.hpp is the interface between the
+# sweep and the lanes inside the library (package.downstream checks that no
+# installed header names Highway).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/stickslip
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  PATTERN "fast_math_simd.hpp" EXCLUDE
+  PATTERN "fast_block.hpp" EXCLUDE)
 install(FILES ${PROJECT_BINARY_DIR}/generated/stickslip/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stickslip)
 if(TARGET stickslip_mpi)
