@@ -5,7 +5,7 @@
 // process (+V / -V, sign flips at Poisson times of rate lambda). Friction is
 // Coulomb: |f| <= mu m g while sticking, f = mu m g sgn(v - x') while slipping.
 //
-// The model family (issue 11) adds, with defaults that give the paper's model:
+// The model family adds, with defaults that give the paper's model:
 //   viscous damping c:       m x'' + c x' + k x = f;
 //   static and kinetic friction mu_s >= mu_k (a stick holds while
 //     |k x + c v| <= mu_s m g, a slip feels mu_k m g);

@@ -379,7 +379,7 @@ void refinement_section(document& d, const study_result& st) {
       "fitted over a fixed window of ±{} in ln λ is biased: its maximizer follows the "
       "asymmetry of the window's ends, not the top of the curve. The bootstrap interval "
       "counted only the sampling error of the points, not that bias, so it was too narrow "
-      "(issue 13: an independent computation placed λ* for μ = 5 outside 0.1.0's interval). "
+      "(an independent computation placed λ* for μ = 5 outside 0.1.0's interval). "
       "The peak search shrinks its window as the precision grows and adds an estimate of the "
       "local model's bias to the interval. Here the two estimates differ by up to {:.3f} "
       "1/s, and the 0.1.0 interval misses the new λ* for {} of the {} μ compared. R* hardly "

@@ -1,6 +1,6 @@
 // Likelihood-ratio derivatives over the entries q_ij of a Markov belt's
-// generator (issue 13: "for the rates of Markov belts"; statistics.hpp,
-// belt_generator_scores; docs/precision.md). Independent oracles:
+// generator (statistics.hpp, belt_generator_scores; docs/precision.md).
+// Independent oracles:
 //   - d pi/dq_ij against central differences of stationary_law itself;
 //   - the derivative of mean R against common-random-number central
 //     differences of separate runs at q_ij -+ h, paired per realization;

@@ -1,4 +1,4 @@
-// The model family of issue 11 (derivations: docs/model.md, "The model family"):
+// The model family (derivations: docs/model.md, "The model family"):
 //
 //   m x'' + c x' + k x = f(t)
 //   slip:  f = mu_k m g sgn(v - x')

@@ -1,4 +1,4 @@
-// Common-random-number finite differences (issue 13): the slope of a mean
+// Common-random-number finite differences: the slope of a mean
 // over any swept parameter, with an interval. With common random numbers,
 // realization r of every grid point uses the same random numbers, so the
 // difference X_r(b) - X_r(a) of two points a, b on one axis (all other axes
