@@ -190,11 +190,12 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   };
 
   // A piece of motion from the current state (observer.hpp): level 0 is +V.
-  auto piece = [&](mode kind, double dt, double x0, double x1, double z0, double z1,
+  // `t_end`: where it ends (its duration t_end - t).
+  auto piece = [&](mode kind, double t_end, double x0, double x1, double z0, double z1,
                    double sig) {
     if constexpr (takes_pieces<Observer>)
-      obs.on_piece(motion_piece{kind, v > 0 ? std::size_t{0} : std::size_t{1}, dt, x0, x1, z0, z1,
-                                v, sig});
+      obs.on_piece(motion_piece{kind, v > 0 ? std::size_t{0} : std::size_t{1}, t_end - t, x0, x1,
+                                z0, z1, v, sig, t, t_end});
   };
 
   episode ep{m, 0.0, 0.0, x, v, false};
@@ -217,14 +218,14 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w});
       if (t_next >= ta) {
         const double x_end = detail::physics::stick_position(x, v, t, ta);
-        piece(mode::stick, ta - t, x, x_end, v, v, 0.0);
+        piece(mode::stick, ta, x, x_end, v, v, 0.0);
         x = x_end;
         t = ta;
         break;
       }
       if (t_switch <= t_edge) {  // belt switch ends the stick
         const double x_end = std::clamp(detail::physics::stick_position(x, v, t, t_switch), -a, a);
-        piece(mode::stick, t_switch - t, x, x_end, v, v, 0.0);
+        piece(mode::stick, t_switch, x, x_end, v, v, 0.0);
         x = x_end;
         z = v;
         t = t_switch;
@@ -239,7 +240,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
         close_episode(t, mode::slip);
         t_switch = switches.next();
       } else {  // stick breaks at the band edge; exact state, then grazing orbit
-        piece(mode::stick, t_edge - t, x, s * a, v, v, 0.0);
+        piece(mode::stick, t_edge, x, s * a, v, v, 0.0);
         x = s * a;
         z = v;
         t = t_edge;
@@ -277,7 +278,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
       const double cs = detail::fm::cos(w * (t_end - t)), sn = detail::fm::sin(w * (t_end - t));
       const double x_end = detail::physics::rotated_position(o, z, w, cs, sn);
       const double z_end = detail::physics::rotated_velocity(o, z, cs, sn);
-      piece(mode::slip, t_end - t, x, x_end, z, z_end, sigma);
+      piece(mode::slip, t_end, x, x_end, z, z_end, sigma);
       x = x_end;
       z = z_end;
       t = t_end;
@@ -302,7 +303,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
     // Relative velocity reaches zero: x' = v, x from the conserved B (on a
     // mirror return x is where the stick ended, exactly).
     const double x_root = mirror ? x : detail::physics::root_position(o, sigma, std::sqrt(disc), w);
-    piece(mode::slip, t_root - t, x, x_root, z, v, sigma);
+    piece(mode::slip, t_root, x, x_root, z, v, sigma);
     x = x_root;
     z = v;
     t = t_root;

@@ -2,6 +2,7 @@
 // stepper and observer are separate). Any type with these members works;
 // inherit observer_base to get no-op defaults that the compiler removes.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <type_traits>
 
@@ -23,6 +24,12 @@ struct motion_piece {
   double start_velocity, end_velocity;  // x' (a stick: v)
   double belt_velocity;  // v
   double sigma;          // friction direction sgn(v - x') of a slip (0 while sticking)
+  double start_time = 0.0, end_time = 0.0;  // t_start, t_end (duration = t_end - t_start)
+  // The relative travel |v dt - dx| of a slip: sigma (v - x') keeps its sign
+  // over a piece (a reversal ends it), so int |v - x'| dt = |v dt - dx|.
+  [[nodiscard]] double relative_travel() const noexcept {
+    return std::abs(belt_velocity * duration - (end_position - start_position));
+  }
 };
 
 struct observer_base {

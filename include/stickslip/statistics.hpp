@@ -29,6 +29,7 @@
 #include "stickslip/accumulators/score_moments.hpp"
 #include "stickslip/accumulators/survival_counts.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
+#include "stickslip/burn_in.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/observer.hpp"
@@ -80,6 +81,12 @@ struct realization_record {
   std::vector<double> drawn_values;
 };
 
+// Whether a realization has a first stick D_1: a stick that starts in the
+// window (with a burn-in T, a stick in progress at T is not one; burn_in.hpp).
+[[nodiscard]] inline bool has_first_stick(const realization_record& r) noexcept {
+  return r.sticks > 0 && r.first_stick_duration >= 0.0;
+}
+
 // What one finished realization adds to the statistics: its record, the
 // duration D_i and onset position X_i of every stick (in order), the duration
 // H_i of every counted slip, and the fraction P_j of t_a at each belt level.
@@ -97,6 +104,14 @@ struct realization_samples {
   // t_a: right-censored at the duration it had reached (survival_counts).
   bool last_stick_censored = false;
   bool last_slip_censored = false;
+  // With a burn-in T (burn_in.hpp): whether the first entry of `sticks` is
+  // the stick in progress at T, left-truncated (counted from T; no onset
+  // position, so `onsets` starts with the next stick), and the length
+  // t_a - T of the observed window [T, t_a] that the rates and fractions of
+  // the record are over (0: the whole window t_a). A slip in progress at T
+  // is never counted (it comes before the window's first stick).
+  bool first_stick_left_truncated = false;
+  double observed_window = 0.0;
 };
 
 struct convergence_point {
@@ -227,8 +242,11 @@ class realization_observer : public observer_base {
  public:
   // The model's window, kinetic friction force mu_k m g, damping c, and
   // belt level count. `family`: whether to collect the stick-onset positions
-  // (sweep_spec::family_statistics).
-  explicit realization_observer(const model_parameters& p, bool family = true);
+  // (sweep_spec::family_statistics). `burn_in`: T, 0 <= T < t_a; only
+  // [T, t_a] is counted (burn_in.hpp), and the rates and fractions of the
+  // record are over t_a - T.
+  explicit realization_observer(const model_parameters& p, bool family = true,
+                                double burn_in = 0.0);
   void reset(std::uint64_t realization, double x0, double xdot0, int belt);
   // Inline: the engines call it once per episode. It is also compiled into
   // the SIMD translation unit (fast_lanes.cpp, other -m flags), so it must
@@ -241,12 +259,31 @@ class realization_observer : public observer_base {
   }
   // The onset positions only when `Onsets` (and the observer's flag): the
   // lane engine's paper_statistics_observer compiles them out.
+  // With a burn-in T, an episode that ends at or before T is left out, and
+  // one in progress at T counts from T, left-truncated (burn_in.hpp).
   template <bool Onsets, bool Durations = true, bool Causal = true>
   [[gnu::always_inline, gnu::flatten]] void collect_episode(const episode& e) {
+    if (burn_in_.active()) [[unlikely]] {
+      if (!(e.end > burn_in_.time())) return;
+      if (e.start < burn_in_.time()) {
+        episode in_window = e;
+        in_window.start = burn_in_.time();
+        collect_in_window<Onsets, Durations, Causal, true>(in_window);
+        return;
+      }
+    }
+    collect_in_window<Onsets, Durations, Causal, false>(e);
+  }
+  // One episode of the window. D_1 is the first stick that starts in the
+  // window: not a left-truncated one.
+  template <bool Onsets, bool Durations, bool Causal, bool LeftTruncated>
+  [[gnu::always_inline]] void collect_in_window(const episode& e) {
     const double d = e.duration();
     if (e.kind == mode::stick) {
       if (!(d > 0.0)) return;  // sticks of positive length only
-      if (rec_.sticks == 0) {
+      if constexpr (LeftTruncated) {
+        stick_left_truncated_ = true;
+      } else if (rec_.first_stick_start < 0.0) {
         rec_.first_stick_start = e.start;
         rec_.first_stick_duration = d;
         rec_.first_stick_censored = e.censored;
@@ -261,7 +298,7 @@ class realization_observer : public observer_base {
         rec_.stick_time_moment += 0.5 * (e.start + e.end) * d;
       }
       if constexpr (Durations) sticks_.push_back(d);
-      if constexpr (Onsets) {
+      if constexpr (Onsets && !LeftTruncated) {
         if (family_) onsets_.push_back(e.position_at_start);
       }
     } else if (rec_.sticks > 0) {  // slips after the first stick
@@ -274,15 +311,23 @@ class realization_observer : public observer_base {
   // each level, the relative travel |v dt - dx| of the slips, and the damping
   // work (c v^2 dt over a stick; over a slip the energy identity
   // c int x'^2 = sigma mu_k m g dx - d(m x'^2 / 2 + k x^2 / 2)).
+  // With a burn-in T only the pieces' parts in [T, t_a] (burn_in_cut); the
+  // jumps N_ij over the whole window.
   void on_piece(const motion_piece& p) noexcept {
-    level_time_[p.level] += p.duration;
     if (!jumps_.empty()) {  // every piece is emitted, so a level change is a jump
       if (p.level != last_level_ && last_level_ < level_time_.size())
         ++jumps_[last_level_ * level_time_.size() + p.level];
       last_level_ = p.level;
     }
-    if (p.kind == mode::slip)
-      slip_travel_ += std::abs(p.belt_velocity * p.duration - (p.end_position - p.start_position));
+    if (burn_in_.active()) [[unlikely]] {
+      if (!(p.end_time > burn_in_.time())) return;
+      if (p.start_time < burn_in_.time()) return add_piece(burn_in_.after(p));
+    }
+    add_piece(p);
+  }
+  void add_piece(const motion_piece& p) noexcept {
+    level_time_[p.level] += p.duration;
+    if (p.kind == mode::slip) slip_travel_ += p.relative_travel();
     if (damping_ > 0.0) {
       if (p.kind == mode::stick) {
         damping_work_ += damping_ * p.belt_velocity * p.belt_velocity * p.duration;
@@ -304,16 +349,20 @@ class realization_observer : public observer_base {
   }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
   [[nodiscard]] realization_samples samples() const noexcept {
-    return {rec_, sticks_, slips_, onsets_, level_fraction_, jumps_, stick_cut_, slip_cut_};
+    return {rec_,      sticks_,    slips_,    onsets_,
+            level_fraction_, jumps_, stick_cut_, slip_cut_,
+            stick_left_truncated_, window_};
   }
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }
   void finish() noexcept;
 
  private:
-  double window_, kinetic_force_, damping_, mass_, stiffness_;
+  double window_, kinetic_force_, damping_, mass_, stiffness_;  // window_: t_a - T
   bool family_;
+  burn_in_cut burn_in_;
   bool stick_cut_ = false, slip_cut_ = false;  // the last stick / slip is cut by t_a
+  bool stick_left_truncated_ = false;          // the first stick is cut at T
   double total_stick_ = 0, slip_travel_ = 0, damping_work_ = 0;
   realization_record rec_;
   std::vector<double> sticks_, slips_, onsets_;

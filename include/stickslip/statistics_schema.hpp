@@ -209,7 +209,7 @@ inline constexpr std::array<joint_histogram_info, 1> joint_table{{
 inline constexpr std::array<counter_info, 6> counter_table{{
     {"no_stick_count", "no_stick", nullptr, "no-stick realizations",
      "realizations with no stick of positive length in [0, t_a) (no D_1)",
-     [](rec r) noexcept -> std::uint64_t { return r.sticks == 0; },
+     [](rec r) noexcept -> std::uint64_t { return !has_first_stick(r); },
      [](ps& s) noexcept -> std::uint64_t& { return s.no_stick; }},
     {"first_stick_censored_count", "first_stick_censored", nullptr, "censored first sticks",
      "realizations whose first stick was still going on at t_a (D_1 clipped)",

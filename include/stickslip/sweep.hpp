@@ -115,6 +115,10 @@ struct sweep_spec {
   // only with statistics.survival. Its automatic (0) ends are resolved by
   // resolve_survival_grid before a run (validate() requires them).
   survival_spec survival;
+  // The burn-in T (burn_in.hpp, `sweep --burn-in`): every statistic counts
+  // only [T, t_a]; 0 <= T < t_a at every point, 0 = none (the whole window,
+  // the same bits and journal as without the field).
+  double burn_in = 0.0;
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
 

@@ -78,6 +78,7 @@
 #include <vector>
 
 #include "stickslip/belt_switches.hpp"
+#include "stickslip/burn_in.hpp"
 #include "stickslip/detail/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/detail/fast_math.hpp"
@@ -164,7 +165,7 @@ class statistics_collector {
                        std::vector<block_result>& outs, std::size_t point,
                        std::uint64_t first_block, bool family)
       : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block), family_(family) {}
-  [[nodiscard]] observer make() const { return observer(p_, s_.family_statistics); }
+  [[nodiscard]] observer make() const { return observer(p_, s_.family_statistics, s_.burn_in); }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);
   }
@@ -273,7 +274,8 @@ class lane_engine {
       : s_(s), p_(p), fp_(family), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), ak_(a_), w_(p.natural_frequency()), V_(p.belt_speed),
-        ta_(p.window), key_(stream_key(s, p)), max_steps_(static_cast<double>(s.max_events)) {
+        ta_(p.window), key_(stream_key(s, p)), burn_in_(p, with_pieces ? s.burn_in : 0.0),
+        max_steps_(static_cast<double>(s.max_events)) {
     if constexpr (Family) {
       const oscillator_model& m = fp_->model;
       a_ = m.static_band_half_width();
@@ -680,11 +682,22 @@ class lane_engine {
         // time at the first level: v = v1 (the paper's first level is +V;
         // a family belt's levels may have any signs, e.g. 0.5 and 1)
         const mask up = Family ? hn::Eq(v[k], V1) : hn::Gt(v[k], zero);
-        const mask rn0 = run[k];
+        mask rn0 = run[k];
+        // A burn-in T (burn_in.hpp): whole pieces only from T on; a piece in
+        // progress at T adds its part after T below (burn_in_cut, as the
+        // observer does for the scalar engines).
+        mask at_burn_in = hn::FirstN(d, 0);
+        if (burn_in_.active()) {
+          const vec T = Set(d, burn_in_.time());
+          at_burn_in = hn::And(rn0, hn::And(hn::Lt(t[k], T), hn::Gt(nt, T)));
+          rn0 = hn::And(rn0, hn::Ge(t[k], T));
+        }
         hn::Store(Add(hn::Load(d, lt0_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d, lt0_ + j);
         hn::Store(Add(hn::Load(d, lt1_ + j), hn::IfThenElseZero(hn::AndNot(up, rn0), dt)), d, lt1_ + j);
         hn::Store(Add(hn::Load(d, trav_ + j), hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)), d,
                   trav_ + j);
+        if (!hn::AllFalse(d, at_burn_in)) [[unlikely]]
+          add_piece_after_burn_in(d, j, at_burn_in, stk, up, t[k], nt, x[k], x_end, z[k], v[k], sig[k]);
       }
 
       // idle lanes keep their state
@@ -718,6 +731,32 @@ class lane_engine {
     }
     pop_ = pop, close_stick_ = cl_stick, close_slip_ = cl_slip, fin_ = fin;
 #undef K_LOOP
+  }
+
+  // The part after the burn-in T of the pieces in progress at T (lanes
+  // `at` of the vector at j): built as simulate() builds the piece, cut by
+  // burn_in_cut::after (the observer's cut), its time and travel added as
+  // realization_observer::add_piece adds them.
+  HWY_NOINLINE void add_piece_after_burn_in(dtag d, std::size_t j, hn::Mask<dtag> at,
+                                            hn::Mask<dtag> stick, hn::Mask<dtag> up, vec t,
+                                            vec t_end, vec x, vec x_end, vec z, vec v, vec sig) {
+    HWY_ALIGN double ts[N], te[N], xs[N], xe[N], zs[N], vs[N], ss[N], is_stick[N], is_up[N];
+    hn::Store(t, d, ts), hn::Store(t_end, d, te), hn::Store(x, d, xs), hn::Store(x_end, d, xe);
+    hn::Store(z, d, zs), hn::Store(v, d, vs), hn::Store(sig, d, ss);
+    const vec one = hn::Set(d, 1.0);
+    hn::Store(hn::IfThenElseZero(stick, one), d, is_stick);
+    hn::Store(hn::IfThenElseZero(up, one), d, is_up);
+    for (std::uint32_t m = lane_bits(d, at); m != 0; m &= m - 1) {
+      const auto i = static_cast<std::size_t>(std::countr_zero(m));
+      const bool sticking = is_stick[i] != 0.0;
+      const motion_piece whole{sticking ? mode::stick : mode::slip,
+                               is_up[i] != 0.0 ? std::size_t{0} : std::size_t{1},
+                               te[i] - ts[i], xs[i], xe[i], sticking ? vs[i] : zs[i],
+                               vs[i], vs[i], sticking ? 0.0 : ss[i], ts[i], te[i]};
+      const motion_piece part = burn_in_.after(whole);
+      (part.level == 0 ? lt0_ : lt1_)[j + i] += part.duration;
+      if (!sticking) trav_[j + i] += part.relative_travel();
+    }
   }
 
   // ---- after the vector step: counts, episodes, switch draws ----
@@ -777,6 +816,7 @@ class lane_engine {
   double v1_ = 1.0, v2_ = -1.0;  // Family: the two levels
   bool equal_friction_ = true, mirror_belt_ = true;
   std::uint64_t key_;
+  burn_in_cut burn_in_;  // sweep_spec::burn_in (only with pieces)
   std::vector<observer> pool_;
   std::vector<unsigned char> done_;
   // Lane state, one array per variable (structure of arrays): the vector

@@ -478,6 +478,9 @@ bytes serialize(const sweep_spec& s) {
   w.u64(s.survival.bins);
   w.f64(s.survival.stick_duration_max);
   w.f64(s.survival.slip_duration_max);
+  // The burn-in only when there is one: a spec without it keeps the bytes
+  // (and the journal identity) it had before the field.
+  if (s.burn_in != 0.0) w.f64(s.burn_in);
   return w.take();
 }
 
@@ -542,6 +545,10 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   s.survival.bins = static_cast<std::size_t>(r.u64("survival bins"));
   s.survival.stick_duration_max = r.f64("survival stick_duration_max");
   s.survival.slip_duration_max = r.f64("survival slip_duration_max");
+  if (r.remaining() > 0) {
+    s.burn_in = r.f64("burn-in");
+    if (!(s.burn_in > 0.0)) throw corrupt(fmt::format("burn-in {}", s.burn_in));
+  }
   r.finish("sweep spec");
   return s;
 }
@@ -785,6 +792,7 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
                        a.survival.bins, a.survival.stick_duration_max,
                        a.survival.slip_duration_max, b.survival.bins,
                        b.survival.stick_duration_max, b.survival.slip_duration_max);
+  if (a.burn_in != b.burn_in) return fmt::format("burn-in: {} s vs {} s", a.burn_in, b.burn_in);
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

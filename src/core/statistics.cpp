@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <utility>
 
 namespace stickslip {
@@ -118,7 +119,7 @@ void add_quantity(point_statistics& s, const realization_samples& in, double win
   }
   if constexpr (per_realization(q.sampled)) {
     if constexpr (q.sampled == sampling::per_realization_with_stick) {
-      if (r.sticks == 0) return;
+      if (!has_first_stick(r)) return;
     }
     const double x = q.value(r, window);
     moments.add(x);
@@ -178,9 +179,12 @@ void add_generator_scores(point_statistics& s, const realization_samples& in, do
 // stick's (D_i, X_i) to the joint histograms.
 void point_statistics::add(const realization_samples& in, double window) {
   const realization_record& r = in.record;
+  // The rates and fractions are over the observed window [T, t_a]
+  // (burn_in.hpp); the scores of the belt's path over all of [0, t_a].
+  const double observed = in.observed_window > 0.0 ? in.observed_window : window;
   ++realizations;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (add_quantity<I>(*this, in, window), ...);
+    (add_quantity<I>(*this, in, observed), ...);
   }(std::make_index_sequence<quantity_table.size()>{});
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
@@ -190,22 +194,32 @@ void point_statistics::add(const realization_samples& in, double window) {
       const bool sticks = l.sampled == sampling::per_stick;
       const auto& xs = sticks ? in.sticks : in.slips;
       const bool cut = sticks ? in.last_stick_censored : in.last_slip_censored;
-      for (std::size_t i = 0; i < xs.size(); ++i) counts.add(xs[i], cut && i + 1 == xs.size());
+      // Kaplan-Meier over the episodes that start in the window: a
+      // left-truncated stick (in progress at the burn-in) is left out.
+      const std::size_t first = sticks && in.first_stick_left_truncated ? 1 : 0;
+      for (std::size_t i = first; i < xs.size(); ++i) counts.add(xs[i], cut && i + 1 == xs.size());
     }
   if (keeps_causal_score() && expected_switches > 0.0 && belt_rates[0] == 0.0 &&
       generator.empty()) {
     // The causal score of R (causal_score_moments): M(t) = N(t)/lambda - t,
     // Z = int stick(t) M(t) dt / t_a, Y = int M(t) dt / t_a with
     // int_0^t_a N(t) dt = N t_a - (sum of the switch times).
+    // With a burn-in T, Z is over [T, t_a] (/ (t_a - T)): stick(t) for t >= T
+    // is still decided by the path up to t; Y, over [0, t_a], is still a
+    // control of mean 0.
     const double lambda = expected_switches / window;
-    const double z = (r.stick_switch_moment / lambda - r.stick_time_moment) / window;
+    const double z = (r.stick_switch_moment / lambda - r.stick_time_moment) / observed;
     const double n = static_cast<double>(r.events.belt_switches);
     const double y =
         ((n * window - r.events.switch_time_sum) / lambda - 0.5 * window * window) / window;
     stick_fraction_causal_score.add(z, y);
   }
   if (!family_statistics) return;
-  if (belt_rates[0] > 0.0 && in.level_fractions.size() == 2) {
+  // The scores of the rates and of the generator need the time at each
+  // level over all of [0, t_a]; the level fractions of a burn-in are over
+  // [T, t_a], so these derivatives are not estimated with a burn-in.
+  const bool whole_window = observed == window;
+  if (whole_window && belt_rates[0] > 0.0 && in.level_fractions.size() == 2) {
     const auto k = belt_rate_scores(
         belt_rates, level_of_belt_start(r.belt_start), r.events.belt_switches,
         {in.level_fractions[0] * window, in.level_fractions[1] * window}, stationary_start);
@@ -213,15 +227,21 @@ void point_statistics::add(const realization_samples& in, double window) {
       if (q.rate_score)
         for (std::size_t j = 0; j < 2; ++j) (this->*q.rate_score)[j].add(q.value(r, window), k[j]);
   }
-  add_generator_scores(*this, in, window);
+  if (whole_window) add_generator_scores(*this, in, window);
   for (const auto& l : level_quantities()) {
     auto& moments = this->*l.moments;
     for (std::size_t i = 0; i < moments.size(); ++i) moments[i].add(in.level_fractions[i]);
   }
   if (means_only) return;
+  // A left-truncated stick has no onset: pair the onsets with the sticks
+  // after it.
+  const std::size_t truncated = in.first_stick_left_truncated && !in.sticks.empty() ? 1 : 0;
+  auto samples_of = [&](sampling k) {
+    return k == sampling::per_stick ? std::span<const double>(in.sticks).subspan(truncated)
+                                    : std::span<const double>(in.onsets);
+  };
   for (const auto& j : joint_histograms()) {
-    const auto& xs = j.x_sampled == sampling::per_stick ? in.sticks : in.onsets;
-    const auto& ys = j.y_sampled == sampling::per_stick ? in.sticks : in.onsets;
+    const auto xs = samples_of(j.x_sampled), ys = samples_of(j.y_sampled);
     const std::size_t n = std::min(xs.size(), ys.size());
     for (std::size_t i = 0; i < n; ++i) (this->*j.counts).add(xs[i], ys[i]);
   }
@@ -266,13 +286,15 @@ void point_statistics::record_convergence() {
                          stick_duration.mean(), stick_duration.ci95_half_width()});
 }
 
-realization_observer::realization_observer(const model_parameters& p, bool family)
-    : window_(p.window),
+realization_observer::realization_observer(const model_parameters& p, bool family,
+                                           double burn_in)
+    : window_(p.window - burn_in),
       kinetic_force_(p.mu_k() * p.mass * p.gravity),
       damping_(p.damping),
       mass_(p.mass),
       stiffness_(p.stiffness),
       family_(family),
+      burn_in_(p, burn_in),
       level_time_(p.levels().size(), 0.0),
       level_fraction_(p.levels().size(), 0.0),
       jumps_(family && p.levels().size() > 2 && !p.belt_generator.empty()
@@ -293,7 +315,7 @@ void realization_observer::reset(std::uint64_t realization, double x0, double xd
   rec_.belt_start = belt;
   sticks_.clear();
   slips_.clear();
-  stick_cut_ = slip_cut_ = false;
+  stick_cut_ = slip_cut_ = stick_left_truncated_ = false;
 }
 
 void realization_observer::finish() noexcept {

@@ -113,6 +113,26 @@ void select_statistics(point_statistics& stats, const sweep_spec& s) {
   if (s.statistics.survival) stats.select_survival(s.survival);
 }
 
+namespace {
+// 0 <= T < t_a at every point (the smallest t_a of the grid), and no laws:
+// an uncertain realization draws its own observer (uncertainty/).
+void validate_burn_in(const sweep_spec& s) {
+  if (s.burn_in == 0.0) return;
+  double shortest = s.base.window;
+  for (const auto& ax : s.axes)
+    if (canonical_symbol(ax.name) == "ta")
+      shortest = *std::min_element(ax.values.begin(), ax.values.end());
+  if (!(s.burn_in > 0.0) || !(s.burn_in < shortest))
+    throw invalid_parameter("burn_in", s.burn_in,
+                            fmt::format("0 <= burn_in < t_a = {} (the shortest window of the "
+                                        "sweep; 0 = no burn-in)",
+                                        shortest));
+  if (!s.uncertain.empty())
+    throw invalid_parameter("burn_in", s.burn_in,
+                            "0 with uncertain parameters (a burn-in is not supported with laws)");
+}
+}  // namespace
+
 void validate(const sweep_spec& s) {
   // The first grid point stands for the base: a base value that every axis
   // replaces (mu_k = mu = 5 above a swept mu_s) must not make the grid fail.
@@ -186,6 +206,7 @@ void validate(const sweep_spec& s) {
   // keeps them in SIMD registers); no realization comes near it.
   if (s.max_events < 1 || s.max_events > max_event_bound)
     throw invalid_value("max_events", std::to_string(s.max_events), "1 .. 2^53 = 9007199254740992");
+  validate_burn_in(s);
   // Product of the axis sizes in floating point: point_count() would wrap.
   double points = 1.0;
   for (const auto& ax : s.axes) points *= static_cast<double>(ax.values.size());
@@ -340,7 +361,7 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const auto key = stream_key(s, p);
-  realization_observer obs(p, s.family_statistics);
+  realization_observer obs(p, s.family_statistics, s.burn_in);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
     poisson_switches sw(p.switch_rate, s.seed, key, r);
@@ -368,7 +389,7 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const std::size_t levels = fp.model.belt.level_count();
-  realization_observer obs(p, s.family_statistics);
+  realization_observer obs(p, s.family_statistics, s.burn_in);
   for (std::uint64_t r = first; r < last; ++r) {
     const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
     obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));

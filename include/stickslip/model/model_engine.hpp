@@ -145,10 +145,11 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     ep = episode{next_mode, when, 0.0, x, v, false, static_cast<double>(counts.belt_switches)};
   };
   // A piece of motion from the current state (observer.hpp).
-  auto piece = [&](mode kind, double dt, double x1, double z1) {
+  // `t_end`: where it ends (its duration t_end - t).
+  auto piece = [&](mode kind, double t_end, double x1, double z1) {
     if constexpr (takes_pieces<Observer>)
-      obs.on_piece(motion_piece{kind, level, dt, x, x1, z, z1, v,
-                                kind == mode::slip ? sigma : 0.0});
+      obs.on_piece(motion_piece{kind, level, t_end - t, x, x1, z, z1, v,
+                                kind == mode::slip ? sigma : 0.0, t, t_end});
   };
   auto take_switch = [&] {
     level = next_switch.level;
@@ -171,14 +172,14 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       const double t_next = std::min(t_edge, t_switch);
       obs.on_segment(segment{mode::stick, t, std::min(t_next, ta), x, v, v, 0.0, w, gamma});
       if (t_next >= ta) {
-        piece(mode::stick, ta - t, x + v * (ta - t), v);
+        piece(mode::stick, ta, x + v * (ta - t), v);
         x += v * (ta - t);
         t = ta;
         break;
       }
       if (t_switch <= t_edge) {  // a belt switch ends the stick: x' = old v
         const double x_end = std::clamp(x + v * (t_switch - t), b - as, b + as);
-        piece(mode::stick, t_switch - t, x_end, v);
+        piece(mode::stick, t_switch, x_end, v);
         x = x_end;
         z = v;
         t = t_switch;
@@ -197,7 +198,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         set_generic_acceleration();
         close_episode(t, mode::slip);
       } else {  // the stick breaks at the band edge; exact state
-        piece(mode::stick, t_edge - t, b + s * as, v);
+        piece(mode::stick, t_edge, b + s * as, v);
         x = b + s * as;
         z = v;
         t = t_edge;
@@ -263,7 +264,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
         x_end = center + s.y;
         z_end = s.velocity;
       }
-      piece(mode::slip, dt, x_end, z_end);
+      piece(mode::slip, when, x_end, z_end);
       x = x_end;
       z = z_end;
       t = when;
@@ -292,7 +293,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       continue;
     }
     // Relative rest x' = v.
-    piece(mode::slip, t_root - t, x_root, v);
+    piece(mode::slip, t_root, x_root, v);
     x = x_root;
     z = v;
     t = t_root;
