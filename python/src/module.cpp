@@ -444,7 +444,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
                   bool common_random_numbers, const std::string& target_ci,
                   std::uint64_t min_realizations, bool overwrite,
                   const py::object& design, const std::vector<std::string>& statistics,
-                  std::size_t survival_bins) {
+                  std::size_t survival_bins, double burn_in) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
@@ -474,6 +474,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   // The CLI's --statistics and --survival-bins (their checks and messages).
   spec.statistics = parse_statistics_selection("statistics", statistics);
   spec.survival.bins = survival_bins;
+  spec.burn_in = burn_in;  // the CLI's --burn-in (validate() checks 0 <= T < t_a)
   resolve_survival_grid(spec);
   validate(spec);
   // Refused before anything is allocated, with or without an output folder
@@ -688,7 +689,7 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
         py::arg("min_realizations") = 1000, py::arg("overwrite") = false,
         py::arg("design") = py::none(), py::arg("statistics") = std::vector<std::string>{},
-        py::arg("survival_bins") = survival_spec{}.bins);
+        py::arg("survival_bins") = survival_spec{}.bins, py::arg("burn_in") = 0.0);
   m.def("replay_many", &replay_many_py, py::arg("parameters"), py::arg("seed"),
         py::arg("realizations"), py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"),
         py::arg("switch_times"), py::arg("switch_levels"), py::arg("max_events"),

@@ -87,7 +87,8 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
           records=False, engine="fast", max_events=None, output=None, resume=False,
           keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
           belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
-          min_realizations=1000, overwrite=False, statistics=None, survival_bins=200, **model):
+          min_realizations=1000, overwrite=False, statistics=None, survival_bins=200, burn_in=0.0,
+          **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
 
@@ -138,6 +139,11 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         --statistics (docs/outputs.md).
     survival_bins: bins of the survival grid (default 200; the CLI's
         --survival-bins).
+    burn_in: T in seconds, 0 <= T < t_a (default 0: the whole window): every
+        statistic counts only [T, t_a] (R, the rates and the level fractions
+        over t_a - T; an episode in progress at T counts from T); the CLI's
+        --burn-in (docs/outputs.md, "Burn-in"). Recorded as the attribute
+        burn_in (absent without a burn-in).
 
     Returns an xarray.Dataset with the variables, coordinates and attributes of
     the results.nc the CLI writes for the same arguments; the lambda dimension
@@ -172,7 +178,8 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
                                _stickslip.max_realizations),
         overwrite=flag("overwrite", overwrite),
         statistics=_statistics_names(statistics),
-        survival_bins=whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins))
+        survival_bins=whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins),
+        burn_in=number("burn_in", burn_in))
     update, bar = _progress_bar(flag("progress", progress))
     try:
         with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:

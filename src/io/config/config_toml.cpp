@@ -366,6 +366,8 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       s.sensitivity_statistic = n.as_string()->get();
     } else if (key == "statistics") {
       s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
+    } else if (key == "burn_in") {
+      s.burn_in = read_number(cx, dotted, n);  // 0 <= T < t_a: validate()
     } else if (key == "target_halfwidth") {
       // The sensitivity study's stop rule (every index's 95 % half-width);
       // a sweep's is target_ci, which carries its own half-width.
@@ -377,7 +379,7 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       cx.unknown_key(dotted, k,
                      "[sweep] takes realizations, seed, block_size, max_events, keep_records, "
                      "engine, common_random_numbers, target_ci, min_realizations, "
-                     "sensitivity_statistic, target_halfwidth, statistics");
+                     "sensitivity_statistic, target_halfwidth, statistics, burn_in");
   }
 }
 
@@ -545,6 +547,7 @@ std::string to_toml(const sweep_spec& s) {
     for (std::size_t i = 0; i < names.size(); ++i) out += fmt::format("{}\"{}\"", i ? ", " : "", names[i]);
     out += "]\n";
   }
+  if (s.burn_in != 0.0) out += fmt::format("burn_in = {}\n", toml_float(s.burn_in));
   out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
                      toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
                      toml_float(s.histograms.slip_duration_max));

@@ -20,6 +20,9 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
   for (const auto& sym : symbols) out.print("{},", sym);
   out.write("realizations");
+  // The burn-in T, only with one (every statistic is over [T, t_a]).
+  const bool burn_in = rs.spec.burn_in != 0.0;
+  if (burn_in) out.write(",burn_in");
   for (const auto& q : quantities())
     out.print(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", q.summary_name);
   for (const auto& q : quantities())
@@ -36,6 +39,7 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
     const auto& s = p.stats;
     for (const auto& sym : symbols) out.print("{},", parameter_value(p.parameters, sym));
     out.print("{}", s.realizations);
+    if (burn_in) out.print(",{}", rs.spec.burn_in);
     for (const auto& q : quantities()) {
       const auto& mv = s.*q.moments;
       const double half = mv.ci95_half_width();

@@ -327,6 +327,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.begin_array();
   for (const auto& name : selected_group_names(s.statistics)) j.value(name);
   j.end_array();
+  if (s.burn_in != 0.0) j.member("burn_in", s.burn_in);  // only with one: [T, t_a] [s]
   if (s.statistics.survival) {
     j.key("survival");
     j.begin_object();

@@ -747,6 +747,8 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     f.putAtt("min_realizations", nc::ncUint64, static_cast<unsigned long long>(s.min_realizations));
   }
   f.putAtt("statistics", to_string(s.statistics));
+  // Only with a burn-in: without one the file is what it was before.
+  if (s.burn_in != 0.0) f.putAtt("burn_in", nc::ncDouble, s.burn_in);
   if (s.statistics.survival) {
     f.putAtt("survival_bins", nc::ncUint64, static_cast<unsigned long long>(s.survival.bins));
     f.putAtt("survival_stick_duration_max", nc::ncDouble, s.survival.stick_duration_max);
