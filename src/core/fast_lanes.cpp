@@ -687,16 +687,18 @@ class lane_engine {
         // progress at T adds its part after T below (burn_in_cut, as the
         // observer does for the scalar engines).
         mask at_burn_in = hn::FirstN(d, 0);
-        if (burn_in_.active()) {
+        bool cut_at_burn_in = false;
+        if (burn_in_.active()) [[unlikely]] {
           const vec T = Set(d, burn_in_.time());
           at_burn_in = hn::And(rn0, hn::And(hn::Lt(t[k], T), hn::Gt(nt, T)));
+          cut_at_burn_in = !hn::AllFalse(d, at_burn_in);
           rn0 = hn::And(rn0, hn::Ge(t[k], T));
         }
         hn::Store(Add(hn::Load(d, lt0_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d, lt0_ + j);
         hn::Store(Add(hn::Load(d, lt1_ + j), hn::IfThenElseZero(hn::AndNot(up, rn0), dt)), d, lt1_ + j);
         hn::Store(Add(hn::Load(d, trav_ + j), hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)), d,
                   trav_ + j);
-        if (!hn::AllFalse(d, at_burn_in)) [[unlikely]]
+        if (cut_at_burn_in) [[unlikely]]
           add_piece_after_burn_in(d, j, at_burn_in, stk, up, t[k], nt, x[k], x_end, z[k], v[k], sig[k]);
       }
 
