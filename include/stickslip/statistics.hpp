@@ -133,7 +133,7 @@ struct convergence_point {
 class point_statistics {
  public:
   point_statistics() = default;
-  // `family`: whether add() fills the statistics of issue 11
+  // `family`: whether add() fills the family statistics
   // (sweep_spec::family_statistics).
   // `stationary_start`: the belt's start level is drawn from the stationary
   // law (initial_condition_law::belt_start = 0), which depends on the rates.
@@ -371,7 +371,7 @@ class realization_observer : public observer_base {
   std::size_t last_level_ = static_cast<std::size_t>(-1);
 };
 
-// realization_observer without the statistics of issue 11
+// realization_observer without the family statistics
 // (sweep_spec::family_statistics off): no onset positions, and no pieces of
 // motion (observer_base's no-op, so the lane engine does not sum them). The
 // paper study runs the lane engine with it, at the speed from before.

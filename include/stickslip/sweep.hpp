@@ -80,7 +80,7 @@ struct sweep_spec {
   std::string target_statistic;
   double target_halfwidth = 0.0;
   std::uint64_t min_realizations = 1000;
-  // The statistics of issue 11 (stick-onset position X, the joint (D, X)
+  // The family statistics (stick-onset position X, the joint (D, X)
   // histogram, belt level fractions P_j, friction and damping power). On for
   // every sweep; the paper study (paper_study.cpp) turns them off: they add
   // about 15 % to its time (docs/performance.md), and it does not report them.

@@ -465,7 +465,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
     if (!d["target_halfwidth"].is_none()) c.target_halfwidth = d["target_halfwidth"].cast<double>();
     set_sensitivity_design(spec, c);
   }
-  // Issue 13: common random numbers, adaptive sampling (realizations is then the cap).
+  // Precision: common random numbers, adaptive sampling (realizations is then the cap).
   spec.common_random_numbers = common_random_numbers;
   if (!target_ci.empty()) {
     io::parse_target_ci("target_ci", target_ci, spec);

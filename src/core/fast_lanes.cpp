@@ -877,7 +877,7 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   }
   std::optional<family_point> fp;
   if (!p.is_paper_model()) fp.emplace(p, stream_key(s, p));
-  // Three instantiations: with the statistics of issue 11, without their
+  // Three instantiations: with the family statistics, without their
   // per-stick and per-round work (sweep_spec::family_statistics), or
   // without the duration lists too (sweep_spec::means_only).
   if (s.family_statistics) {
