@@ -196,7 +196,7 @@ class point_statistics {
   // The survival group (select_survival): D_i and H_i ended or censored.
   survival_counts stick_survival, slip_survival;
   std::uint64_t realizations = 0;
-  std::uint64_t no_stick = 0;              // realizations without any stick
+  std::uint64_t no_stick = 0;              // realizations without a D_1 (no stick starts in [T, t_a))
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
   event_counts events;
   std::vector<convergence_point> convergence;

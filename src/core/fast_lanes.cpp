@@ -738,7 +738,9 @@ class lane_engine {
   // The part after the burn-in T of the pieces in progress at T (lanes
   // `at` of the vector at j): built as simulate() builds the piece, cut by
   // burn_in_cut::after (the observer's cut), its time and travel added as
-  // realization_observer::add_piece adds them.
+  // realization_observer::add_piece adds them. A slip's end velocity is set
+  // to v here, not the true x'(t_end): right for the time and travel the
+  // lanes add, wrong for any energy; damped slips never run in the lanes.
   HWY_NOINLINE void add_piece_after_burn_in(dtag d, std::size_t j, hn::Mask<dtag> at,
                                             hn::Mask<dtag> stick, hn::Mask<dtag> up, vec t,
                                             vec t_end, vec x, vec x_end, vec z, vec v, vec sig) {

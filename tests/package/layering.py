@@ -14,7 +14,7 @@ import re
 import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
-ISSUE = re.compile(r"\bissues?[ _#-]?\d+\b", re.I)
+ISSUE = re.compile(r"\bissues?[ _#-]{0,2}\d+\b", re.I)
 HEADER = (".hpp", ".h", ".inl")
 CODE = HEADER + (".cpp", ".py", ".cmake")
 

@@ -76,7 +76,9 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
     for (const auto& r : rs.records[i]) {
       out.write(prefix);
       for (double v : r.drawn_values) out.print("{},", v);
-      // -1 marks "no stick" for first_stick_start/duration, as in realization_record.
+      // -1 marks "no D_1" for first_stick_start/duration, as in realization_record
+      // (with a burn-in a row can have sticks = 1 and -1 here: its stick is the
+      // left-truncated one).
       out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
                 r.belt_start, r.sticks, r.slips, r.stick_fraction, r.first_stick_start,
                 r.first_stick_duration, r.first_stick_censored ? 1 : 0, r.friction_power,
