@@ -89,7 +89,7 @@ void validate_family(const model_parameters& p) {
   if (!p.belt_rates.empty() && n != 2)
     throw invalid_parameter("belt-rates (count)", static_cast<double>(p.belt_rates.size()),
                             fmt::format("rates only for a two-level belt; this belt has {} levels: "
-                                        "give a generator matrix in TOML",
+                                        "give a generator matrix (--belt-generator, or belt_generator in TOML)",
                                         n));
   if (!p.belt_rates.empty() && p.belt_rates.size() != 2)
     throw invalid_parameter("belt-rates (count)", static_cast<double>(p.belt_rates.size()),
