@@ -158,8 +158,8 @@ D=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size
 # journal replaces its segments and its size goes up and down)
 J=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 600 --block-size 60
    --threads 2 --seed 7)                                   # 80 units (merged-prefix journal)
-M=(sweep --lambda log:0.1:30:20 --mu 0.5,5 --realizations 600 --seed 5 --checkpoint-interval 0
-   --threads 1)                                            # 240 units, ~4 s under mpirun -np 2
+M=(sweep --lambda log:0.1:30:20 --mu 0.5,5 --realizations 2400 --seed 5 --checkpoint-interval 0
+   --threads 1)                                            # 960 units, ~4 s under mpirun -np 2 (600 ended before the fault on an idle machine)
 S=(sensitivity --k 40 --ta 20 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 8000
    --block-size 50 --threads 2 --seed 13 --no-figure)    # 160 units, 40000 realizations, ~0.6 s
 T=(sweep --lambda 0.1,1,5,20 --mu 0.5,2 --ta 100 --realizations 8000 --block-size 100 --records
@@ -455,7 +455,7 @@ row_mpi_term_ranks() { row_mpi term-ranks 10; }
 row_mpi_term_mpirun() { row_mpi term-mpirun 10; }
 # A worker throwing outside its compute threads, injected by the test-only
 # STICKSLIP_FAULT_INJECT=mpi_worker_throw_after_units:K (backends/mpi; K
-# random in [1, 40] of the 240 units): rank 1's main thread throws after
+# random in [1, 40] of the 960 units): rank 1's main thread throws after
 # sending K results, reports it and calls MPI_Abort. mpirun must exit
 # non-zero within 10 s of that message, with a journal left, and mpirun
 # --resume (without the fault) must give the single-process outputs. The
@@ -508,7 +508,7 @@ row_mpi_throw() {
     ((k > k_max)) && k_max=$k
     ((trial_ok)) || lost=$((lost + 1))
   done
-  notes="K = ${k_min:-?}-$k_max results sent before the throw; exit codes:$codes; slowest exit $(secs $max) s after the worker's message; the journal kept ${kept_min:-0}-$kept_max of 240 units; $other runs finished first (not counted)"
+  notes="K = ${k_min:-?}-$k_max results sent before the throw; exit codes:$codes; slowest exit $(secs $max) s after the worker's message; the journal kept ${kept_min:-0}-$kept_max of 960 units; $other runs finished first (not counted)"
 }
 
 # ------------------------------------------------------------------ 6. two writers
