@@ -744,17 +744,15 @@ class lane_engine {
   HWY_NOINLINE void add_piece_after_burn_in(dtag d, std::size_t j, hn::Mask<dtag> at,
                                             hn::Mask<dtag> stick, hn::Mask<dtag> up, vec t,
                                             vec t_end, vec x, vec x_end, vec z, vec v, vec sig) {
-    HWY_ALIGN double ts[N], te[N], xs[N], xe[N], zs[N], vs[N], ss[N], is_stick[N], is_up[N];
+    HWY_ALIGN double ts[N], te[N], xs[N], xe[N], zs[N], vs[N], ss[N];
     hn::Store(t, d, ts), hn::Store(t_end, d, te), hn::Store(x, d, xs), hn::Store(x_end, d, xe);
     hn::Store(z, d, zs), hn::Store(v, d, vs), hn::Store(sig, d, ss);
-    const vec one = hn::Set(d, 1.0);
-    hn::Store(hn::IfThenElseZero(stick, one), d, is_stick);
-    hn::Store(hn::IfThenElseZero(up, one), d, is_up);
+    const auto stick_bits = lane_bits(d, stick), up_bits = lane_bits(d, up);
     for (std::uint32_t m = lane_bits(d, at); m != 0; m &= m - 1) {
       const auto i = static_cast<std::size_t>(std::countr_zero(m));
-      const bool sticking = is_stick[i] != 0.0;
+      const bool sticking = (stick_bits >> i) & 1u;
       const motion_piece whole{sticking ? mode::stick : mode::slip,
-                               is_up[i] != 0.0 ? std::size_t{0} : std::size_t{1},
+                               (up_bits >> i) & 1u ? std::size_t{0} : std::size_t{1},
                                te[i] - ts[i], xs[i], xe[i], sticking ? vs[i] : zs[i],
                                vs[i], vs[i], sticking ? 0.0 : ss[i], ts[i], te[i]};
       const motion_piece part = burn_in_.after(whole);
