@@ -28,12 +28,14 @@
 #include "stickslip/accumulators/mean_variance.hpp"
 #include "stickslip/accumulators/score_moments.hpp"
 #include "stickslip/accumulators/survival_counts.hpp"
+#include "stickslip/accumulators/time_statistics.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
 #include "stickslip/burn_in.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/parameters.hpp"
+#include "stickslip/state_sampler.hpp"
 
 namespace stickslip {
 
@@ -112,6 +114,9 @@ struct realization_samples {
   // is never counted (it comes before the window's first stick).
   bool first_stick_left_truncated = false;
   double observed_window = 0.0;
+  // The states at the observe times (sweep_spec::observe_times,
+  // state_sampler.hpp), one per time; nullptr without observe times.
+  const std::vector<observed_state>* observed_states = nullptr;
 };
 
 struct convergence_point {
@@ -149,6 +154,8 @@ class point_statistics {
   [[nodiscard]] bool keeps_causal_score() const noexcept { return family_statistics || means_only; }
   // Sizes the survival counts (empty, not selected, by default) on the grid `g`.
   void select_survival(const survival_spec& g);
+  // Sizes the observe-time statistics (empty, not selected, by default).
+  void select_observe_times(const std::vector<double>& times, std::size_t levels);
   // Add one finished realization. Precondition: one level fraction per level.
   void add(const realization_samples& r, double window);
   // Exact merge (see mean_variance). Precondition: same binning.
@@ -195,6 +202,9 @@ class point_statistics {
   bool means_only = false;                     // add() fills per-realization moments only
   // The survival group (select_survival): D_i and H_i ended or censored.
   survival_counts stick_survival, slip_survival;
+  // The ensemble at the observe times (select_observe_times;
+  // sweep_spec::observe_times): empty (not selected) by default.
+  time_statistics observed;
   std::uint64_t realizations = 0;
   std::uint64_t no_stick = 0;              // realizations without a D_1 (no stick starts in [T, t_a))
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
@@ -244,9 +254,12 @@ class realization_observer : public observer_base {
   // belt level count. `family`: whether to collect the stick-onset positions
   // (sweep_spec::family_statistics). `burn_in`: T, 0 <= T < t_a; only
   // [T, t_a] is counted (burn_in.hpp), and the rates and fractions of the
-  // record are over t_a - T.
+  // record are over t_a - T. `observe_times`: the observe times
+  // (sweep_spec::observe_times; nullptr or empty: none), whose states the
+  // engines hand to sample_segment; the vector must outlive the observer.
   explicit realization_observer(const model_parameters& p, bool family = true,
-                                double burn_in = 0.0);
+                                double burn_in = 0.0,
+                                const std::vector<double>* observe_times = nullptr);
   void reset(std::uint64_t realization, double x0, double xdot0, int belt);
   // Inline: the engines call it once per episode. It is also compiled into
   // the SIMD translation unit (fast_lanes.cpp, other -m flags), so it must
@@ -347,11 +360,21 @@ class realization_observer : public observer_base {
     level_time_[1] = time_second;
     slip_travel_ = slip_travel;
   }
+  // The state at the observe times: the engines pass the closed-form
+  // segments (all of them, or those that hold the sampler's next time); not
+  // named on_segment, so that the lane engine, which builds no segments for
+  // other observers, can still take this one (state_sampler.hpp).
+  [[nodiscard]] bool observes_times() const noexcept { return sampler_.active(); }
+  [[nodiscard]] const state_sampler& sampler() const noexcept { return sampler_; }
+  void sample_segment(const segment& s) { sampler_.on_segment(s); }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
+  // Without every observe time sampled (an engine that missed a segment),
+  // observed_states is nullptr, and point_statistics::add refuses it.
   [[nodiscard]] realization_samples samples() const noexcept {
     return {rec_,      sticks_,    slips_,    onsets_,
             level_fraction_, jumps_, stick_cut_, slip_cut_,
-            stick_left_truncated_, window_};
+            stick_left_truncated_, window_,
+            sampler_.active() && sampler_.complete() ? &sampler_.states() : nullptr};
   }
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }
@@ -369,6 +392,7 @@ class realization_observer : public observer_base {
   std::vector<double> level_time_, level_fraction_;
   std::vector<std::uint32_t> jumps_;  // N_ij (realization_samples::jumps)
   std::size_t last_level_ = static_cast<std::size_t>(-1);
+  state_sampler sampler_;  // the observe times (none by default)
 };
 
 // realization_observer without the family statistics

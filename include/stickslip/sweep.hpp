@@ -51,6 +51,7 @@ inline constexpr std::uint64_t max_realizations = std::uint64_t{1} << 40;
 inline constexpr std::uint64_t max_block_size = std::uint64_t{1} << 24;
 inline constexpr std::uint64_t max_histogram_bins = 100'000;
 inline constexpr std::int64_t max_event_bound = std::int64_t{1} << 53;
+inline constexpr std::size_t max_observe_times = 100'000;
 
 struct sweep_spec {
   model_parameters base;           // values of the parameters not swept
@@ -119,6 +120,11 @@ struct sweep_spec {
   // only [T, t_a]; 0 <= T < t_a at every point, 0 = none (the whole window,
   // the same bits and journal as without the field).
   double burn_in = 0.0;
+  // The observe times t_j (`sweep --observe-times`; accumulators/
+  // time_statistics.hpp, state_sampler.hpp): ascending, 0 <= t_j <= t_a at
+  // every point; empty = none. Every point then also keeps the ensemble's
+  // state at each t_j (point_statistics::observed).
+  std::vector<double> observe_times;
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
 

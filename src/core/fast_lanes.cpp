@@ -165,7 +165,9 @@ class statistics_collector {
                        std::vector<block_result>& outs, std::size_t point,
                        std::uint64_t first_block, bool family)
       : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block), family_(family) {}
-  [[nodiscard]] observer make() const { return observer(p_, s_.family_statistics, s_.burn_in); }
+  [[nodiscard]] observer make() const {
+    return observer(p_, s_.family_statistics, s_.burn_in, &s_.observe_times);
+  }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);
   }
@@ -265,6 +267,11 @@ class lane_engine {
   static constexpr bool with_pieces = observes_pieces<observer>;
   // episode::switches_before and event_counts::switch_time_sum (observer.hpp)
   static constexpr bool with_causal = wants_causal_score<observer>;
+  // An observer with a state sampler (realization_observer::sample_segment):
+  // with observe times, the segment of a round that holds a lane's next
+  // observe time is built and handed to it (sample_observe_times).
+  static constexpr bool samples_states =
+      requires(observer& o, const segment& sg) { o.sample_segment(sg); };
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
@@ -275,6 +282,7 @@ class lane_engine {
         next_(first), flush_(first),
         a_(p.band_half_width()), ak_(a_), w_(p.natural_frequency()), V_(p.belt_speed),
         ta_(p.window), key_(stream_key(s, p)), burn_in_(p, with_pieces ? s.burn_in : 0.0),
+        observing_(samples_states && !s.observe_times.empty()),
         max_steps_(static_cast<double>(s.max_events)) {
     if constexpr (Family) {
       const oscillator_model& m = fp_->model;
@@ -329,6 +337,7 @@ class lane_engine {
     r_[l] = r;
     obs_[l] = &pool_[(r - first_) % pool_.size()];
     collect_.begin(*obs_[l], r, ic);
+    if constexpr (samples_states) obs_t_[l] = observing_ ? obs_[l]->sampler().next_time() : inf;
     active_[l] = true;
     act_[l] = 1.0;
     n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
@@ -672,6 +681,18 @@ class lane_engine {
                                         IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),
                         code);
 
+      // observe times (state_sampler.hpp): the round's segment [t, min(nt, t_a))
+      // holds the lane's next observe time, or ends at t_a and t_a is one
+      if constexpr (samples_states) {
+        if (observing_) [[unlikely]] {
+          const vec end = Min(nt, TA), next = hn::Load(d, obs_t_ + j);
+          const mask holds = hn::And(
+              run[k], hn::Or(hn::Lt(next, end), hn::And(hn::Ge(end, TA), hn::Le(next, TA))));
+          if (!hn::AllFalse(d, holds)) [[unlikely]]
+            sample_observe_times(d, j, holds, stk, t[k], end, x[k], z[k], v[k], o[k].c);
+        }
+      }
+
       // the piece of motion of this round (simulate()'s piece(): from the
       // state at the start of the round to the unresolved end, x_root or the
       // rotated x): time at the level, and a slip's |v dt - dx|
@@ -761,6 +782,29 @@ class lane_engine {
     }
   }
 
+  // The segments of the lanes `at` (of the vector at j) that hold their next
+  // observe time, built as simulate() and simulate_model() build them (the
+  // state at the start of the round; a stick moves at v, a slip rotates
+  // about c = sigma a_k), handed to the lane's state sampler.
+  HWY_NOINLINE void sample_observe_times(dtag d, std::size_t j, hn::Mask<dtag> at,
+                                         hn::Mask<dtag> stick, vec t, vec t_end, vec x, vec z,
+                                         vec v, vec center) {
+    if constexpr (samples_states) {
+      HWY_ALIGN double ts[N], te[N], xs[N], zs[N], vs[N], cs[N];
+      hn::Store(t, d, ts), hn::Store(t_end, d, te), hn::Store(x, d, xs), hn::Store(z, d, zs);
+      hn::Store(v, d, vs), hn::Store(center, d, cs);
+      const auto stick_bits = lane_bits(d, stick);
+      for (std::uint32_t m = lane_bits(d, at); m != 0; m &= m - 1) {
+        const auto i = static_cast<std::size_t>(std::countr_zero(m));
+        const bool sticking = (stick_bits >> i) & 1u;
+        observer& o = *obs_[j + i];
+        o.sample_segment(sticking ? segment{mode::stick, ts[i], te[i], xs[i], vs[i], vs[i], 0.0, w_}
+                                  : segment{mode::slip, ts[i], te[i], xs[i], zs[i], vs[i], cs[i], w_});
+        obs_t_[j + i] = o.sampler().next_time();
+      }
+    }
+  }
+
   // ---- after the vector step: counts, episodes, switch draws ----
   // Lanes are grouped by what they have to do (bit masks), so that the
   // branches go per group, not per lane through an unpredictable 9-way jump.
@@ -819,6 +863,7 @@ class lane_engine {
   bool equal_friction_ = true, mirror_belt_ = true;
   std::uint64_t key_;
   burn_in_cut burn_in_;  // sweep_spec::burn_in (only with pieces)
+  bool observing_;       // observe times, and an observer that samples them
   std::vector<observer> pool_;
   std::vector<unsigned char> done_;
   // Lane state, one array per variable (structure of arrays): the vector
@@ -843,6 +888,7 @@ class lane_engine {
   double sws_[lanes] = {};            // event_counts::switch_time_sum
   mode ep_kind_[lanes] = {};
   observer* obs_[lanes] = {};
+  HWY_ALIGN double obs_t_[lanes] = {};  // each lane's next observe time (+inf: none left)
   switch_source sw_[lanes] = {};
 };
 

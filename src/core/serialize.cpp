@@ -198,6 +198,98 @@ survival_counts get_survival_counts(reader& r, std::string_view name) {
   return out;
 }
 
+// Quantile sketches (accumulators/quantile_sketch.hpp): each store as its
+// first key and counts (trimmed: first and last count > 0; an empty store is
+// the count 0 alone), the zero bin between them.
+void put(writer& w, const quantile_sketch::store& st) {
+  w.u64(st.counts.size());
+  if (st.counts.empty()) return;
+  w.u32(st.first);
+  for (auto c : st.counts) w.u32(c);
+}
+quantile_sketch::store get_sketch_store(reader& r, std::string_view what) {
+  quantile_sketch::store st;
+  st.counts.resize(r.count(what, 4));
+  if (st.counts.empty()) return st;
+  st.first = r.u32(what);
+  for (auto& c : st.counts) c = r.u32(what);
+  const std::uint64_t last = std::uint64_t{st.first} + st.counts.size() - 1;
+  if (st.first < quantile_sketch::min_key() || last > quantile_sketch::max_key())
+    throw corrupt(fmt::format("{}: bins {} .. {} outside {} .. {}", what, st.first, last,
+                              quantile_sketch::min_key(), quantile_sketch::max_key()));
+  if (st.counts.front() == 0 || st.counts.back() == 0)
+    throw corrupt(fmt::format("{}: a store that is not trimmed", what));
+  return st;
+}
+void put(writer& w, const quantile_sketch& q) {
+  put(w, q.negative());
+  w.u64(q.zero());
+  put(w, q.positive());
+}
+quantile_sketch get_quantile_sketch(reader& r, std::string_view what) {
+  auto negative = get_sketch_store(r, what);
+  const auto zero = r.u64(what);
+  auto positive = get_sketch_store(r, what);
+  quantile_sketch q;
+  q.set_raw(std::move(negative), zero, std::move(positive));
+  return q;
+}
+
+// The observe-time statistics (accumulators/time_statistics.hpp): the times
+// (none: not selected), the level count, the realizations, then per time
+// the sticking count, the four moments, the two sketches and the level
+// counts. Every count must match the realizations.
+void put(writer& w, const time_statistics& t) {
+  put_values(w, t.times());
+  if (!t.selected()) return;
+  w.u64(t.levels());
+  w.u64(t.realizations());
+  for (std::size_t j = 0; j < t.times().size(); ++j) {
+    const auto& a = t.at(j);
+    w.u64(a.sticking);
+    for (const auto* m : {&a.position, &a.velocity, &a.relative_velocity, &a.energy}) put(w, *m);
+    put(w, a.position_quantiles);
+    put(w, a.velocity_quantiles);
+    for (std::size_t l = 0; l < t.levels(); ++l) w.u64(t.level_count(j, l));
+  }
+}
+time_statistics get_time_statistics(reader& r) {
+  constexpr std::string_view what = "observe-time statistics";
+  auto times = get_values(r, what);
+  if (times.empty()) return {};
+  if (times.size() > max_observe_times)
+    throw corrupt(fmt::format("{}: {} times", what, times.size()));
+  for (std::size_t j = 0; j < times.size(); ++j)
+    if (!(times[j] >= 0.0) || !std::isfinite(times[j]) || (j > 0 && !(times[j] > times[j - 1])))
+      throw corrupt(fmt::format("{}: time {} out of order or range", what, times[j]));
+  const auto levels = r.u64(what);
+  if (levels < 1 || levels > 4096) throw corrupt(fmt::format("{}: {} belt levels", what, levels));
+  const auto n = r.u64(what);
+  std::vector<time_point_statistics> at(times.size());
+  std::vector<std::uint64_t> level_counts(times.size() * levels);
+  for (std::size_t j = 0; j < times.size(); ++j) {
+    auto& a = at[j];
+    a.sticking = r.u64(what);
+    for (auto* m : {&a.position, &a.velocity, &a.relative_velocity, &a.energy})
+      *m = get_mean_variance(r);
+    a.position_quantiles = get_quantile_sketch(r, what);
+    a.velocity_quantiles = get_quantile_sketch(r, what);
+    std::uint64_t at_levels = 0;
+    for (std::size_t l = 0; l < levels; ++l) at_levels += level_counts[j * levels + l] = r.u64(what);
+    for (auto m : {a.position.count(), a.velocity.count(), a.relative_velocity.count(),
+                   a.energy.count(), a.position_quantiles.count(), a.velocity_quantiles.count(),
+                   at_levels})
+      if (m != n)
+        throw corrupt(fmt::format("{}: a count of {} at time {} of {} realizations", what, m,
+                                  times[j], n));
+    if (a.sticking > n)
+      throw corrupt(fmt::format("{}: {} sticking of {} realizations", what, a.sticking, n));
+  }
+  time_statistics t(std::move(times), static_cast<std::size_t>(levels));
+  t.set_raw(n, std::move(at), std::move(level_counts));
+  return t;
+}
+
 void put(writer& w, const point_statistics& s) {
   for (const auto& q : quantities()) put(w, s.*q.moments);
   for (const auto& q : quantities())
@@ -253,6 +345,7 @@ void put(writer& w, const point_statistics& s) {
       }
   }
   for (const auto& l : survival_laws()) put(w, s.*l.counts);
+  put(w, s.observed);
   w.u64(s.convergence.size());
   for (const auto& c : s.convergence) {
     w.u64(c.realizations);
@@ -344,6 +437,7 @@ point_statistics get_statistics(reader& r) {
     s.*j.counts = std::move(h);
   }
   for (const auto& l : survival_laws()) s.*l.counts = get_survival_counts(r, l.name);
+  s.observed = get_time_statistics(r);
   const auto n = r.count("convergence trace", 40);
   s.convergence.resize(n);
   for (auto& c : s.convergence) {
@@ -478,6 +572,7 @@ bytes serialize(const sweep_spec& s) {
   w.u64(s.survival.bins);
   w.f64(s.survival.stick_duration_max);
   w.f64(s.survival.slip_duration_max);
+  put_values(w, s.observe_times);
   // The burn-in only when there is one: a spec without it keeps the bytes
   // (and the journal identity) it had before the field.
   if (s.burn_in != 0.0) w.f64(s.burn_in);
@@ -545,6 +640,7 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   s.survival.bins = static_cast<std::size_t>(r.u64("survival bins"));
   s.survival.stick_duration_max = r.f64("survival stick_duration_max");
   s.survival.slip_duration_max = r.f64("survival slip_duration_max");
+  s.observe_times = get_values(r, "observe times");
   if (r.remaining() > 0) {
     s.burn_in = r.f64("burn-in");
     if (!(s.burn_in > 0.0)) throw corrupt(fmt::format("burn-in {}", s.burn_in));
@@ -604,6 +700,9 @@ std::optional<std::string> shape_difference(const point_statistics& got,
     if (!(got.*l.counts).same_binning(fresh.*l.counts))
       return fmt::format("{} survival grid differs (another statistics selection or survival "
                          "grid)", l.name);
+  if (got.observed.times() != fresh.observed.times() ||
+      got.observed.levels() != fresh.observed.levels())
+    return std::string("observe times differ");
   for (const auto& l : level_quantities())
     if ((got.*l.moments).size() != (fresh.*l.moments).size())
       return fmt::format("{} values of {}, the point has {} belt levels", (got.*l.moments).size(),
@@ -793,6 +892,8 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
                        a.survival.slip_duration_max, b.survival.bins,
                        b.survival.stick_duration_max, b.survival.slip_duration_max);
   if (a.burn_in != b.burn_in) return fmt::format("burn-in: {} s vs {} s", a.burn_in, b.burn_in);
+  if (a.observe_times != b.observe_times)
+    return fmt::format("observe times: {} vs {}", a.observe_times.size(), b.observe_times.size());
   if (!same_results(a, b)) return "bit patterns of some value";
   return {};
 }

@@ -39,6 +39,10 @@ void point_statistics::select_survival(const survival_spec& g) {
   for (const auto& l : survival_laws()) this->*l.counts = survival_counts(g.*l.upper, g.bins);
 }
 
+void point_statistics::select_observe_times(const std::vector<double>& times, std::size_t levels) {
+  observed = times.empty() ? time_statistics{} : time_statistics(times, levels);
+}
+
 namespace {
 
 // A two-level belt alternates: of its N switches, ceil(N/2) leave the start
@@ -181,14 +185,20 @@ void point_statistics::add(const realization_samples& in, double window) {
   const realization_record& r = in.record;
   // The rates and fractions are over the observed window [T, t_a]
   // (burn_in.hpp); the scores of the belt's path over all of [0, t_a].
-  const double observed = in.observed_window > 0.0 ? in.observed_window : window;
+  const double window_seen = in.observed_window > 0.0 ? in.observed_window : window;
   ++realizations;
   [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (add_quantity<I>(*this, in, observed), ...);
+    (add_quantity<I>(*this, in, window_seen), ...);
   }(std::make_index_sequence<quantity_table.size()>{});
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     ((counter_table[I].of(*this) += counter_table[I].increment(r)), ...);
   }(std::make_index_sequence<counter_table.size()>{});
+  if (this->observed.selected()) {
+    if (!in.observed_states || in.observed_states->size() != this->observed.times().size())
+      throw error(exit_code::internal,
+                  "internal error: a realization without its state at every observe time");
+    this->observed.add(*in.observed_states);
+  }
   for (const auto& l : survival_laws())
     if (auto& counts = this->*l.counts; counts.selected()) {
       const bool sticks = l.sampled == sampling::per_stick;
@@ -208,7 +218,7 @@ void point_statistics::add(const realization_samples& in, double window) {
     // is still decided by the path up to t; Y, over [0, t_a], is still a
     // control of mean 0.
     const double lambda = expected_switches / window;
-    const double z = (r.stick_switch_moment / lambda - r.stick_time_moment) / observed;
+    const double z = (r.stick_switch_moment / lambda - r.stick_time_moment) / window_seen;
     const double n = static_cast<double>(r.events.belt_switches);
     const double y =
         ((n * window - r.events.switch_time_sum) / lambda - 0.5 * window * window) / window;
@@ -218,7 +228,7 @@ void point_statistics::add(const realization_samples& in, double window) {
   // The scores of the rates and of the generator need the time at each
   // level over all of [0, t_a]; the level fractions of a burn-in are over
   // [T, t_a], so these derivatives are not estimated with a burn-in.
-  const bool whole_window = observed == window;
+  const bool whole_window = window_seen == window;
   if (whole_window && belt_rates[0] > 0.0 && in.level_fractions.size() == 2) {
     const auto k = belt_rate_scores(
         belt_rates, level_of_belt_start(r.belt_start), r.events.belt_switches,
@@ -267,6 +277,10 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
       (this->*l.moments)[i] += (o.*l.moments)[i];
   for (const auto& j : joint_histograms()) this->*j.counts += o.*j.counts;
   for (const auto& l : survival_laws()) this->*l.counts += o.*l.counts;
+  if (!observed.selected())
+    observed = o.observed;  // a default-constructed merger
+  else if (o.observed.selected())
+    observed += o.observed;
   if (generator.empty()) {
     generator = o.generator;
     generator_start_terms = o.generator_start_terms;
@@ -287,7 +301,8 @@ void point_statistics::record_convergence() {
 }
 
 realization_observer::realization_observer(const model_parameters& p, bool family,
-                                           double burn_in)
+                                           double burn_in,
+                                           const std::vector<double>* observe_times)
     : window_(p.window - burn_in),
       kinetic_force_(p.mu_k() * p.mass * p.gravity),
       damping_(p.damping),
@@ -300,7 +315,10 @@ realization_observer::realization_observer(const model_parameters& p, bool famil
       jumps_(family && p.levels().size() > 2 && !p.belt_generator.empty()
                  ? p.levels().size() * p.levels().size()
                  : 0,
-             0) {}
+             0) {
+  if (observe_times && !observe_times->empty())
+    sampler_ = state_sampler(*observe_times, p.levels(), p.window, p.mass, p.stiffness);
+}
 
 void realization_observer::reset(std::uint64_t realization, double x0, double xdot0, int belt) {
   total_stick_ = slip_travel_ = damping_work_ = 0;
@@ -316,6 +334,7 @@ void realization_observer::reset(std::uint64_t realization, double x0, double xd
   sticks_.clear();
   slips_.clear();
   stick_cut_ = slip_cut_ = stick_left_truncated_ = false;
+  sampler_.reset();
 }
 
 void realization_observer::finish() noexcept {

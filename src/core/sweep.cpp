@@ -111,17 +111,24 @@ void resolve_survival_grid(sweep_spec& s) {
 
 void select_statistics(point_statistics& stats, const sweep_spec& s) {
   if (s.statistics.survival) stats.select_survival(s.survival);
+  if (!s.observe_times.empty()) stats.select_observe_times(s.observe_times, s.base.levels().size());
 }
 
 namespace {
-// 0 <= T < t_a at every point (the smallest t_a of the grid), and no laws:
-// an uncertain realization draws its own observer (uncertainty/).
-void validate_burn_in(const sweep_spec& s) {
-  if (s.burn_in == 0.0) return;
+// The smallest t_a of the grid.
+double shortest_window(const sweep_spec& s) {
   double shortest = s.base.window;
   for (const auto& ax : s.axes)
     if (canonical_symbol(ax.name) == "ta")
       shortest = *std::min_element(ax.values.begin(), ax.values.end());
+  return shortest;
+}
+
+// 0 <= T < t_a at every point (the smallest t_a of the grid), and no laws:
+// an uncertain realization draws its own observer (uncertainty/).
+void validate_burn_in(const sweep_spec& s) {
+  if (s.burn_in == 0.0) return;
+  const double shortest = shortest_window(s);
   if (!(s.burn_in > 0.0) || !(s.burn_in < shortest))
     throw invalid_parameter("burn_in", s.burn_in,
                             fmt::format("0 <= burn_in < t_a = {} (the shortest window of the "
@@ -130,6 +137,36 @@ void validate_burn_in(const sweep_spec& s) {
   if (!s.uncertain.empty())
     throw invalid_parameter("burn_in", s.burn_in,
                             "0 with uncertain parameters (a burn-in is not supported with laws)");
+}
+
+// Observe times: ascending, in [0, t_a] at every point, at most
+// max_observe_times; not with laws or a sensitivity study (their
+// realizations run through their own observers); fewer than 2^32
+// realizations (the quantile sketches count in 32 bits).
+void validate_observe_times(const sweep_spec& s) {
+  const auto& t = s.observe_times;
+  if (t.empty()) return;
+  if (t.size() > max_observe_times)
+    throw invalid_parameter("observe_times", static_cast<double>(t.size()),
+                            fmt::format("at most {} times", max_observe_times));
+  const double shortest = shortest_window(s);
+  for (std::size_t j = 0; j < t.size(); ++j) {
+    if (!(t[j] >= 0.0) || !(t[j] <= shortest))
+      throw invalid_parameter("observe_times", t[j],
+                              fmt::format("0 <= t <= t_a = {} (the shortest window of the sweep)",
+                                          shortest));
+    if (j > 0 && !(t[j] > t[j - 1]))
+      throw invalid_parameter("observe_times", t[j],
+                              fmt::format("times in increasing order, each once (it follows {})",
+                                          t[j - 1]));
+  }
+  if (!s.uncertain.empty() || !s.sensitivity_statistic.empty())
+    throw invalid_value("observe_times", fmt::format("{} times", t.size()),
+                        "none with uncertain parameters or a sensitivity study (observe times "
+                        "are not supported with laws)");
+  if (s.realizations >= (std::uint64_t{1} << 32))
+    throw invalid_parameter("realizations", static_cast<double>(s.realizations),
+                            "< 2^32 = 4294967296 with observe times");
 }
 }  // namespace
 
@@ -207,6 +244,7 @@ void validate(const sweep_spec& s) {
   if (s.max_events < 1 || s.max_events > max_event_bound)
     throw invalid_value("max_events", std::to_string(s.max_events), "1 .. 2^53 = 9007199254740992");
   validate_burn_in(s);
+  validate_observe_times(s);
   // Product of the axis sizes in floating point: point_count() would wrap.
   double points = 1.0;
   for (const auto& ax : s.axes) points *= static_cast<double>(ax.values.size());
@@ -347,6 +385,17 @@ void drop_causal_score(realization_record& r) noexcept {
   r.stick_switch_moment = r.stick_time_moment = 0.0;
   r.events.switch_time_sum = 0.0;
 }
+
+// The observer the reference engines run with observe times: the
+// realization's observer, which also takes every closed-form segment into
+// its state sampler (state_sampler.hpp).
+struct state_sampling_observer : observer_base {
+  realization_observer& o;
+  explicit state_sampling_observer(realization_observer& obs) : o(obs) {}
+  void on_episode(const episode& e) { o.on_episode(e); }
+  void on_piece(const motion_piece& p) { o.on_piece(p); }
+  void on_segment(const segment& s) { o.sample_segment(s); }
+};
 }  // namespace
 
 // One realization at a time: simulate with poisson_switches, statistics
@@ -361,12 +410,14 @@ block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const auto key = stream_key(s, p);
-  realization_observer obs(p, s.family_statistics, s.burn_in);
+  realization_observer obs(p, s.family_statistics, s.burn_in, &s.observe_times);
+  state_sampling_observer with_states(obs);
   for (std::uint64_t r = first; r < last; ++r) {
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
     poisson_switches sw(p.switch_rate, s.seed, key, r);
     obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
-    const auto counts = simulate(p, ic, sw, obs, s.max_events);
+    const auto counts = obs.observes_times() ? simulate(p, ic, sw, with_states, s.max_events)
+                                             : simulate(p, ic, sw, obs, s.max_events);
     obs.finish();
     obs.record().events = counts;
     if (!out.stats.keeps_causal_score()) drop_causal_score(obs.record());
@@ -389,11 +440,15 @@ block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
   const std::size_t levels = fp.model.belt.level_count();
-  realization_observer obs(p, s.family_statistics, s.burn_in);
+  realization_observer obs(p, s.family_statistics, s.burn_in, &s.observe_times);
+  state_sampling_observer with_states(obs);
   for (std::uint64_t r = first; r < last; ++r) {
     const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
     obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));
-    const auto counts = simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
+    const auto counts =
+        obs.observes_times()
+            ? simulate_family_realization(fp, start, s.seed, r, s.max_events, with_states)
+            : simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
     obs.finish();
     obs.record().events = counts;
     if (!out.stats.keeps_causal_score()) drop_causal_score(obs.record());

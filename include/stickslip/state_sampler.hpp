@@ -1,0 +1,57 @@
+// The state of one realization at the observe times (sweep --observe-times):
+// fed the closed-form segments of the motion (episode.hpp) in time order, it
+// evaluates the segment that holds each time t_j (evaluate(): no
+// interpolation, no step). Conventions, for every engine:
+//   - t_j belongs to the segment with start <= t_j < end: at an event time the
+//     state just after the event (a stick that starts at t_j is sticking at
+//     t_j, one that ends there is not); a zero-length segment holds no time;
+//   - t_j = t_a belongs to the last segment (end = t_a): the state at t_a.
+// The reference engines pass every segment (state_sampling_observer in
+// sweep.cpp); the lane engine builds the segment of a round only when an
+// observe time falls in it (fast_lanes.cpp), with the same fields, so both
+// give the same bits.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "stickslip/accumulators/time_statistics.hpp"
+#include "stickslip/episode.hpp"
+
+namespace stickslip {
+
+class state_sampler {
+ public:
+  state_sampler() = default;  // no observe times: does nothing
+  // `times`: ascending, within [0, window] (validate()); `levels`: the belt
+  // levels v_1..v_n (distinct), the level of a segment is the index of its v.
+  state_sampler(const std::vector<double>& times, std::vector<double> levels, double window,
+                double mass, double stiffness)
+      : times_(&times), levels_(std::move(levels)), window_(window), mass_(mass),
+        stiffness_(stiffness), states_(times.size()) {}
+
+  [[nodiscard]] bool active() const noexcept { return times_ && !times_->empty(); }
+  void reset() noexcept { next_ = 0; }
+  // The next observe time not yet sampled (+inf when all are).
+  [[nodiscard]] double next_time() const noexcept;
+  // Whether segment `s` holds an observe time not yet sampled.
+  [[nodiscard]] bool holds_next(const segment& s) const noexcept {
+    return next_ < states_.size() &&
+           ((*times_)[next_] < s.end || (s.end >= window_ && (*times_)[next_] <= window_));
+  }
+  void on_segment(const segment& s) {
+    if (holds_next(s)) sample(s);
+  }
+  // After the last segment: every time sampled (the segments tile [0, t_a]).
+  [[nodiscard]] bool complete() const noexcept { return next_ == states_.size(); }
+  [[nodiscard]] const std::vector<observed_state>& states() const noexcept { return states_; }
+
+ private:
+  void sample(const segment& s);
+  const std::vector<double>* times_ = nullptr;
+  std::vector<double> levels_;
+  double window_ = 0.0, mass_ = 0.0, stiffness_ = 0.0;
+  std::size_t next_ = 0;
+  std::vector<observed_state> states_;
+};
+
+}  // namespace stickslip
