@@ -198,27 +198,67 @@ survival_counts get_survival_counts(reader& r, std::string_view name) {
   return out;
 }
 
-// Quantile sketches (accumulators/quantile_sketch.hpp): each store as its
-// first key and counts (trimmed: first and last count > 0; an empty store is
-// the count 0 alone), the zero bin between them.
+// Quantile sketches (accumulators/quantile_sketch.hpp): each store trimmed,
+// as its range of bins (0: empty, nothing more), its first key, and its
+// counts, densely (one u32 per bin of the range) or, when fewer than half
+// the bins have a count (a block's few samples), sparsely (the number of
+// bins with a count, then (offset, count) of each); the form is a function
+// of the counts, so the bytes are canonical. The zero bin sits between the
+// negative and positive stores.
 void put(writer& w, const quantile_sketch::store& st) {
   w.u64(st.counts.size());
   if (st.counts.empty()) return;
   w.u32(st.first);
-  for (auto c : st.counts) w.u32(c);
+  const auto filled = static_cast<std::uint64_t>(
+      std::count_if(st.counts.begin(), st.counts.end(), [](std::uint32_t c) { return c != 0; }));
+  const bool sparse = 2 * filled < st.counts.size();
+  w.u8(sparse ? 1 : 0);
+  if (!sparse) {
+    for (auto c : st.counts) w.u32(c);
+    return;
+  }
+  w.u64(filled);
+  for (std::size_t i = 0; i < st.counts.size(); ++i)
+    if (st.counts[i] != 0) {
+      w.u32(static_cast<std::uint32_t>(i));
+      w.u32(st.counts[i]);
+    }
 }
 quantile_sketch::store get_sketch_store(reader& r, std::string_view what) {
   quantile_sketch::store st;
-  st.counts.resize(r.count(what, 4));
-  if (st.counts.empty()) return st;
+  const auto range = r.u64(what);
+  if (range == 0) return st;
   st.first = r.u32(what);
-  for (auto& c : st.counts) c = r.u32(what);
-  const std::uint64_t last = std::uint64_t{st.first} + st.counts.size() - 1;
-  if (st.first < quantile_sketch::min_key() || last > quantile_sketch::max_key())
-    throw corrupt(fmt::format("{}: bins {} .. {} outside {} .. {}", what, st.first, last,
+  if (st.first < quantile_sketch::min_key() || range > quantile_sketch::max_key() ||
+      st.first > quantile_sketch::max_key() - (range - 1))
+    throw corrupt(fmt::format("{}: {} bins from {} outside {} .. {}", what, range, st.first,
                               quantile_sketch::min_key(), quantile_sketch::max_key()));
+  const bool sparse = r.boolean(what);
+  std::uint64_t filled = 0;
+  if (!sparse) {
+    if (range > r.remaining() / 4)
+      throw corrupt(fmt::format("{}: {} bins exceed the bytes left", what, range));
+    st.counts.resize(range);
+    for (auto& c : st.counts) filled += (c = r.u32(what)) != 0;
+  } else {
+    filled = r.u64(what);
+    if (filled == 0 || filled > r.remaining() / 8)
+      throw corrupt(fmt::format("{}: {} bins with a count", what, filled));
+    st.counts.assign(range, 0);
+    std::uint64_t last = 0;
+    for (std::uint64_t k = 0; k < filled; ++k) {
+      const auto i = r.u32(what);
+      if (i >= range || (k > 0 && i <= last))
+        throw corrupt(fmt::format("{}: bin {} out of order or range", what, i));
+      last = i;
+      if ((st.counts[i] = r.u32(what)) == 0)
+        throw corrupt(fmt::format("{}: bin {} listed without a count", what, i));
+    }
+  }
   if (st.counts.front() == 0 || st.counts.back() == 0)
     throw corrupt(fmt::format("{}: a store that is not trimmed", what));
+  if (sparse != (2 * filled < range))
+    throw corrupt(fmt::format("{}: {} bins of {} written in the other form", what, filled, range));
   return st;
 }
 void put(writer& w, const quantile_sketch& q) {

@@ -10,36 +10,51 @@ namespace stickslip {
 
 // ---- quantile_sketch ----
 
-void quantile_sketch::bump(store& s, std::uint32_t k) {
+quantile_sketch::store quantile_sketch::trimmed(const store& s) {
+  std::size_t lo = 0, hi = s.counts.size();
+  while (lo < hi && s.counts[lo] == 0) ++lo;
+  while (hi > lo && s.counts[hi - 1] == 0) --hi;
+  if (lo == hi) return {};
+  return {s.first + static_cast<std::uint32_t>(lo),
+          std::vector<std::uint32_t>(s.counts.begin() + static_cast<std::ptrdiff_t>(lo),
+                                     s.counts.begin() + static_cast<std::ptrdiff_t>(hi))};
+}
+
+// Grows with room for a quarter of the size held (at least 32 bins) beyond
+// the key asked for, so that a stream of adds moves the counts a number of
+// times logarithmic in the range, and the room stays small.
+void quantile_sketch::cover(store& s, std::uint32_t lo, std::uint32_t hi) {
+  constexpr std::uint32_t initial = 32;
   if (s.counts.empty()) {
-    s.first = k;
-    s.counts.assign(1, 1);
+    s.first = lo >= min_key() + initial / 2 ? lo - initial / 2 : min_key();
+    s.counts.assign(std::max<std::uint32_t>(initial, hi - s.first + 1), 0);
     return;
   }
-  if (k < s.first) {
-    s.counts.insert(s.counts.begin(), s.first - k, 0);
-    s.first = k;
-  } else if (k - s.first >= s.counts.size()) {
-    s.counts.resize(k - s.first + 1, 0);
-  }
-  ++s.counts[k - s.first];
+  const auto size = static_cast<std::uint32_t>(s.counts.size());
+  std::uint32_t first = s.first, end = s.first + size;  // [first, end)
+  const std::uint32_t room = std::max<std::uint32_t>(initial, size / 4);
+  if (lo < first)
+    first = static_cast<std::uint32_t>(std::max<std::int64_t>(
+        std::int64_t{min_key()}, std::int64_t{lo} - room));
+  if (hi >= end) end = hi + 1 + room;
+  if (first == s.first && end == s.first + size) return;
+  std::vector<std::uint32_t> grown(end - first, 0);
+  std::copy(s.counts.begin(), s.counts.end(), grown.begin() + (s.first - first));
+  s.first = first;
+  s.counts = std::move(grown);
 }
 
 namespace {
-void merge_store(quantile_sketch::store& a, const quantile_sketch::store& b) {
-  if (b.counts.empty()) return;
-  if (a.counts.empty()) {
-    a = b;
-    return;
-  }
-  const std::uint32_t first = std::min(a.first, b.first);
-  const std::uint32_t end = std::max<std::uint32_t>(
-      a.first + static_cast<std::uint32_t>(a.counts.size()),
-      b.first + static_cast<std::uint32_t>(b.counts.size()));
-  if (first < a.first) a.counts.insert(a.counts.begin(), a.first - first, 0);
-  a.first = first;
-  a.counts.resize(end - first, 0);
-  for (std::size_t i = 0; i < b.counts.size(); ++i) a.counts[b.first - first + i] += b.counts[i];
+void merge_store(quantile_sketch::store& a, const quantile_sketch::store& b,
+                 void (*cover)(quantile_sketch::store&, std::uint32_t, std::uint32_t)) {
+  std::size_t lo = 0, hi = b.counts.size();
+  while (lo < hi && b.counts[lo] == 0) ++lo;
+  while (hi > lo && b.counts[hi - 1] == 0) --hi;
+  if (lo == hi) return;
+  const auto k_lo = b.first + static_cast<std::uint32_t>(lo);
+  const auto k_hi = b.first + static_cast<std::uint32_t>(hi - 1);
+  if (a.counts.empty() || k_lo < a.first || k_hi - a.first >= a.counts.size()) cover(a, k_lo, k_hi);
+  for (std::size_t i = lo; i < hi; ++i) a.counts[b.first + i - a.first] += b.counts[i];
 }
 std::uint64_t store_total(const quantile_sketch::store& s) noexcept {
   std::uint64_t n = 0;
@@ -48,18 +63,32 @@ std::uint64_t store_total(const quantile_sketch::store& s) noexcept {
 }
 }  // namespace
 
+void quantile_sketch::settle() {
+  const auto codes = std::move(pending_);
+  pending_.clear();
+  for (auto c : codes) bump_code(c);
+}
+
 quantile_sketch& quantile_sketch::operator+=(const quantile_sketch& o) {
-  merge_store(negative_, o.negative_);
-  merge_store(positive_, o.positive_);
+  if (negative_.counts.empty() && positive_.counts.empty() && o.negative_.counts.empty() &&
+      o.positive_.counts.empty() && pending_.size() + o.pending_.size() <= max_pending) {
+    pending_.insert(pending_.end(), o.pending_.begin(), o.pending_.end());
+  } else {
+    settle();
+    for (auto c : o.pending_) bump_code(c);
+    merge_store(negative_, o.negative_, &cover);
+    merge_store(positive_, o.positive_, &cover);
+  }
   zero_ += o.zero_;
   return *this;
 }
 
 std::uint64_t quantile_sketch::count() const noexcept {
-  return store_total(negative_) + zero_ + store_total(positive_);
+  return store_total(negative_) + zero_ + store_total(positive_) + pending_.size();
 }
 
-double quantile_sketch::quantile(double q) const noexcept {
+double quantile_sketch::quantile(double q) const {
+  if (!pending_.empty()) return settled().quantile(q);
   const std::uint64_t n = count();
   if (n == 0) return std::numeric_limits<double>::quiet_NaN();
   // k = max(1, ceil(q n)): the k-th smallest sample, counted from the most
@@ -84,15 +113,18 @@ double quantile_sketch::quantile(double q) const noexcept {
 
 void time_statistics::add(std::span<const observed_state> states) {
   ++realizations_;
+  // Every moment counts every realization (count() + 1 = realizations_ for
+  // each): one division for all (mean_variance::add with the reciprocal).
+  const double inverse = 1.0 / static_cast<double>(realizations_);
   for (std::size_t j = 0; j < at_.size(); ++j) {
     const observed_state& s = states[j];
     time_point_statistics& a = at_[j];
     a.sticking += s.sticking ? 1 : 0;
     ++level_counts_[j * levels_ + s.level];
-    a.position.add(s.position);
-    a.velocity.add(s.velocity);
-    a.relative_velocity.add(s.velocity - s.belt_velocity);
-    a.energy.add(s.energy);
+    a.position.add(s.position, inverse);
+    a.velocity.add(s.velocity, inverse);
+    a.relative_velocity.add(s.velocity - s.belt_velocity, inverse);
+    a.energy.add(s.energy, inverse);
     a.position_quantiles.add(s.position);
     a.velocity_quantiles.add(s.velocity);
   }

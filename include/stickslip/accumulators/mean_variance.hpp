@@ -22,6 +22,16 @@ class mean_variance {
     mean_ += d / static_cast<double>(n_);
     m2_ += d * (x - mean_);
   }
+  // add(x) with the reciprocal 1 / (count() + 1) given: mean += d r instead
+  // of d / n (other last bits than add(x)), for accumulators that count
+  // together and share one division (time_statistics). Precondition:
+  // inverse_next_count == 1.0 / (count() + 1).
+  void add(double x, double inverse_next_count) noexcept {
+    ++n_;
+    const double d = x - mean_;
+    mean_ += d * inverse_next_count;
+    m2_ += d * (x - mean_);
+  }
   // Adds the samples [first, last) as one batch: their mean and sum of
   // squared deviations by two passes, then the exact merge below. One
   // division per batch instead of one per sample (point_statistics adds the

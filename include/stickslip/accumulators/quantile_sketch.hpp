@@ -7,7 +7,7 @@
 // Counts are integers, so a merge gives the same bits in any order, and the
 // result does not depend on how realizations are split over threads, ranks,
 // shards or resumes. Memory: the bins between the smallest and largest |x|
-// seen, 2^mantissa_bits per octave (about 32 per octave, a few hundred per
+// seen, 2^mantissa_bits = 16 per octave (a few hundred per
 // sign for values that span 10 decades), never per sample.
 #pragma once
 #include <bit>
@@ -19,7 +19,7 @@ namespace stickslip {
 
 class quantile_sketch {
  public:
-  static constexpr int mantissa_bits = 5;
+  static constexpr int mantissa_bits = 4;
   // The largest relative error of a reported quantile against the exact
   // sample quantile (quantile()): half a bin, 2^-(mantissa_bits + 1).
   static constexpr double relative_accuracy = 1.0 / (2 << mantissa_bits);
@@ -27,9 +27,10 @@ class quantile_sketch {
   // accuracy near 0.
   static constexpr double zero_threshold = 0x1p-40;
 
-  // One store of bins: counts[i] of bin key first + i, trimmed so that the
-  // first and last counts are > 0 (empty: no counts). The canonical form the
-  // serializer writes and checks.
+  // One store of bins: counts[i] of bin key first + i. Trimmed (the first
+  // and last counts > 0, or no counts) is the canonical form that
+  // negative(), positive() return and the serializer writes and checks; the
+  // sketch itself keeps zero bins on both sides to grow into.
   struct store {
     std::uint32_t first = 0;
     std::vector<std::uint32_t> counts;
@@ -41,7 +42,15 @@ class quantile_sketch {
       ++zero_;
       return;
     }
-    bump(x > 0.0 ? positive_ : negative_, key(x));
+    const std::uint32_t code = key(x) | (x < 0.0 ? sign_bit : 0u);
+    // A few samples (a block's) as a list of bins, not two stores spanning
+    // their range: merging a block into its point then costs a bin per sample.
+    if (pending_.size() < max_pending && negative_.counts.empty() && positive_.counts.empty()) {
+      pending_.push_back(code);
+      return;
+    }
+    settle();
+    bump_code(code);
   }
   quantile_sketch& operator+=(const quantile_sketch& o);
 
@@ -49,7 +58,7 @@ class quantile_sketch {
   // The sample quantile x_(k), k = max(1, ceil(q n)) (the lower one of the
   // sorted samples), to within relative_accuracy |x_(k)| (zero_threshold near
   // 0): the middle of its bin. NaN without samples. Precondition: 0 <= q <= 1.
-  [[nodiscard]] double quantile(double q) const noexcept;
+  [[nodiscard]] double quantile(double q) const;
 
   // The bin of x != 0 (|x| >= zero_threshold) and its ends [L, U).
   [[nodiscard]] static std::uint32_t key(double x) noexcept {
@@ -65,23 +74,47 @@ class quantile_sketch {
   [[nodiscard]] static std::uint32_t min_key() noexcept { return key(zero_threshold); }
   [[nodiscard]] static std::uint32_t max_key() noexcept { return key(1.7976931348623157e308); }
 
-  // The raw state (serialization): negative values by |x|, the zero bin,
-  // positive values. Precondition of set_raw: canonical stores with keys in
-  // [min_key, max_key] (the deserializer checks).
-  [[nodiscard]] const store& negative() const noexcept { return negative_; }
-  [[nodiscard]] const store& positive() const noexcept { return positive_; }
+  // The raw state (serialization), trimmed: negative values by |x|, the
+  // zero bin, positive values. Precondition of set_raw: trimmed stores with
+  // keys in [min_key, max_key] (the deserializer checks).
+  [[nodiscard]] store negative() const { return trimmed(settled().negative_); }
+  [[nodiscard]] store positive() const { return trimmed(settled().positive_); }
   [[nodiscard]] std::uint64_t zero() const noexcept { return zero_; }
   void set_raw(store negative, std::uint64_t zero, store positive) {
+    pending_.clear();
     negative_ = std::move(negative);
     zero_ = zero;
     positive_ = std::move(positive);
   }
-  friend bool operator==(const quantile_sketch&, const quantile_sketch&) = default;
+  // The same counts (whatever room either keeps to grow into, and however
+  // they are held).
+  friend bool operator==(const quantile_sketch& a, const quantile_sketch& b) {
+    return a.zero_ == b.zero_ && a.negative() == b.negative() && a.positive() == b.positive();
+  }
 
  private:
-  static void bump(store& s, std::uint32_t k);
+  static constexpr std::uint32_t sign_bit = 0x80000000u;  // keys are < 2^17
+  static constexpr std::size_t max_pending = 64;
+  // The pending codes into the stores.
+  void settle();
+  [[nodiscard]] quantile_sketch settled() const {
+    quantile_sketch q = *this;
+    q.settle();
+    return q;
+  }
+  void bump_code(std::uint32_t code) {
+    bump(code & sign_bit ? negative_ : positive_, code & ~sign_bit);
+  }
+  static store trimmed(const store& s);
+  // Makes room in s for the keys [lo, hi].
+  static void cover(store& s, std::uint32_t lo, std::uint32_t hi);
+  static void bump(store& s, std::uint32_t k) {
+    if (s.counts.empty() || k < s.first || k - s.first >= s.counts.size()) cover(s, k, k);
+    ++s.counts[k - s.first];
+  }
   store negative_, positive_;
   std::uint64_t zero_ = 0;
+  std::vector<std::uint32_t> pending_;  // bins (key | sign_bit if < 0) not yet in the stores
 };
 
 }  // namespace stickslip
