@@ -20,6 +20,7 @@
 #include "stickslip/io/writers.hpp"
 #include "stickslip/survival_estimate.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
+#include "observed_variables.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -190,6 +191,39 @@ void emit_survival(json_emitter& j, const point_statistics& s) {
   }
 }
 
+// The ensemble at the observe times: `time`, `quantile` and results.nc's
+// variables over `time`, one array each (the values over belt levels or
+// quantile levels nested per time).
+void emit_observed(json_emitter& j, const time_statistics& s) {
+  j.key("observed");
+  j.begin_object(layout::multi_line);
+  j.key("time");
+  j.begin_array();
+  for (double t : s.times()) j.value(t);
+  j.end_array();
+  j.key("quantile");  // the levels of the quantile variables' inner arrays
+  j.begin_array();
+  for (double q : observed_quantile_levels) j.value(q);
+  j.end_array();
+  for (const auto& v : observed_variables()) {
+    const std::size_t width = v.width(s.levels());
+    const auto values = observed_values(v, s);
+    j.key(v.name);
+    j.begin_array();
+    for (std::size_t t = 0; t < s.times().size(); ++t) {
+      if (v.shape == observed_shape::one) {
+        j.value(values[t]);
+        continue;
+      }
+      j.begin_array();
+      for (std::size_t i = 0; i < width; ++i) j.value(values[t * width + i]);
+      j.end_array();
+    }
+    j.end_array();
+  }
+  j.end_object();
+}
+
 // The point's parameters and realizations, every quantity of the schema,
 // the counters that belong to no group, the sample counts of the quantities
 // not sampled once per realization ("samples"), then each group of counters
@@ -234,6 +268,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
   emit_score_estimates(j, p);
   if (slopes) emit_crn_slopes(j, spec, *slopes);
   if (spec.statistics.survival) emit_survival(j, s);
+  if (!spec.observe_times.empty()) emit_observed(j, s.observed);
   // Joint histograms, when asked: counts[i][k] of x bin i and y bin k (in
   // range), and the samples outside either range.
   for (const auto& jh : joint_histograms()) {

@@ -22,6 +22,7 @@
 #include "stickslip/survival_estimate.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
+#include "observed_variables.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -662,6 +663,38 @@ void write_survival(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   }
 }
 
+// The ensemble at the observe times (sweep --observe-times): the coordinate
+// `time` after the grid dimensions, `quantile` (the levels of the quantile
+// variables), and every variable of observed_variables() over (grid, time),
+// (grid, time, belt_level) or (grid, time, quantile).
+void write_observed(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto& times = rs.spec.observe_times;
+  if (times.empty()) return;
+  const auto time = f.addDim("time", times.size());
+  auto t = f.addVar("time", nc::ncDouble, time);
+  describe(t, "s", "observation time",
+           "the observe times t of sweep --observe-times, at which the state of every "
+           "realization is taken from its closed-form motion (no interpolation)");
+  t.putAtt("axis", "T");
+  t.putVar(times.data());
+  const std::size_t quantiles = std::size(observed_quantile_levels);
+  const auto quantile = f.addDim("quantile", quantiles);
+  auto q = f.addVar("quantile", nc::ncDouble, quantile);
+  describe(q, "1", "quantile level", "the levels q of the quantile variables");
+  q.putVar(observed_quantile_levels);
+  for (const auto& v : observed_variables()) {
+    auto dims = with(l.grid, time);
+    if (v.shape == observed_shape::per_level) dims.push_back(l.level);
+    if (v.shape == observed_shape::per_quantile) dims.push_back(quantile);
+    auto var = add_double(f, v.name, dims, v.units, v.long_name, v.description);
+    const std::size_t width = v.width(l.levels);
+    put_rows<double>(var, rs, times.size() * width,
+                     [&](const point_result& p, std::vector<double>& row) {
+                       row = observed_values(v, p.stats.observed);
+                     });
+  }
+}
+
 void write_convergence(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto dims = with(l.grid, l.trace);
   const std::string when = fmt::format(
@@ -808,6 +841,7 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_level_statistics(f, l, rs);
   write_joint_histograms(f, l, rs);
   write_survival(f, l, rs);
+  write_observed(f, l, rs);
   write_convergence(f, l, rs);
   f.close();
 }

@@ -73,6 +73,13 @@ void check_shape(const result_set& rs) {
     if (rs.points[i].index != point_index(rs.spec, i))
       throw error(exit_code::internal,
                   fmt::format("result set point {} is not at its grid position", i));
+  // The ensemble at the observe times: every point holds the spec's times.
+  for (std::size_t i = 0; i < n; ++i)
+    if (rs.points[i].stats.observed.times() != rs.spec.observe_times)
+      throw error(exit_code::internal,
+                  fmt::format("result set point {} holds {} observe times, its spec {}", i,
+                              rs.points[i].stats.observed.times().size(),
+                              rs.spec.observe_times.size()));
   if (rs.spec.keep_records && !rs.records.empty() && rs.records.size() != n)
     throw error(exit_code::internal,
                 fmt::format("result set holds records of {} points but its grid has {}",
