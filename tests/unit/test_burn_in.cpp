@@ -309,13 +309,15 @@ TEST(BurnIn, IsPartOfTheIdentityAndZeroIsNone) {
   EXPECT_EQ(first_difference(a, b), "burn-in: 0 s vs 10 s");
   EXPECT_EQ(deserialize_sweep_spec(serialize(b)).burn_in, 10.0);
   EXPECT_EQ(deserialize_sweep_spec(serialize(a)).burn_in, 0.0);
-  // A spec without the field is the bytes it was before: the survival grid last.
+  // A spec without the field is the bytes it was before: the observe times
+  // (format 10; none: their count 0) last.
   const auto bytes = serialize(a);
   sweep_spec c = a;
-  c.survival.slip_duration_max = 1.0;  // the last field: its bits end the bytes
+  c.observe_times = {1.0};  // the last field: its count ends the bytes
   const auto changed = serialize(c);
-  EXPECT_EQ(bytes.size(), changed.size());
-  EXPECT_NE(bytes.substr(bytes.size() - 8), changed.substr(changed.size() - 8));
+  EXPECT_EQ(bytes.size() + 8, changed.size());
+  EXPECT_EQ(bytes.substr(bytes.size() - 8), std::string(8, '\0'));
+  EXPECT_NE(bytes.substr(bytes.size() - 8), changed.substr(changed.size() - 16, 8));
   a.realizations = b.realizations = 120;
   a.axes = b.axes = {{"lambda", {0.5, 3.8}}};
   b.burn_in = 0.0;
