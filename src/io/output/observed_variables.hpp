@@ -11,6 +11,7 @@
 // holding t_j (state_sampler.hpp): at an event time the state just after the
 // event, and t_a belongs to the last segment.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <iterator>
@@ -84,6 +85,17 @@ inline const std::string at_each_time =
     " at each observe time t (each realization's state from the closed-form segment holding t: "
     "at an event time the state just after the event; t = t_a belongs to the last segment)";
 
+// "2^-5 (3.1 %) of its magnitude, and |value| < 2^-40 counts as 0": the
+// accuracy of quantile_sketch, from its constants.
+inline std::string sketch_accuracy() {
+  const int bits = quantile_sketch::mantissa_bits + 1;
+  const double percent = 100.0 * quantile_sketch::relative_accuracy;
+  const int rounded_tenths = static_cast<int>(percent * 10.0 + 0.5);
+  return "2^-" + std::to_string(bits) + " (" + std::to_string(rounded_tenths / 10) + "." +
+         std::to_string(rounded_tenths % 10) + " %) of its magnitude, and |value| < 2^" +
+         std::to_string(std::ilogb(quantile_sketch::zero_threshold)) + " counts as 0";
+}
+
 inline std::vector<observed_variable> build() {
   using shape = observed_shape;
   std::vector<observed_variable> out;
@@ -132,8 +144,7 @@ inline std::vector<observed_variable> build() {
         {q.name, q.units, q.long_name,
          "sample quantiles over the realizations of the " + std::string(q.definition) + at_each_time +
              ", at the levels q of the quantile coordinate: the k-th smallest value, k = max(1, "
-             "ceil(q n)), from a streaming log-binned sketch: within 2^-6 (1.6 %) of its "
-             "magnitude, and |value| < 2^-40 counts as 0",
+             "ceil(q n)), from a streaming log-binned sketch: within " + sketch_accuracy(),
          shape::per_quantile, [sk = q.sketch](const time_statistics& s, std::size_t j, double* v) {
            const auto& sketch = s.at(j).*sk;
            for (std::size_t i = 0; i < std::size(observed_quantile_levels); ++i)
