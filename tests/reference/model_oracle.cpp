@@ -29,12 +29,12 @@ class model_reference {
  public:
   model_reference(const oscillator_model& md, const model_initial_state& ic,
                   std::span<const level_switch> switches, const oracle_options& o,
-                  double tangency_band)
+                  double tangency_band, std::span<const double> samples)
       : m_(md.mass), k_(md.stiffness), c_(md.damping),
         kinetic_force_(md.kinetic_friction * md.mass * md.gravity),
         static_force_(md.static_friction * md.mass * md.gravity),
         equal_friction_(md.static_friction == md.kinetic_friction),
-        window_(md.window), levels_(md.belt.levels), switches_(switches),
+        window_(md.window), levels_(md.belt.levels), switches_(switches), samples_(samples),
         max_steps_(o.max_steps) {
     const double w0 = std::sqrt(k_ / m_), gamma = c_ / (2.0 * m_);
     const double fastest = std::max(w0, gamma + std::sqrt(std::abs(gamma * gamma - w0 * w0)));
@@ -47,6 +47,7 @@ class model_reference {
     x_ = ic.position;
     z_ = ic.velocity;
     v_ = levels_[ic.level];
+    level_ = ic.level;
     out_.step = h_;
     out_.stick_resolution = stick_resolution_;
     out_.initial_energy = energy();
@@ -60,6 +61,7 @@ class model_reference {
       sigma_ = v_ > z_ ? 1.0 : -1.0;
     }
     while (t_ < window_) {
+      take_samples();
       if (++iterations_ > max_steps_)
         throw std::runtime_error("model oracle: step bound hit at t = " + std::to_string(t_));
       if (sticking_) {
@@ -115,11 +117,26 @@ class model_reference {
   [[nodiscard]] bool switch_pending() const noexcept {
     return next_switch_ < switches_.size() && switches_[next_switch_].time < window_;
   }
+  // The next place a step must end: a belt switch, a sample time, t_a.
   [[nodiscard]] double next_stop() const noexcept {
-    return switch_pending() ? switches_[next_switch_].time : window_;
+    double stop = switch_pending() ? switches_[next_switch_].time : window_;
+    if (next_sample_ < samples_.size()) stop = std::min(stop, samples_[next_sample_]);
+    return stop;
+  }
+  // Whether the step that reached t_ ended at the next belt switch (and not
+  // only at a sample time).
+  [[nodiscard]] bool switch_due() const noexcept {
+    return switch_pending() && switches_[next_switch_].time <= t_;
+  }
+  // The state at every sample time reached (after the events at t_ acted).
+  void take_samples() {
+    for (; next_sample_ < samples_.size() && samples_[next_sample_] <= t_; ++next_sample_)
+      out_.samples.push_back(
+          oracle_sample{samples_[next_sample_], x_, sticking_ ? v_ : z_, v_, level_, sticking_});
   }
   void take_switch() {
-    v_ = levels_[switches_[next_switch_].level];
+    level_ = switches_[next_switch_].level;
+    v_ = levels_[level_];
     ++next_switch_;
     grazing_ = false;
     record(event_kind::belt_switch);
@@ -182,9 +199,11 @@ class model_reference {
     t_ = reaches_stop ? stop : t_ + tau;
     if (!reaches_stop) return;
     if (t_ >= window_) {
+      take_samples();  // t_a, still sticking
       end_stick(true);
       return;
     }
+    if (!switch_due()) return;  // a sample time
     z_ = v_;  // the mass keeps the old belt velocity
     take_switch();
     sigma_ = v_ > z_ ? 1.0 : -1.0;
@@ -240,7 +259,7 @@ class model_reference {
     x_ = s1.x;
     z_ = s1.z;
     t_ = reaches_stop ? stop : t_ + tau;
-    if (!reaches_stop || t_ >= window_) return;
+    if (!reaches_stop || t_ >= window_ || !switch_due()) return;
     take_switch();  // x, x' continuous
     if (z_ == v_) {
       contact();
@@ -250,6 +269,7 @@ class model_reference {
   }
 
   void finish() {
+    take_samples();  // t_a
     if (sticking_) end_stick(true);
     current_.end = window_;
     current_.censored = true;
@@ -262,6 +282,8 @@ class model_reference {
   double window_;
   std::vector<double> levels_;
   std::span<const level_switch> switches_;
+  std::span<const double> samples_;
+  std::size_t next_sample_ = 0, level_ = 0;
   std::int64_t max_steps_;
   double h_ = 0, stick_resolution_ = 0, tangency_gap_ = 0;
   double t_ = 0, x_ = 0, z_ = 0, v_ = 0, sigma_ = 1;
@@ -279,8 +301,9 @@ model_oracle_result integrate_model_reference(const oscillator_model& model,
                                               const model_initial_state& ic,
                                               std::span<const level_switch> switches,
                                               const oracle_options& options,
-                                              double tangency_band) {
-  return model_reference(model, ic, switches, options, tangency_band).run();
+                                              double tangency_band,
+                                              std::span<const double> sample_times) {
+  return model_reference(model, ic, switches, options, tangency_band, sample_times).run();
 }
 
 }  // namespace stickslip::reference

@@ -55,6 +55,7 @@ struct model_oracle_result {
   std::vector<oracle_event> events;
   std::vector<double> dropped_stick_durations;
   std::vector<double> near_tangencies;  // times
+  std::vector<oracle_sample> samples;   // at sample_times (oracle.hpp), in order
   std::int64_t rk4_steps = 0;
   double step = 0;
   double stick_resolution = 0;
@@ -63,6 +64,6 @@ struct model_oracle_result {
 [[nodiscard]] model_oracle_result integrate_model_reference(
     const oscillator_model& model, const model_initial_state& ic,
     std::span<const level_switch> switches, const oracle_options& options = {},
-    double tangency_band = 1e-7);
+    double tangency_band = 1e-7, std::span<const double> sample_times = {});
 
 }  // namespace stickslip::reference

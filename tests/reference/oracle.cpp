@@ -31,13 +31,15 @@ double bisect(double lo, double hi, Pred reached) {
 class reference_integrator {
  public:
   reference_integrator(const model_parameters& p, const initial_conditions& ic,
-                       std::span<const double> switches, const oracle_options& o)
+                       std::span<const double> switches, const oracle_options& o,
+                       std::span<const double> samples)
       : k_over_m_(p.stiffness / p.mass),
         friction_acc_(p.friction_coefficient * p.gravity),
         stiffness_(p.stiffness),
         max_friction_(p.friction_coefficient * p.mass * p.gravity),
         window_(p.window),
         switches_(switches),
+        samples_(samples),
         max_steps_(o.max_steps) {
     const double period = 2.0 * std::numbers::pi * std::sqrt(p.mass / p.stiffness);
     h_ = period / o.steps_per_period;
@@ -57,6 +59,7 @@ class reference_integrator {
       sigma_ = v_ > z_ ? 1.0 : -1.0;
     }
     while (t_ < window_) {
+      take_samples();
       if (++iterations_ > max_steps_)
         throw std::runtime_error("reference oracle: step bound hit at t = " + std::to_string(t_));
       if (sticking_) {
@@ -92,8 +95,22 @@ class reference_integrator {
   [[nodiscard]] bool switch_pending() const noexcept {
     return next_switch_ < switches_.size() && switches_[next_switch_] < window_;
   }
+  // The next place a step must end: a belt switch, a sample time, t_a.
   [[nodiscard]] double next_stop() const noexcept {
-    return switch_pending() ? switches_[next_switch_] : window_;
+    double stop = switch_pending() ? switches_[next_switch_] : window_;
+    if (next_sample_ < samples_.size()) stop = std::min(stop, samples_[next_sample_]);
+    return stop;
+  }
+  // Whether the step that reached t_ ended at the next belt switch (and not
+  // only at a sample time).
+  [[nodiscard]] bool switch_due() const noexcept {
+    return switch_pending() && switches_[next_switch_] <= t_;
+  }
+  // The state at every sample time reached (after the events at t_ acted).
+  void take_samples() {
+    for (; next_sample_ < samples_.size() && samples_[next_sample_] <= t_; ++next_sample_)
+      out_.samples.push_back(oracle_sample{samples_[next_sample_], x_, sticking_ ? v_ : z_, v_,
+                                           v_ > 0 ? std::size_t{0} : std::size_t{1}, sticking_});
   }
 
   void record(event_kind kind) { out_.events.push_back(oracle_event{kind, t_, x_, v_}); }
@@ -157,9 +174,11 @@ class reference_integrator {
     t_ = reaches_stop ? stop : t_ + tau;
     if (!reaches_stop) return;
     if (t_ >= window_) {
+      take_samples();  // t_a, still sticking
       end_stick(true);
       return;
     }
+    if (!switch_due()) return;  // a sample time
     // Belt switch: the mass keeps x' = old v, the belt now runs at -v.
     z_ = v_;
     v_ = -v_;
@@ -202,7 +221,7 @@ class reference_integrator {
     x_ = s1.x;
     z_ = s1.z;
     t_ = reaches_stop ? stop : t_ + tau;
-    if (!reaches_stop || t_ >= window_) return;
+    if (!reaches_stop || t_ >= window_ || !switch_due()) return;
     v_ = -v_;  // belt switch during a slip: x, x' continuous
     ++next_switch_;
     record(event_kind::belt_switch);
@@ -214,6 +233,7 @@ class reference_integrator {
   }
 
   void finish() {
+    take_samples();  // t_a
     if (sticking_) end_stick(true);
     current_.end = window_;
     current_.censored = true;
@@ -224,6 +244,8 @@ class reference_integrator {
   // parameters
   double k_over_m_, friction_acc_, stiffness_, max_friction_, window_;
   std::span<const double> switches_;
+  std::span<const double> samples_;
+  std::size_t next_sample_ = 0;
   std::int64_t max_steps_;
   double h_ = 0, stick_resolution_ = 0;
   // state
@@ -241,8 +263,9 @@ class reference_integrator {
 
 oracle_result integrate_reference(const model_parameters& p, const initial_conditions& ic,
                                   std::span<const double> switch_times,
-                                  const oracle_options& options) {
-  return reference_integrator(p, ic, switch_times, options).run();
+                                  const oracle_options& options,
+                                  std::span<const double> sample_times) {
+  return reference_integrator(p, ic, switch_times, options, sample_times).run();
 }
 
 }  // namespace stickslip::reference

@@ -36,6 +36,7 @@
 // per period (t_a = 5 s, N = 800: 2e-10 s), amplified by 1/|u'| at nearly
 // tangent contacts. test_oracle_agreement checks the fourth order by halving h.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -52,6 +53,19 @@ struct oracle_options {
   std::int64_t max_steps = 200'000'000;  // guard against runaway loops (throws)
 };
 
+// The oracle's state at a requested time (sample_times below): the RK4 path
+// is cut at each sample time, as at a belt switch, and the state read there,
+// after any event at that instant has acted (a stick that starts at t is
+// sticking at t); a time equal to t_a gives the state at t_a.
+struct oracle_sample {
+  double time;
+  double position;       // x
+  double velocity;       // x' (= v while sticking)
+  double belt_velocity;  // v
+  std::size_t level;     // belt level index (paper: 0 = +V, 1 = -V)
+  bool sticking;
+};
+
 // A contact (u = 0) or other instant the oracle resolved, for diagnostics.
 struct oracle_event {
   event_kind kind;
@@ -64,16 +78,21 @@ struct oracle_result {
   std::vector<episode> episodes;           // tiles [0, t_a], like the integrator's
   std::vector<oracle_event> events;        // every event, including dropped sticks
   std::vector<double> dropped_stick_durations;
+  std::vector<oracle_sample> samples;      // one per sample time, in order
   std::int64_t rk4_steps = 0;              // accepted steps (bisection trials not counted)
   double step = 0;                         // h [s]
   double stick_resolution = 0;             // [s]
 };
 
 // Integrates one scenario on [0, p.window]. `switch_times` must be sorted;
-// times >= p.window are ignored. Throws std::runtime_error if max_steps is hit.
+// times >= p.window are ignored. `sample_times`: sorted, within [0, t_a]; the
+// state at each is in oracle_result::samples (the path is cut there, so the
+// steps differ from a run without them). Throws std::runtime_error if
+// max_steps is hit.
 [[nodiscard]] oracle_result integrate_reference(const model_parameters& p,
                                                 const initial_conditions& ic,
                                                 std::span<const double> switch_times,
-                                                const oracle_options& options = {});
+                                                const oracle_options& options = {},
+                                                std::span<const double> sample_times = {});
 
 }  // namespace stickslip::reference
