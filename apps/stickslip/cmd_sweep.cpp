@@ -63,8 +63,9 @@ struct sweep_options {
   std::string checkpoint_interval = "2";   // seconds between journal segments
   bool common_random_numbers = false;
   std::string target_ci, max_realizations, min_realizations;
-  std::string statistics, survival_bins, burn_in;
-  CLI::Option *statistics_opt = nullptr, *survival_bins_opt = nullptr, *burn_in_opt = nullptr;
+  std::string statistics, survival_bins, burn_in, observe_times;
+  CLI::Option *statistics_opt = nullptr, *survival_bins_opt = nullptr, *burn_in_opt = nullptr,
+              *observe_times_opt = nullptr;
   CLI::Option *crn_opt = nullptr, *target_opt = nullptr, *max_real_opt = nullptr,
               *min_real_opt = nullptr;
   CLI::Option *config_opt = nullptr, *realizations_opt = nullptr, *block_size_opt = nullptr,
@@ -97,10 +98,15 @@ void apply_precision_flags(const sweep_options& o, sweep_spec& spec) {
         io::parse_unsigned("--min-realizations", o.min_realizations, 2, max_realizations);
 }
 
-// --statistics LIST [--survival-bins N] [--burn-in T] (over the configuration's).
+// --statistics LIST [--survival-bins N] [--burn-in T] [--observe-times GRID]
+// (over the configuration's).
 void apply_statistics_flags(const sweep_options& o, sweep_spec& spec) {
   if (o.burn_in_opt->count() > 0)
     spec.burn_in = io::parse_number("--burn-in", o.burn_in);  // 0 <= T < t_a: validate()
+  // The axes' grid syntax; ascending and <= t_a: validate().
+  if (o.observe_times_opt->count() > 0)
+    spec.observe_times =
+        io::parse_grid("--observe-times", o.observe_times, io::grid_domain::non_negative);
   if (o.statistics_opt->count() > 0)
     spec.statistics = parse_statistics_selection("--statistics", o.statistics);
   if (o.survival_bins_opt->count() == 0) return;
@@ -276,6 +282,14 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                                   "the burn-in T [s], 0 <= T < t_a (default 0, the whole "
                                   "window; docs/outputs.md, \"Burn-in\")")
                       ->type_name("T");
+  o.observe_times_opt =
+      cmd->add_option("--observe-times", o.observe_times,
+                      "also keep the ensemble's state at these times [s], ascending, 0 <= t <= "
+                      "t_a, a list 't1,t2,...' or 'lin:a:b:n': the stick probability, mean and "
+                      "variance of x, x', x' - v and the energy, belt level occupancy, "
+                      "quantiles of x and x' over a coordinate `time` (docs/outputs.md, "
+                      "\"Observe times\")")
+          ->type_name("GRID");
   o.survival_bins_opt = cmd->add_option("--survival-bins", o.survival_bins,
                                         "bins of the survival grid: [0, d_max] for sticks, "
                                         "[0, t_a] for slips, the largest over the grid (default "

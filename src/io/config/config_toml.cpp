@@ -368,6 +368,9 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
     } else if (key == "burn_in") {
       s.burn_in = read_number(cx, dotted, n);  // 0 <= T < t_a: validate()
+    } else if (key == "observe_times") {
+      // The axes' grid forms; ascending and <= t_a: validate().
+      s.observe_times = read_axis_values(cx, dotted, n, grid_domain::non_negative);
     } else if (key == "target_halfwidth") {
       // The sensitivity study's stop rule (every index's 95 % half-width);
       // a sweep's is target_ci, which carries its own half-width.
@@ -379,7 +382,8 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       cx.unknown_key(dotted, k,
                      "[sweep] takes realizations, seed, block_size, max_events, keep_records, "
                      "engine, common_random_numbers, target_ci, min_realizations, "
-                     "sensitivity_statistic, target_halfwidth, statistics, burn_in");
+                     "sensitivity_statistic, target_halfwidth, statistics, burn_in, "
+                     "observe_times");
   }
 }
 
@@ -548,6 +552,8 @@ std::string to_toml(const sweep_spec& s) {
     out += "]\n";
   }
   if (s.burn_in != 0.0) out += fmt::format("burn_in = {}\n", toml_float(s.burn_in));
+  if (!s.observe_times.empty())
+    out += fmt::format("observe_times = {}\n", array(s.observe_times, 0, s.observe_times.size()));
   out += fmt::format("\n[histograms]\nbins = {}\nstick_duration_max = {}\nslip_duration_max = {}\n",
                      toml_u64(s.histograms.bins), toml_float(s.histograms.stick_duration_max),
                      toml_float(s.histograms.slip_duration_max));
