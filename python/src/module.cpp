@@ -431,6 +431,17 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
   return s;
 }
 
+// observe_times=: None (none), a grid's text ("lin:0:50:501") or a list of
+// times (the Python layer checked them as numbers), read by the CLI's parser
+// of --observe-times: its forms, its checks and its messages.
+std::vector<double> observe_times_from(const py::object& times) {
+  if (times.is_none()) return {};
+  const std::string text = py::isinstance<py::str>(times)
+                               ? times.cast<std::string>()
+                               : list_text(times.cast<std::vector<double>>());
+  return io::parse_grid("observe_times", text, io::grid_domain::non_negative);
+}
+
 // Runs the sweep and writes results.nc to `netcdf_path` (and, with an output
 // directory, every output file there through the run layer: journal,
 // resume). Raises KeyboardInterrupt when interrupted (the journal of an
@@ -444,7 +455,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
                   bool common_random_numbers, const std::string& target_ci,
                   std::uint64_t min_realizations, bool overwrite,
                   const py::object& design, const std::vector<std::string>& statistics,
-                  std::size_t survival_bins, double burn_in) {
+                  std::size_t survival_bins, double burn_in, const py::object& observe_times) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
@@ -475,6 +486,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   spec.statistics = parse_statistics_selection("statistics", statistics);
   spec.survival.bins = survival_bins;
   spec.burn_in = burn_in;  // the CLI's --burn-in (validate() checks 0 <= T < t_a)
+  spec.observe_times = observe_times_from(observe_times);  // the CLI's --observe-times
   resolve_survival_grid(spec);
   validate(spec);
   // Refused before anything is allocated, with or without an output folder
@@ -689,7 +701,8 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
         py::arg("min_realizations") = 1000, py::arg("overwrite") = false,
         py::arg("design") = py::none(), py::arg("statistics") = std::vector<std::string>{},
-        py::arg("survival_bins") = survival_spec{}.bins, py::arg("burn_in") = 0.0);
+        py::arg("survival_bins") = survival_spec{}.bins, py::arg("burn_in") = 0.0,
+        py::arg("observe_times") = py::none());
   m.def("replay_many", &replay_many_py, py::arg("parameters"), py::arg("seed"),
         py::arg("realizations"), py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"),
         py::arg("switch_times"), py::arg("switch_levels"), py::arg("max_events"),

@@ -6,7 +6,7 @@ import xarray as xr
 
 from . import _stickslip
 from ._parameters import (belt_arguments, belt_start_text, describe, error, extension, flag,
-                          max_events_of, model_arguments, number, text, whole)
+                          max_events_of, model_arguments, number, sequence, text, whole)
 from ._parameters import path as _path  # `path` is open()'s argument
 
 
@@ -45,6 +45,16 @@ def _statistics_names(statistics):
         raise error(f"invalid statistics: {statistics!r} (allowed: a list of group names: "
                     f"default, survival, all)") from None
     return [text("statistics", n) for n in names]
+
+
+def _observe_times(times):
+    """observe_times=: None, a grid's text (the CLI's --observe-times, e.g.
+    "lin:0:50:501") or a 1-D sequence of times; the extension reads either
+    with the CLI's parser (its checks and messages)."""
+    if times is None or isinstance(times, str):
+        return times
+    return sequence("observe_times", times, "a grid's text such as 'lin:0:50:501' or a 1-D "
+                    "sequence of finite times")
 
 
 def _progress_bar(enabled):
@@ -88,7 +98,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
           keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
           belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
           min_realizations=1000, overwrite=False, statistics=None, survival_bins=200, burn_in=0.0,
-          **model):
+          observe_times=None, **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
 
@@ -144,6 +154,15 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         over t_a - T; an episode in progress at T counts from T); the CLI's
         --burn-in (docs/outputs.md, "Burn-in"). Recorded as the attribute
         burn_in (absent without a burn-in).
+    observe_times: the times t [s] at which the ensemble's state is kept,
+        ascending, 0 <= t <= t_a: a grid's text ("lin:0:50:501", "0,10,20")
+        or a sequence of numbers (default None: none); the CLI's
+        --observe-times (docs/outputs.md, "Observe times"). The Dataset then
+        has a coordinate `time` and, over (grid, time): stick_probability,
+        stick_probability_std_error, X_mean, X_variance, X_ci95_half_width
+        for X = position, velocity, relative_velocity, energy; over (grid,
+        time, belt_level): level_occupancy; over (grid, time, quantile):
+        position_quantile and velocity_quantile.
 
     Returns an xarray.Dataset with the variables, coordinates and attributes of
     the results.nc the CLI writes for the same arguments; the lambda dimension
@@ -179,7 +198,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         overwrite=flag("overwrite", overwrite),
         statistics=_statistics_names(statistics),
         survival_bins=whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins),
-        burn_in=number("burn_in", burn_in))
+        burn_in=number("burn_in", burn_in), observe_times=_observe_times(observe_times))
     update, bar = _progress_bar(flag("progress", progress))
     try:
         with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:
