@@ -111,9 +111,7 @@ curve_plot build_curves(const io::result_file& f, const curve_request& r, figure
   text.caption = fmt::format(
       "{} ({}) against {}{}{}, from {}", v.long_name, v.name, r.x_dim,
       by ? ", one curve per value of " + by->name : std::string(),
-      r.q.has_band() ? fmt::format(", with 95 % intervals ({})",
-                                   r.q.low.empty() ? r.q.std_error + " x 1.96"
-                                                   : r.q.low + ", " + r.q.high)
+      r.q.has_band() ? fmt::format(", with 95 % intervals ({})", r.q.band_text())
                      : std::string(", no interval in the file"),
       f.path());
   if (points.size() == 1 && !points.front().text.empty())
@@ -250,7 +248,7 @@ std::pair<curve_request, figure_text> along(const io::result_file& f, const quan
 
 curve_plot plan_histogram(const io::result_file& f, const plot_request& r) {
   const auto& density = histogram_of(f, r.histogram);
-  auto [c, t] = along(f, quantity{r.histogram, &density, "", "", ""}, density.dims.back(), r,
+  auto [c, t] = along(f, quantity{r.histogram, &density, "", "", "", ""}, density.dims.back(), r,
                       curve_style::histogram);
   if (const auto* bins = f.variable(density.coordinates); bins && bins->dims == density.dims) {
     c.x_var = bins->name;

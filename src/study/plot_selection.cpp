@@ -74,9 +74,16 @@ quantity find_quantity(const io::result_file& f, const std::string& flag, const 
   if (q.low.empty() || q.high.empty()) {
     q.low.clear();
     q.high.clear();
-    q.std_error = first_present(f, {base + "_std_error", var + "_std_error"});
+    q.half_width = first_present(f, {base + "_ci95_half_width", var + "_ci95_half_width"});
+    if (q.half_width.empty())
+      q.std_error = first_present(f, {base + "_std_error", var + "_std_error"});
   }
   return q;
+}
+
+std::string quantity::band_text() const {
+  if (!low.empty()) return low + ", " + high;
+  return half_width.empty() ? std_error + " x 1.96" : half_width;
 }
 
 std::string axis_label(const io::result_variable& v) {
@@ -202,11 +209,13 @@ quantity_slice slice(const io::result_file& f, const quantity& q, const std::str
   if (!q.low.empty()) {
     s.low = slice(f, q.low, dim, fixed);
     s.high = slice(f, q.high, dim, fixed);
-  } else if (!q.std_error.empty()) {
-    const auto se = slice(f, q.std_error, dim, fixed);
-    for (std::size_t i = 0; i < se.size(); ++i) {
-      s.low.push_back(s.y[i] - z95 * se[i]);
-      s.high.push_back(s.y[i] + z95 * se[i]);
+  } else if (!q.half_width.empty() || !q.std_error.empty()) {
+    const bool se = q.half_width.empty();
+    const auto half = slice(f, se ? q.std_error : q.half_width, dim, fixed);
+    for (std::size_t i = 0; i < half.size(); ++i) {
+      const double h = se ? z95 * half[i] : half[i];
+      s.low.push_back(s.y[i] - h);
+      s.high.push_back(s.y[i] + h);
     }
   }
   return s;

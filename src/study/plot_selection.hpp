@@ -15,12 +15,17 @@
 namespace stickslip::study::detail {
 
 // A variable to draw, with what gives its 95 % interval: the variables
-// `low`/`high`, or `std_error` (value +- z95 se), or nothing.
+// `low`/`high`, or `half_width` (value +- it), or `std_error` (value +- z95
+// se), or nothing.
 struct quantity {
   std::string asked;            // the name as the user gave it
   const io::result_variable* value = nullptr;
-  std::string low, high, std_error;
-  [[nodiscard]] bool has_band() const { return !low.empty() || !std_error.empty(); }
+  std::string low, high, half_width, std_error;
+  [[nodiscard]] bool has_band() const {
+    return !low.empty() || !half_width.empty() || !std_error.empty();
+  }
+  // "X_ci95_low, X_ci95_high", "X_ci95_half_width", "X_std_error x 1.96".
+  [[nodiscard]] std::string band_text() const;
 };
 
 // `--y NAME`: the statistic NAME (its NAME_mean), the statistic whose mean

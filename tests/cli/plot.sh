@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `stickslip plot DIR` (docs/plot.md): every figure kind from a small sweep,
-# a sensitivity study and a NetCDF file with time-resolved and survival
-# variables written here. Each PNG must start with the PNG signature and not
+# a sensitivity study, a NetCDF file with time-resolved and survival
+# variables written here, and real sweeps with --statistics survival and
+# --observe-times. Each PNG must start with the PNG signature and not
 # be trivially small, each SVG must parse as XML and carry its axis labels
 # with units. The oracle: the numbers in the .dat files are the values of
 # results.nc / sensitivity.nc (read with netCDF4), bit for bit. Then the
@@ -185,6 +186,47 @@ for i in range(2):  # steps: (e_0, S_0), then (e_j, S_j-1), (e_j, S_j) for each 
             ds["stick_survival_ci95_high"][i, :]]
     for g, w in zip(got, want):
         assert list(g) == [float(v) for v in w], (g, w)
+PY
+
+# Time-resolved curves from a real sweep with --observe-times (the names the
+# sweep writes are the ones plot reads): the stick probability with its
+# binomial band, a mean with its ci95_half_width band, the level occupancy
+# per level and the quantiles per level q; the .dat equals results.nc.
+run_ok sweep --preset paper-figures --lambda 0.5,3.8 --mu 5 --ta 20 --realizations 100 --seed 2 \
+  --observe-times lin:0:20:41 -o ot
+run_ok plot ot --time --by lambda
+check_figure ot/plots/stick_probability_vs_time_by_lambda "observation time (s)" \
+  "stick probability (1)" "lambda = 3.8"
+run_ok plot ot --time --y position --at lambda=3.8
+check_figure ot/plots/position_vs_time_at_lambda3.8 "observation time (s)" "mean position (m)"
+run_ok plot ot --time --y level_occupancy --at lambda=0.5 --by belt_level
+check_figure ot/plots/level_occupancy_vs_time_by_belt_level_at_lambda0.5 "observation time (s)" \
+  "belt level occupancy (1)"
+run_ok plot ot --time --y velocity_quantile --at lambda=3.8 --by quantile
+check_figure ot/plots/velocity_quantile_vs_time_by_quantile_at_lambda3.8 "observation time (s)" \
+  "quantiles of velocity (m/s)"
+checks=$((checks + 1))
+"$PY" - <<'PY' || fail "the time curves' .dat differ from results.nc"
+import netCDF4
+from datfile import blocks
+ds = netCDF4.Dataset("ot/results.nc")
+t, z = [float(v) for v in ds["time"][:]], 1.959963984540054
+rows = blocks("ot/plots/stick_probability_vs_time_by_lambda.dat")
+assert len(rows) == 2, len(rows)
+for i in range(2):
+    p, se = ds["stick_probability"][i, :], ds["stick_probability_std_error"][i, :]
+    assert [r[0] for r in rows[i]] == t
+    assert [r[1] for r in rows[i]] == [float(v) for v in p]
+    assert [r[2] for r in rows[i]] == [float(a) - z * float(b) for a, b in zip(p, se)]
+    assert [r[3] for r in rows[i]] == [float(a) + z * float(b) for a, b in zip(p, se)]
+(rows,) = blocks("ot/plots/position_vs_time_at_lambda3.8.dat")
+m, h = ds["position_mean"][1, :], ds["position_ci95_half_width"][1, :]
+assert [r[1:] for r in rows] == [[float(a), float(a) - float(b), float(a) + float(b)]
+                                 for a, b in zip(m, h)]
+rows = blocks("ot/plots/level_occupancy_vs_time_by_belt_level_at_lambda0.5.dat")
+assert [[r[1] for r in b] for b in rows] == ds["level_occupancy"][0, :, :].T.tolist()
+rows = blocks("ot/plots/velocity_quantile_vs_time_by_quantile_at_lambda3.8.dat")
+assert [[r[1] for r in b] for b in rows] == ds["velocity_quantile"][1, :, :].T.tolist()
 PY
 
 # Refusals: exit 2, the message, and no OUT.
