@@ -1,8 +1,8 @@
 // The checkpoint journal reader (io/journal.hpp, src/io/store/journal_read.cpp)
 // on damaged journals. Once per process a small valid journal is written in
 // a temporary directory: a two-point family sweep (damping, two rates, raw
-// records kept), 4 work units in two segments of two records each, plus the
-// serialized bytes of every unit as the reference. Each input is a list of
+// records kept, three observe times), 4 work units in two segments of two
+// records each, plus the serialized bytes of every unit as the reference. Each input is a list of
 // edits, applied to a fresh copy of that journal before it is read:
 //   cmd byte: edit = cmd & 7, file = (cmd >> 3) & 3 (header.bin, segment 1,
 //   segment 2, or an extra segment that starts as a copy of segment 1 or 2:
@@ -142,6 +142,7 @@ struct journal_fixture {
     spec.histograms.bins = 5;
     spec.keep_records = true;
     spec.seed = 7;
+    spec.observe_times = {0.0, 1.5, 4.0};  // the observe-time block and its sketches
     validate(spec);
     {
       io::journal_writer w(root.string(), spec, io::run_metadata{"fuzz", "", "", "", ""}, "fuzz",

@@ -207,6 +207,7 @@ struct merge_fixture {
     a.block_size = 2;
     a.histograms.bins = 2;
     a.seed = 7;
+    a.observe_times = {0.0, 1.5, 4.0};  // the observe-time block and its sketches
     sweep_spec b = a;
     b.seed = 8;
     sweep_spec c = a;  // raw records: every block journaled as it is
