@@ -14,9 +14,16 @@
 //     the sketch's accuracy of the exact order statistics;
 //   - quantile_sketch alone against sorted samples, and merges in any order;
 //   - the lanes and the reference engine give the same `observed`, bit for
-//     bit, with times at event instants, t = 0 and t_a; blocks of 10 and 50
-//     give the same counts and sketches; at an event instant the state is
-//     the one just after the event.
+//     bit, with times at event instants (and one ulp either side), t = 0 and
+//     t_a; blocks of 10 and 50 give the same counts and sketches; at an
+//     event instant the state is the one just after the event; a dense grid
+//     equals the episodes on both engines;
+//   - observe times change no other statistic or record, do not depend on
+//     the burn-in, and are filled alike without the family statistics, with
+//     means only, with records and with common random numbers;
+//   - validation refuses times out of [0, t_a] (the shortest t_a of a t_a
+//     axis), out of order or not finite, and t = t_a of the shorter window
+//     of a t_a axis is that point's last state.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,6 +35,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/model/model_realization.hpp"
+#include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
 #include "unit/engine_agreement.hpp"
 
@@ -268,7 +276,7 @@ sweep_spec paper_spec() {
   s.base.friction_coefficient = 5.0;
   s.base.window = 50.0;
   s.seed = 27;
-  s.realizations = 1500;
+  s.realizations = 4000;
   // 0, the transient from the uniform start, late times, and t_a.
   s.observe_times = {0.0, 0.3, 2.0, 7.5, 25.0, 50.0};
   return s;
@@ -303,7 +311,7 @@ TEST(ObserveTimes, StickCountsEqualTheEpisodesWithStaticAboveKineticFriction) {
   s.base.switch_rate = 3.8;
   s.base.static_friction = 8.0;
   s.base.kinetic_friction = 5.0;
-  s.realizations = 1000;
+  s.realizations = 3000;
   ASSERT_FALSE(point_parameters(s, 0).is_paper_model());
   const auto rs = run_sweep(s, 2);
   const auto sticking = expect_observed_matches_episodes(s, rs, 0);
@@ -479,6 +487,12 @@ std::vector<double> times_at_events(const sweep_spec& s, std::uint64_t r, std::s
     auto& seen = kinds[static_cast<int>(e.kind)];
     if (seen < static_cast<int>(count)) t.push_back(e.time), ++seen;
   }
+  // And one ulp either side of each event: the comparisons at segment ends.
+  const std::size_t events = t.size();
+  for (std::size_t i = 2; i < events; ++i) {
+    t.push_back(std::nextafter(t[i], 0.0));
+    t.push_back(std::nextafter(t[i], HUGE_VAL));
+  }
   for (double x : {0.77, 3.3, 11.1}) t.push_back(x);
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
@@ -562,7 +576,7 @@ TEST(ObserveTimes, LanesEqualTheReferenceWithTimesAtEventInstants) {
   std::sort(s.observe_times.begin(), s.observe_times.end());
   s.observe_times.erase(std::unique(s.observe_times.begin(), s.observe_times.end()),
                         s.observe_times.end());
-  EXPECT_GE(s.observe_times.size(), 20u);
+  EXPECT_GE(s.observe_times.size(), 50u);
   expect_engines_and_blocks_agree(s);
   for (auto engine : {sweep_engine::reference, sweep_engine::fast}) {
     expect_state_after_events(s, 2, engine);
@@ -586,6 +600,139 @@ TEST(ObserveTimes, LanesEqualTheReferenceOnATwoLevelFamilyPoint) {
   expect_engines_and_blocks_agree(s);
   for (auto engine : {sweep_engine::reference, sweep_engine::fast})
     expect_state_after_events(s, 4, engine);
+}
+
+// A dense grid (0.05 s, many times per stick and slip) on both engines:
+// every count and sketch equals the episodes', at both paper stiffnesses.
+TEST(ObserveTimes, DenseGridEqualsTheEpisodesOnBothEngines) {
+  sweep_spec s = paper_spec();
+  s.base.window = 20.0;
+  s.realizations = 150;
+  s.observe_times.clear();
+  for (int i = 0; i <= 400; ++i) s.observe_times.push_back(0.05 * i);
+  s.observe_times.back() = 20.0;
+  s.axes = {{"lambda", {0.5, 10.0}}, {"k", {4.0, 40.0}}};
+  for (auto engine : {sweep_engine::fast, sweep_engine::reference}) {
+    s.engine = engine;
+    const auto rs = run_sweep(s, 2);
+    for (std::size_t i = 0; i < point_count(s); ++i) {
+      SCOPED_TRACE(to_string(engine));
+      (void)expect_observed_matches_episodes(s, rs, i);
+    }
+  }
+}
+
+// Observe times add the states and change nothing else: every other
+// statistic and record is the same bits with and without them, on both
+// engines, with and without a burn-in (paper model, a lanes family point, a
+// damped and a three-level one); and the states do not depend on the
+// burn-in (they are the physics at t_j, whatever window the totals count).
+TEST(ObserveTimes, ChangeNoOtherStatisticAndIgnoreTheBurnIn) {
+  std::vector<sweep_spec> specs;
+  sweep_spec s = paper_spec();
+  s.base.window = 20.0;
+  s.realizations = 120;
+  s.block_size = 25;
+  s.keep_records = true;
+  s.observe_times = {0.0, 3.0, 7.5, 12.0, 20.0};
+  s.axes = {{"lambda", {0.5, 3.8}}, {"mu", {0.5, 5.0}}};
+  specs.push_back(s);
+  s.axes = {{"mu_k", {2.0, 5.0}}, {"c", {0.0, 0.6}}};
+  s.base.static_friction = 8.0;
+  specs.push_back(s);
+  s.axes = {};
+  s.base.static_friction = 0.0;
+  s.base.belt_levels = {1.0, -0.5, 0.0};
+  s.base.belt_generator = {-2.0, 1.5, 0.5, 0.25, -0.75, 0.5, 1.0, 2.0, -3.0};
+  specs.push_back(s);
+  for (const sweep_spec& base : specs)
+    for (double T : {0.0, 7.5})
+      for (auto engine : {sweep_engine::fast, sweep_engine::reference}) {
+        SCOPED_TRACE(testing::Message() << to_string(engine) << " burn-in " << T << " levels "
+                                        << base.base.levels().size());
+        sweep_spec with = base, without = base;
+        with.engine = without.engine = engine;
+        with.burn_in = without.burn_in = T;
+        without.observe_times.clear();
+        const auto a = run_sweep(with, 2), b = run_sweep(without, 2);
+        sweep_spec no_burn_in = with;
+        no_burn_in.burn_in = 0.0;
+        const auto c = T > 0.0 ? run_sweep(no_burn_in, 2) : a;
+        for (std::size_t i = 0; i < a.points.size(); ++i) {
+          EXPECT_TRUE(testing_support::same_bits(a.points[i].stats, b.points[i].stats)) << i;
+          EXPECT_TRUE(a.points[i].stats.stick_survival == b.points[i].stats.stick_survival) << i;
+          EXPECT_FALSE(b.points[i].stats.observed.selected());
+          EXPECT_EQ(a.points[i].stats.observed.realizations(), base.realizations) << i;
+          EXPECT_TRUE(a.points[i].stats.observed == c.points[i].stats.observed) << i;
+          for (std::size_t r = 0; r < a.records[i].size(); ++r)
+            EXPECT_TRUE(testing_support::same_bits(a.records[i][r], b.records[i][r])) << i << "/" << r;
+        }
+      }
+}
+
+// The configurations that take other observers or streams still fill the
+// states, and the same ones: without the family statistics (the paper
+// study's lane observer), means only, without records; and common random
+// numbers (every point on the same streams) against the episodes.
+TEST(ObserveTimes, EveryConfigurationFillsTheSameStates) {
+  sweep_spec s = paper_spec();
+  s.base.window = 20.0;
+  s.realizations = 200;
+  s.observe_times = {0.0, 1.0, 7.5, 20.0};
+  s.axes = {{"lambda", {0.5, 3.8}}, {"k", {4.0, 40.0}}};
+  const auto reference = run_sweep(s, 2);
+  for (int config = 0; config < 3; ++config) {
+    sweep_spec t = s;
+    if (config == 0) t.family_statistics = false;
+    if (config == 1) t.means_only = true;
+    if (config == 2) t.keep_records = true;
+    for (auto engine : {sweep_engine::fast, sweep_engine::reference}) {
+      t.engine = engine;
+      const auto r = run_sweep(t, 2);
+      for (std::size_t i = 0; i < r.points.size(); ++i)
+        EXPECT_TRUE(r.points[i].stats.observed == reference.points[i].stats.observed)
+            << "config " << config << " " << to_string(engine) << " point " << i;
+    }
+  }
+  s.common_random_numbers = true;
+  const auto crn = run_sweep(s, 2);
+  for (std::size_t i = 0; i < point_count(s); ++i) (void)expect_observed_matches_episodes(s, crn, i);
+}
+
+// The journal: a unit's result and a merged prefix keep `observed` through
+// serialization, a resume from a prefix ends with the same bits as the run
+// without one, and the times are part of the spec's identity.
+TEST(ObserveTimes, SurviveTheJournalAndAResume) {
+  sweep_spec s = paper_spec();
+  s.base.window = 20.0;
+  s.realizations = 200;
+  s.observe_times = {0.0, 1.0, 7.5, 20.0};
+  const work_unit u{0, 1};
+  const block_result r = simulate_block(s, u);
+  const auto [u2, r2] = deserialize_unit_result(serialize(u, r));
+  EXPECT_EQ(u2, u);
+  EXPECT_TRUE(r2.stats.observed == r.stats.observed);
+  EXPECT_EQ(r2.stats.observed.realizations(), 50u);
+  EXPECT_NO_THROW(check_block_shape(s, u, r2));
+
+  const auto whole = run_sweep(s, 1);
+  ordered_merger first(s);
+  for (std::uint64_t b = 0; b < 2; ++b) first.add({0, b}, simulate_block(s, {0, b}));
+  const merged_prefix prefix = deserialize_merged_prefix(serialize_merged_prefix(0, 2, first.merged(0)));
+  EXPECT_TRUE(prefix.stats.observed == first.merged(0).observed);
+  EXPECT_NO_THROW(check_prefix_shape(s, prefix));
+  ordered_merger resumed(s);
+  resumed.restore(prefix);
+  for (std::uint64_t b = 2; b < 4; ++b) resumed.add({0, b}, simulate_block(s, {0, b}));
+  EXPECT_TRUE(resumed.merged(0).observed == whole.points[0].stats.observed);
+
+  const sweep_spec back = deserialize_sweep_spec(serialize(s));
+  EXPECT_EQ(back.observe_times, s.observe_times);
+  sweep_spec other = s;
+  other.observe_times[1] = 1.5;
+  EXPECT_FALSE(same_results(s, other));
+  EXPECT_NE(fingerprint(s), fingerprint(other));
+  EXPECT_FALSE(first_difference(s, other).empty());
 }
 
 // Observe times are part of the sweep's validation: ascending, in [0, t_a]
