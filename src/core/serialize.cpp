@@ -119,6 +119,22 @@ histogram get_histogram(reader& r) {
   return h;
 }
 
+// score_moments and causal_score_moments (accumulators/score_moments.hpp):
+// the count, then the five sums in their fixed order; 48 bytes.
+constexpr std::size_t five_sums_bytes = 8 + 5 * 8;
+template <class Moments>
+void put(writer& w, const five_sums<Moments>& m) {
+  w.u64(m.count());
+  for (int i = 0; i < 5; ++i) w.f64(m.sum(i));
+}
+template <class Moments>
+Moments get_five_sums(reader& r, std::string_view what) {
+  const auto count = r.u64(what);
+  double sums[5];
+  for (double& x : sums) x = r.f64(what);
+  return Moments::from_raw(count, sums);
+}
+
 // The accumulators in schema order (statistics_schema.cpp): every quantity's
 // moments, every binned quantity's histogram, the realization count, every
 // counter; then the convergence trace.
@@ -339,28 +355,18 @@ void put(writer& w, const point_statistics& s) {
   w.u8(s.means_only ? 1 : 0);
   for (const auto& c : counters()) w.u64(c.value(s));
   for (const auto& q : quantities())
-    if (q.score) {
-      w.u64((s.*q.score).count());
-      for (int i = 0; i < 5; ++i) w.f64((s.*q.score).sum(i));
-    }
+    if (q.score) put(w, s.*q.score);
   w.f64(s.expected_switches);
-  w.u64(s.stick_fraction_causal_score.count());
-  for (int i = 0; i < 5; ++i) w.f64(s.stick_fraction_causal_score.sum(i));
+  put(w, s.stick_fraction_causal_score);
   for (const auto& q : quantities())
     if (q.rate_score)
-      for (const auto& m : s.*q.rate_score) {
-        w.u64(m.count());
-        for (int i = 0; i < 5; ++i) w.f64(m.sum(i));
-      }
+      for (const auto& m : s.*q.rate_score) put(w, m);
   w.f64(s.belt_rates[0]);
   w.f64(s.belt_rates[1]);
   for (const auto& q : quantities())
     if (q.generator_score) {
       w.u64((s.*q.generator_score).size());
-      for (const auto& m : s.*q.generator_score) {
-        w.u64(m.count());
-        for (int i = 0; i < 5; ++i) w.f64(m.sum(i));
-      }
+      for (const auto& m : s.*q.generator_score) put(w, m);
     }
   w.u64(s.generator.size());
   for (double q : s.generator) w.f64(q);
@@ -406,39 +412,19 @@ point_statistics get_statistics(reader& r) {
   s.means_only = r.boolean("means-only flag");
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
   for (const auto& q : quantities())
-    if (q.score) {
-      const auto count = r.u64("score moments");
-      double sums[5];
-      for (double& x : sums) x = r.f64("score moments");
-      s.*q.score = score_moments::from_raw(count, sums);
-    }
+    if (q.score) s.*q.score = get_five_sums<score_moments>(r, "score moments");
   s.expected_switches = r.f64("expected switches");
-  {
-    const auto count = r.u64("causal score moments");
-    double sums[5];
-    for (double& x : sums) x = r.f64("causal score moments");
-    s.stick_fraction_causal_score = causal_score_moments::from_raw(count, sums);
-  }
+  s.stick_fraction_causal_score = get_five_sums<causal_score_moments>(r, "causal score moments");
   for (const auto& q : quantities())
     if (q.rate_score)
-      for (auto& m : s.*q.rate_score) {
-        const auto count = r.u64("rate score moments");
-        double sums[5];
-        for (double& x : sums) x = r.f64("rate score moments");
-        m = score_moments::from_raw(count, sums);
-      }
+      for (auto& m : s.*q.rate_score) m = get_five_sums<score_moments>(r, "rate score moments");
   s.belt_rates[0] = r.f64("belt rate r1");
   s.belt_rates[1] = r.f64("belt rate r2");
   for (const auto& q : quantities())
     if (q.generator_score) {
       auto& moments = s.*q.generator_score;
-      moments.resize(r.count("generator score moments", 48));
-      for (auto& m : moments) {
-        const auto count = r.u64("generator score moments");
-        double sums[5];
-        for (double& x : sums) x = r.f64("generator score moments");
-        m = score_moments::from_raw(count, sums);
-      }
+      moments.resize(r.count("generator score moments", five_sums_bytes));
+      for (auto& m : moments) m = get_five_sums<score_moments>(r, "generator score moments");
     }
   s.generator.resize(r.count("belt generator", 8));
   for (double& q : s.generator) q = r.f64("belt generator");
