@@ -10,7 +10,7 @@
 
 #include "stickslip/run/runner.hpp"
 #include "stickslip/run/stop.hpp"
-#include "stickslip/study/report.hpp"
+#include "stickslip/study/design.hpp"
 
 namespace stickslip::app {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "stickslip/study/report.hpp"
+#include "stickslip/study/claims.hpp"
 
 namespace stickslip::study {
 

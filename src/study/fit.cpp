@@ -1,6 +1,6 @@
 // Locating the maximum of mean R in lambda: a weighted quadratic fit in
 // u = ln(lambda / center) with delta-method errors and a parametric bootstrap.
-// The math is written out in include/stickslip/study/report.hpp.
+// The math is written out in include/stickslip/study/fit.hpp.
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
 
@@ -9,7 +9,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "stickslip/study/report.hpp"
+#include "stickslip/study/fit.hpp"
+#include "stickslip/accumulators/mean_variance.hpp"  // z95
 
 namespace stickslip::study {
 
@@ -117,6 +118,16 @@ double percentile(std::vector<double> v, double q) {
 
 }  // namespace
 
+// Wilson-Hilferty cube-root normal approximation (within ~1 % for dof >= 3):
+// q = dof (1 - 2/(9 dof) + z sqrt(2/(9 dof)))^3, z = 1.6449 for 95 %.
+double chi2_95(std::size_t dof) {
+  const double k = static_cast<double>(dof);
+  const double c = 2.0 / (9.0 * k);
+  return k * std::pow(1.0 - c + 1.6448536269514722 * std::sqrt(c), 3);
+}
+
+bool poor_fit(const peak_estimate& p) { return p.dof > 0 && p.chi2 > chi2_95(p.dof); }
+
 peak_estimate fit_peak(const std::vector<double>& lambda, const std::vector<double>& mean,
                        const std::vector<double>& std_error, double center, std::uint64_t seed,
                        std::uint64_t stream_tag, std::size_t bootstrap) {
@@ -184,16 +195,6 @@ peak_estimate fit_peak(const std::vector<double>& lambda, const std::vector<doub
     e.R_hi = e.R_star + z95 * e.R_se_delta;
   }
   return e;
-}
-
-maximum_view best_maximum(const mu_refinement& r) {
-  if (r.located.valid) {
-    const auto& p = r.located.result;
-    return {p.max, p.max_lo, p.max_hi, p.argmax, p.argmax_lo, p.argmax_hi, true};
-  }
-  return {r.grid_max,        r.grid_max - r.grid_max_ci95, r.grid_max + r.grid_max_ci95,
-          r.grid_max_lambda, r.grid_max_lambda,            r.grid_max_lambda,
-          false};
 }
 
 }  // namespace stickslip::study

@@ -16,6 +16,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/study/figures.hpp"
+#include "stickslip/study/claims.hpp"
 #include "stickslip/study/report.hpp"
 #include "stickslip/io/writers.hpp"
 
@@ -120,20 +121,6 @@ std::string chi2_text(const peak_estimate& p) {
   const auto text = fmt::format("{:.2f} / {}", p.chi2, p.dof);
   return poor_fit(p) ? text + " **poor fit**" : text;
 }
-
-}  // namespace
-
-// Wilson-Hilferty cube-root normal approximation (within ~1 % for dof >= 3):
-// q = dof (1 - 2/(9 dof) + z sqrt(2/(9 dof)))^3, z = 1.6449 for 95 %.
-double chi2_95(std::size_t dof) {
-  const double k = static_cast<double>(dof);
-  const double c = 2.0 / (9.0 * k);
-  return k * std::pow(1.0 - c + 1.6448536269514722 * std::sqrt(c), 3);
-}
-
-bool poor_fit(const peak_estimate& p) { return p.dof > 0 && p.chi2 > chi2_95(p.dof); }
-
-namespace {
 
 // ---------------------------------------------------------------- sections --
 

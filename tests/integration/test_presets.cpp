@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "stickslip/error.hpp"
-#include "stickslip/study/report.hpp"
+#include "stickslip/study/design.hpp"
 #include "stickslip/presets.hpp"
 
 namespace stickslip {

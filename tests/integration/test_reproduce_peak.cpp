@@ -7,7 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "stickslip/study/report.hpp"
+#include "stickslip/study/design.hpp"
+#include "stickslip/study/fit.hpp"
 
 namespace {
 

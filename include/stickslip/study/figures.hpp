@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/study/report.hpp"
+#include "stickslip/study/paper_study.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::study {
