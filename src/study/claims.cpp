@@ -29,20 +29,6 @@ std::string pct_ci(double lo, double hi) {
   return fmt::format("[{:.2f}, {:.2f}] %", 100.0 * lo, 100.0 * hi);
 }
 
-double nearest_mu_of(const set_study& s, double mu) {
-  double best = NAN;
-  for (const auto& r : s.refinements)
-    if (std::isnan(best) || std::abs(r.mu - mu) < std::abs(best - mu)) best = r.mu;
-  return best;
-}
-
-const mu_refinement* refinement_at(const set_study& s, double mu) {
-  const double m = nearest_mu_of(s, mu);
-  for (const auto& r : s.refinements)
-    if (r.mu == m && std::abs(m - mu) < 1e-9) return &r;
-  return nullptr;
-}
-
 // Standard deviation of R at the grid maximum: the paper's own sampling error
 // of a 2000-realization mean is this / sqrt(2000).
 double paper_standard_error(const set_study& s, const mu_refinement& r) {
@@ -52,7 +38,7 @@ double paper_standard_error(const set_study& s, const mu_refinement& r) {
 
 claim_value peak_value_claim(const set_study& s, double mu, double paper, double rounding) {
   claim_value v;
-  const auto* r = refinement_at(s, mu);
+  const auto* r = find_refinement(s, mu);
   if (!r) {
     v.note = fmt::format("mu = {} not refined", mu);
     return v;
@@ -104,7 +90,7 @@ claim_value dmax_claim(const set_study& s) {
 
 claim_value almost_80_claim(const set_study& s) {
   claim_value v;
-  const auto* r = refinement_at(s, 5.0);
+  const auto* r = find_refinement(s, 5.0);
   if (!r) return v;
   const auto p = best_maximum(*r);
   v.value = fmt::format("{} (grid max {})", pct(p.R), pct(r->grid_max));
@@ -122,7 +108,7 @@ claim_value almost_80_claim(const set_study& s) {
 
 claim_value location_claim(const set_study& s) {
   claim_value v;
-  const auto* r = refinement_at(s, 5.0);
+  const auto* r = find_refinement(s, 5.0);
   if (!r) return v;
   const auto p = best_maximum(*r);
   v.value = fmt::format("λ* = {:.3f} 1/s (grid argmax {:.3g})", p.lambda, r->grid_max_lambda);

@@ -214,12 +214,6 @@ figure fig6a(const set_study& s, const std::string& dir, bool render) {
   return f;
 }
 
-const mu_refinement* refinement_for(const set_study& s, double mu) {
-  for (const auto& r : s.refinements)
-    if (r.mu == mu) return &r;
-  return nullptr;
-}
-
 // "lambda R lambda_lo lambda_hi R_lo R_hi" of the located maximum, or of the
 // grid maximum (with its CI) when there is none.
 std::string peak_row(const mu_refinement& r) {
@@ -230,7 +224,7 @@ std::string peak_row(const mu_refinement& r) {
 
 figure fig6b(const set_study& s, const std::string& dir, bool render) {
   const double mu = detail::nearest_mu(s.sweep, 5.0);
-  const auto* r = refinement_for(s, mu);
+  const auto* r = find_refinement(s, mu);
   auto f = make(dir, "fig6b", "fig6b_stick_fraction", "Fig. 6b: mean relative stick time R",
                 fmt::format("Estimated mean of R (total stick time / t_a) against lambda at "
                             "mu = {}, with the 95 % confidence band; {} realizations per point; "

@@ -2,6 +2,7 @@
 // peak search and the 0.1.0 quadratic fit for each mu (design.cpp says what).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include <fmt/format.h>
@@ -28,6 +29,13 @@ maximum_view best_maximum(const mu_refinement& r) {
   return {r.grid_max,        r.grid_max - r.grid_max_ci95, r.grid_max + r.grid_max_ci95,
           r.grid_max_lambda, r.grid_max_lambda,            r.grid_max_lambda,
           false};
+}
+
+const mu_refinement* find_refinement(const set_study& s, double mu) {
+  const mu_refinement* nearest = nullptr;
+  for (const auto& r : s.refinements)
+    if (!nearest || std::abs(r.mu - mu) < std::abs(nearest->mu - mu)) nearest = &r;
+  return nearest && std::abs(nearest->mu - mu) < 1e-9 ? nearest : nullptr;
 }
 
 std::vector<const point_result*> points_at_mu(const result_set& rs, double mu) {

@@ -32,12 +32,6 @@ constexpr int paper_computers = 16;
 
 std::string pct(double x) { return fmt::format("{:.2f} %", 100.0 * x); }
 
-const mu_refinement* refinement_at(const set_study& s, double mu) {
-  for (const auto& r : s.refinements)
-    if (std::abs(r.mu - mu) < 1e-9) return &r;
-  return nullptr;
-}
-
 std::string peak_text(const mu_refinement* r) {
   if (!r) return "–";
   const auto p = best_maximum(*r);
@@ -198,8 +192,8 @@ void candidates_section(document& d, const study_result& st, const std::vector<f
     p.friction_coefficient = 5;
     rows.push_back({fmt::format("`{}`: {}", s->set.id, s->set.label), s->set.why,
                     fmt::format("{:.3g} s", p.max_stick_duration()),
-                    peak_text(refinement_at(*s, 0.5)), peak_text(refinement_at(*s, 5)),
-                    lambda_text(refinement_at(*s, 5)), peak_text(refinement_at(*s, 7)),
+                    peak_text(find_refinement(*s, 0.5)), peak_text(find_refinement(*s, 5)),
+                    lambda_text(find_refinement(*s, 5)), peak_text(find_refinement(*s, 7)),
                     fmt::format("{:g} / {}", claim_score(claims, i), claims.size())});
   }
   rows.push_back({"paper", "as printed", "2.5 s", "15.0 %", "almost 80 %", "3.8", "81.89 %",
@@ -227,7 +221,7 @@ void candidates_section(document& d, const study_result& st, const std::vector<f
   if (g981 && g10) {
     std::string text = "k = 40 with g = 9.81 against g = 10 (both round d_max to 2.5 s):";
     for (double mu : {0.5, 5.0, 7.0}) {
-      const auto *a = refinement_at(*g981, mu), *b = refinement_at(*g10, mu);
+      const auto *a = find_refinement(*g981, mu), *b = find_refinement(*g10, mu);
       if (!a || !b || !a->located.valid || !b->located.valid) continue;
       const auto pa = best_maximum(*a), pb = best_maximum(*b);
       text += fmt::format(" μ = {}: max R {} vs {} (difference {:+.2f} points), λ* {:.2f} vs "
@@ -482,7 +476,7 @@ std::string plateau_text(const set_study& s) {
 
 // "±0.017 1/s at mu = 5" (half the width of the 95 % interval of lambda*).
 std::string c5_width(const set_study* s) {
-  const auto* r = s ? refinement_at(*s, 5) : nullptr;
+  const auto* r = s ? find_refinement(*s, 5) : nullptr;
   if (!r || !r->located.valid) return "within its interval (see the table above)";
   const auto p = best_maximum(*r);
   return fmt::format("±{:.2g} 1/s at μ = 5 (95 %)", (p.lambda_hi - p.lambda_lo) / 2);
@@ -499,8 +493,8 @@ void discussion_section(document& d, const study_result& st) {
   const set_study* p = !st.sets.empty() ? &st.sets[0] : nullptr;
   std::vector<std::string> items;
   if (p && c) {
-    const auto* p5 = refinement_at(*p, 5);
-    const auto* c5 = refinement_at(*c, 5);
+    const auto* p5 = find_refinement(*p, 5);
+    const auto* c5 = find_refinement(*c, 5);
     if (p5 && c5)
       items.push_back(fmt::format(
           "**Parameter typo.** With the printed k = 4 N/m the stick band is ten times wider "
@@ -513,7 +507,7 @@ void discussion_section(document& d, const study_result& st) {
           band_at_mu5(p->set.base), band_at_mu5(c->set.base),
           p->set.base.natural_frequency(), c->set.base.natural_frequency(),
           pct(best_maximum(*p5).R), best_maximum(*p5).lambda));
-    const auto* c7 = refinement_at(*c, 7);
+    const auto* c7 = find_refinement(*c, 7);
     if (c7)
       items.push_back(fmt::format(
           "**μ = 7.** The paper's 81.89 % is {:.1f} points below our {} (95 % CI "

@@ -49,6 +49,10 @@ struct set_study {
   double sweep_seconds = 0;     // wall time of the main sweep alone
 };
 
+// The refinement of `mu` in s: the one whose mu is nearest to `mu`, if
+// within 1e-9 of it (so a literal 5 finds the grid's 5); else nullptr.
+[[nodiscard]] const mu_refinement* find_refinement(const set_study& s, double mu);
+
 struct study_result {
   study_options options;
   std::vector<set_study> sets;        // printed, concluded
