@@ -1,5 +1,6 @@
 // Locating the maximum of mean R in lambda: a weighted quadratic fit in
-// u = ln(lambda / center) with delta-method errors and a parametric bootstrap.
+// u = ln(lambda / center) (precision::fit_polynomial) with delta-method errors
+// and a parametric bootstrap.
 // The math is written out in include/stickslip/study/fit.hpp.
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
@@ -8,75 +9,37 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "stickslip/study/fit.hpp"
 #include "stickslip/accumulators/mean_variance.hpp"  // z95
+#include "stickslip/error.hpp"
+#include "stickslip/precision/local_fit.hpp"
 
 namespace stickslip::study {
 
 namespace {
 
-using mat3 = std::array<std::array<double, 3>, 3>;
-using vec3 = std::array<double, 3>;
+using precision::evaluation;
+using precision::polynomial_fit;
 
-// Inverse of a symmetric positive definite 3x3 matrix by cofactors;
-// returns false if it is singular.
-bool invert(const mat3& a, mat3& inv) {
-  const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
-  const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
-  const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
-  const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
-  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
-  inv[0][0] = c00 / det;
-  inv[1][0] = c01 / det;
-  inv[2][0] = c02 / det;
-  inv[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) / det;
-  inv[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
-  inv[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) / det;
-  inv[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) / det;
-  inv[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
-  inv[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
-  return true;
-}
-
-struct wls {
-  mat3 cov{};  // (X^T W X)^-1: covariance of the coefficients
-  bool ok = false;
-};
-
-// The normal matrix depends only on u and the weights, so it is inverted once
-// and reused for every bootstrap draw: b = cov X^T W y.
-wls prepare(const std::vector<double>& u, const std::vector<double>& w) {
-  mat3 a{};
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    const vec3 x{1.0, u[i], u[i] * u[i]};
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) a[r][c] += w[i] * x[r] * x[c];
-  }
-  wls f;
-  f.ok = invert(a, f.cov);
-  return f;
-}
-
-vec3 solve(const wls& f, const std::vector<double>& u, const std::vector<double>& w,
-           const std::vector<double>& y) {
-  vec3 rhs{};
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    rhs[0] += w[i] * y[i];
-    rhs[1] += w[i] * y[i] * u[i];
-    rhs[2] += w[i] * y[i] * u[i] * u[i];
-  }
-  vec3 b{};
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) b[r] += f.cov[r][c] * rhs[c];
-  return b;
-}
-
-double quadratic_form(const vec3& g, const mat3& m) {
+// g^T C g for a gradient g of the three coefficients and their covariance C.
+double quadratic_form(const std::array<double, 3>& g, const polynomial_fit& f) {
   double s = 0;
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) s += g[r] * m[r][c] * g[c];
+    for (int c = 0; c < 3; ++c) s += g[r] * f.covariance[r][c] * g[c];
   return s;
+}
+
+// The fit in u with center 0 and scale 1, or nothing when the points do not
+// determine it (fit_polynomial throws for a singular normal matrix or a
+// mean that is not finite).
+std::optional<polynomial_fit> fit_quadratic(const std::vector<evaluation>& points) {
+  try {
+    return precision::fit_polynomial(points, 2, 0.0, 1.0);
+  } catch (const error&) {
+    return std::nullopt;
+  }
 }
 
 // Standard normal pairs by Box-Muller from Philox words (key {seed, tag},
@@ -135,50 +98,48 @@ peak_estimate fit_peak(const std::vector<double>& lambda, const std::vector<doub
   e.center = center;
   const std::size_t n = lambda.size();
   if (n < 3 || mean.size() != n || std_error.size() != n || !(center > 0)) return e;
-  std::vector<double> u(n), w(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    u[i] = std::log(lambda[i] / center);
-    // A zero standard error (all realizations equal) would get infinite weight.
-    const double se = std::max(std_error[i], 1e-12);
-    w[i] = 1.0 / (se * se);
-  }
-  const wls f = prepare(u, w);
-  if (!f.ok) return e;
-  const vec3 b = solve(f, u, w, mean);
+  // The evaluations in u; a zero standard error (all realizations equal)
+  // would get infinite weight.
+  std::vector<evaluation> points(n);
+  for (std::size_t i = 0; i < n; ++i)
+    points[i] = {std::log(lambda[i] / center), mean[i], std::max(std_error[i], 1e-12)};
+  const auto fit = fit_quadratic(points);
+  if (!fit) return e;
+  const auto& b = fit->coef;
   e.b0 = b[0];
   e.b1 = b[1];
   e.b2 = b[2];
-  e.dof = n - 3;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double r = mean[i] - (b[0] + b[1] * u[i] + b[2] * u[i] * u[i]);
-    e.chi2 += w[i] * r * r;
-  }
+  e.dof = fit->dof;
+  e.chi2 = fit->chi2;
   if (!(b[2] < 0.0)) return e;  // no maximum: curvature is not negative
   e.valid = true;
   const double us = -b[1] / (2.0 * b[2]);
   e.lambda_star = center * std::exp(us);
   e.R_star = b[0] - b[1] * b[1] / (4.0 * b[2]);
-  e.interior = us >= *std::min_element(u.begin(), u.end()) &&
-               us <= *std::max_element(u.begin(), u.end());
+  const auto [u_lo, u_hi] = std::minmax_element(
+      points.begin(), points.end(), [](const auto& a, const auto& c) { return a.x < c.x; });
+  e.interior = us >= u_lo->x && us <= u_hi->x;
   // Delta method: gradients of u* and R* with respect to (b0, b1, b2);
   // d lambda* = lambda* d u*.
-  const vec3 gu{0.0, -1.0 / (2.0 * b[2]), b[1] / (2.0 * b[2] * b[2])};
-  const vec3 gr{1.0, -b[1] / (2.0 * b[2]), b[1] * b[1] / (4.0 * b[2] * b[2])};
-  e.lambda_se_delta = e.lambda_star * std::sqrt(quadratic_form(gu, f.cov));
-  e.R_se_delta = std::sqrt(quadratic_form(gr, f.cov));
+  const std::array<double, 3> gu{0.0, -1.0 / (2.0 * b[2]), b[1] / (2.0 * b[2] * b[2])};
+  const std::array<double, 3> gr{1.0, -b[1] / (2.0 * b[2]), b[1] * b[1] / (4.0 * b[2] * b[2])};
+  e.lambda_se_delta = e.lambda_star * std::sqrt(quadratic_form(gu, *fit));
+  e.R_se_delta = std::sqrt(quadratic_form(gr, *fit));
 
   // Parametric bootstrap.
   normal_stream z(seed, stream_tag);
-  std::vector<double> ls, rs, y(n);
+  std::vector<double> ls, rs;
   ls.reserve(bootstrap);
   rs.reserve(bootstrap);
+  auto draw = points;
   for (std::size_t k = 0; k < bootstrap; ++k) {
-    for (std::size_t i = 0; i < n; ++i) y[i] = mean[i] + std_error[i] * z.next();
-    const vec3 bb = solve(f, u, w, y);
-    if (!(bb[2] < 0.0)) {
+    for (std::size_t i = 0; i < n; ++i) draw[i].mean = mean[i] + std_error[i] * z.next();
+    const auto refit = fit_quadratic(draw);
+    if (!refit || !(refit->coef[2] < 0.0)) {
       ++e.bootstrap_degenerate;
       continue;
     }
+    const auto& bb = refit->coef;
     ls.push_back(center * std::exp(-bb[1] / (2.0 * bb[2])));
     rs.push_back(bb[0] - bb[1] * bb[1] / (4.0 * bb[2]));
   }

@@ -13,7 +13,8 @@
 namespace stickslip::study {
 
 // Weighted least-squares fit of R = b0 + b1 u + b2 u^2, u = ln(lambda/center),
-// weights 1/se_i^2, to the mean R of independent points. With b2 < 0:
+// weights 1/se_i^2, to the mean R of independent points
+// (precision::fit_polynomial). With b2 < 0:
 //   u* = -b1/(2 b2),  lambda* = center e^u*,  R* = b0 - b1^2/(4 b2).
 // Delta-method standard errors come from cov(b) = (X^T W X)^-1; the 95 %
 // intervals come from a parametric bootstrap: each point's mean is redrawn
