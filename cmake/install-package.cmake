@@ -1,8 +1,10 @@
 # cmake --install and the package config behind
-#   find_package(stickslip CONFIG REQUIRED [COMPONENTS core io mpi])
+#   find_package(stickslip CONFIG REQUIRED [COMPONENTS core precision io mpi])
 # which gives the imported targets
 #   stickslip::core  the simulation library (model, engines, statistics, sweep;
 #                    no I/O: its interface has fmt, Threads and Random123 only)
+#   stickslip::precision  local fits and peak finders (model-free), and the
+#                    drivers above the sweep: peak_sweep, crn_slopes
 #   stickslip::io    config, writers, journal, figures, report (toml++, netCDF)
 #   stickslip::run   journaled runs (resume, shards, stop), runners, shard merging
 #   stickslip::study the paper study: design, peak refinement, claims, figures, report
@@ -20,8 +22,9 @@ include(CMakePackageConfigHelpers)
 set(stickslip_config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/stickslip)
 
 # component -> library target (the EXPORT_NAME gives stickslip::<component>)
-set(stickslip_components core io run study)
+set(stickslip_components core precision io run study)
 set(stickslip_target_core stickslip_core)
+set(stickslip_target_precision stickslip_precision)
 set(stickslip_target_io stickslip_io)
 set(stickslip_target_run stickslip_run)
 set(stickslip_target_study stickslip_study)
