@@ -302,10 +302,10 @@ class lane_engine {
     for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());
     done_.assign(n, 0);
     for (int l = 0; l < lanes; ++l) {
-      t_[l] = x_[l] = z_[l] = tsw_[l] = 0.0;
-      v_[l] = sig_[l] = 1.0;
-      stk_[l] = grz_[l] = mir_[l] = arv_[l] = run_[l] = 0.0;
-      code_[l] = ev_none;
+      time_[l] = position_[l] = velocity_[l] = next_switch_time_[l] = 0.0;
+      belt_velocity_[l] = slip_centre_sign_[l] = 1.0;
+      sticking_[l] = grazing_[l] = mirror_[l] = after_reversal_[l] = steps_this_round_[l] = 0.0;
+      step_event_[l] = ev_none;
     }
   }
 
@@ -326,59 +326,66 @@ class lane_engine {
       // draw_model_initial_state and markov_level_switches, as simulate_block_family
       const model_initial_state st = draw_model_initial_state(*fp_, s_.initial, s_.seed, r);
       ic = initial_conditions{st.position, st.velocity, recorded_belt_start(st.level, 2)};
-      sw_[l] = two_level_switch_times(fp_->chain.mean_wait(st.level),
+      switch_times_[l] = two_level_switch_times(fp_->chain.mean_wait(st.level),
                                       fp_->chain.mean_wait(1 - st.level), s_.seed, key_, r);
       v = st.level == 0 ? v1_ : v2_;
     } else {
       ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
-      sw_[l] = poisson_switches(p_.switch_rate, s_.seed, key_, r);
+      switch_times_[l] = poisson_switches(p_.switch_rate, s_.seed, key_, r);
       v = ic.belt_direction >= 0 ? V_ : -V_;
     }
-    r_[l] = r;
-    obs_[l] = &pool_[(r - first_) % pool_.size()];
-    collect_.begin(*obs_[l], r, ic);
-    if constexpr (samples_states) obs_t_[l] = observing_ ? obs_[l]->sampler().next_time() : inf;
+    realization_[l] = r;
+    observer_[l] = &pool_[(r - first_) % pool_.size()];
+    collect_.begin(*observer_[l], r, ic);
+    if constexpr (samples_states)
+      next_observe_time_[l] = observing_ ? observer_[l]->sampler().next_time() : inf;
     active_[l] = true;
-    act_[l] = 1.0;
-    n_sw_[l] = n_on_[l] = n_brk_[l] = n_rev_[l] = 0.0;
+    busy_[l] = 1.0;
+    belt_switches_[l] = stick_onsets_[l] = stick_breaks_[l] = slip_reversals_[l] = 0.0;
     steps_[l] = 0.0;
-    lt0_[l] = lt1_[l] = trav_[l] = 0.0;
+    time_at_first_level_[l] = time_at_second_level_[l] = relative_travel_[l] = 0.0;
     // simulate(): initial state and mode.
     const double a = a_;
     const double x = ic.position, z = ic.velocity;
-    t_[l] = 0.0, x_[l] = x, z_[l] = z, v_[l] = v;
-    tsw_[l] = next_switch(l);
+    time_[l] = 0.0, position_[l] = x, velocity_[l] = z, belt_velocity_[l] = v;
+    next_switch_time_[l] = next_switch(l);
     auto m = physics::mode_at_start(x, z, v, a);
     if (Family && v == 0.0 && m.grazing) m = {mode::stick, 1.0, false, false};  // no outward edge at 0
     const bool stick = m.kind == mode::stick;
-    sig_[l] = m.sigma;
-    stk_[l] = stick ? 1.0 : 0.0;
+    slip_centre_sign_[l] = m.sigma;
+    sticking_[l] = stick ? 1.0 : 0.0;
     // simulate_model's leave_edge: with mu_s > mu_k a start on the outward
     // edge slips away at once (after_reversal), with mu_s = mu_k it grazes.
     const bool edge_leaves = Family && !equal_friction_ && m.grazing;
-    grz_[l] = m.grazing && !edge_leaves ? 1.0 : 0.0;
-    arv_[l] = m.after_reversal || edge_leaves ? 1.0 : 0.0;
-    mir_[l] = 0.0;
-    ep_kind_[l] = stick ? mode::stick : mode::slip;
-    ep_start_[l] = 0.0;
-    ep_x_[l] = x;
-    ep_v_[l] = v;
-    ep_nsw_[l] = 0.0;
-    sws_[l] = 0.0;
+    grazing_[l] = m.grazing && !edge_leaves ? 1.0 : 0.0;
+    after_reversal_[l] = m.after_reversal || edge_leaves ? 1.0 : 0.0;
+    mirror_[l] = 0.0;
+    episode_kind_[l] = stick ? mode::stick : mode::slip;
+    episode_start_[l] = 0.0;
+    episode_position_[l] = x;
+    episode_belt_velocity_[l] = v;
+    episode_switches_before_[l] = 0.0;
+    switch_time_sum_[l] = 0.0;
   }
 
-  HWY_INLINE double next_switch(int l) noexcept { return sw_[l].next(target_log_inplace{}); }
+  HWY_INLINE double next_switch(int l) noexcept {
+    return switch_times_[l].next(target_log_inplace{});
+  }
 
   void finish_realization(int l) {
-    obs_[l]->on_episode(
-        episode{ep_kind_[l], ep_start_[l], ta_, ep_x_[l], ep_v_[l], true, ep_nsw_[l]});
-    if constexpr (with_pieces) obs_[l]->set_paper_sums(lt0_[l], lt1_[l], trav_[l]);
-    collect_.end(*obs_[l], event_counts{
-        static_cast<std::uint64_t>(n_sw_[l]), static_cast<std::uint64_t>(n_on_[l]),
-        static_cast<std::uint64_t>(n_brk_[l]), static_cast<std::uint64_t>(n_rev_[l]), sws_[l]});
+    observer_[l]->on_episode(episode{episode_kind_[l], episode_start_[l], ta_, episode_position_[l],
+                                     episode_belt_velocity_[l], true, episode_switches_before_[l]});
+    if constexpr (with_pieces)
+      observer_[l]->set_paper_sums(time_at_first_level_[l], time_at_second_level_[l],
+                                   relative_travel_[l]);
+    collect_.end(*observer_[l],
+                 event_counts{static_cast<std::uint64_t>(belt_switches_[l]),
+                              static_cast<std::uint64_t>(stick_onsets_[l]),
+                              static_cast<std::uint64_t>(stick_breaks_[l]),
+                              static_cast<std::uint64_t>(slip_reversals_[l]), switch_time_sum_[l]});
     active_[l] = false;
-    act_[l] = 0.0;
-    done_[(r_[l] - first_) % pool_.size()] = 1;
+    busy_[l] = 0.0;
+    done_[(realization_[l] - first_) % pool_.size()] = 1;
     flush();
   }
 
@@ -394,21 +401,23 @@ class lane_engine {
   }
 
   // simulate()'s close_episode: the next episode starts with the state just
-  // after the event (x_, v_ are already updated when this is called).
+  // after the event (position_, belt_velocity_ are already updated when this is called).
   void close_episode(int l, double when, mode next_mode) {
-    if (when > ep_start_[l])
-      obs_[l]->on_episode(
-          episode{ep_kind_[l], ep_start_[l], when, ep_x_[l], ep_v_[l], false, ep_nsw_[l]});
-    ep_kind_[l] = next_mode;
-    ep_start_[l] = when;
-    if constexpr (with_causal) ep_nsw_[l] = n_sw_[l];
-    ep_x_[l] = x_[l];
-    ep_v_[l] = v_[l];
+    if (when > episode_start_[l])
+      observer_[l]->on_episode(episode{episode_kind_[l], episode_start_[l], when,
+                                       episode_position_[l], episode_belt_velocity_[l], false,
+                                       episode_switches_before_[l]});
+    episode_kind_[l] = next_mode;
+    episode_start_[l] = when;
+    if constexpr (with_causal) episode_switches_before_[l] = belt_switches_[l];
+    episode_position_[l] = position_[l];
+    episode_belt_velocity_[l] = belt_velocity_[l];
   }
 
   // simulate()'s on_event, with the state just after the event.
   void emit(int l, event_kind kind) {
-    if constexpr (with_events) obs_[l]->on_event(event{kind, t_[l], x_[l], z_[l], v_[l]});
+    if constexpr (with_events)
+      observer_[l]->on_event(event{kind, time_[l], position_[l], velocity_[l], belt_velocity_[l]});
   }
 
   void count_step(int l) {
@@ -424,10 +433,10 @@ class lane_engine {
     std::uint32_t special = 0;
     for (int k = 0; k < groups; ++k) {
       const std::size_t j = static_cast<std::size_t>(k) * N;
-      const auto act = hn::Gt(hn::Load(d, act_ + j), half);
+      const auto act = hn::Gt(hn::Load(d, busy_ + j), half);
       const vec st = hn::Add(hn::Load(d, steps_ + j), hn::IfThenElseZero(act, one));
       hn::Store(st, d, steps_ + j);
-      hn::Store(hn::IfThenElse(act, one, zero), d, run_ + j);
+      hn::Store(hn::IfThenElse(act, one, zero), d, steps_this_round_ + j);
       over = hn::Or(over, hn::And(act, hn::Gt(st, hn::Set(d, max_steps_))));
       // idle lanes (the vector step runs every busy lane, also a slip that
       // starts at a reversal)
@@ -438,20 +447,21 @@ class lane_engine {
     for (unsigned m = special; m != 0; m &= m - 1) prepare(std::countr_zero(m));
     auto any = hn::FirstN(d, 0);
     for (int k = 0; k < groups; ++k)
-      any = hn::Or(any, hn::Gt(hn::Load(d, run_ + static_cast<std::size_t>(k) * N), half));
+      any = hn::Or(any,
+                   hn::Gt(hn::Load(d, steps_this_round_ + static_cast<std::size_t>(k) * N), half));
     return !hn::AllFalse(d, any);
   }
 
   // Start a realization in an idle lane (counting its first event).
   // Returns whether the lane runs.
   bool prepare(int l) {
-    run_[l] = 0.0;
+    steps_this_round_[l] = 0.0;
     if (!active_[l]) {
       if (next_ >= last_ || next_ - flush_ >= pool_.size()) return false;
       start(l, next_++);
     }
     count_step(l);
-    run_[l] = 1.0;
+    steps_this_round_[l] = 1.0;
     return true;
   }
 
@@ -460,39 +470,40 @@ class lane_engine {
   // root; simulate() counts none when a belt switch lands exactly on x' = v:
   // contact_at_switch).
   void root_contact(int l, double from_sigma, bool count_reversal = true) {
-    mir_[l] = 0.0;
-    const auto c = physics::resolve_contact(t_[l], x_[l], from_sigma, v_[l], a_);
-    x_[l] = c.x;
+    mirror_[l] = 0.0;
+    const auto c =
+        physics::resolve_contact(time_[l], position_[l], from_sigma, belt_velocity_[l], a_);
+    position_[l] = c.x;
     auto outcome = c.outcome;
     // a level 0 has no outward edge (simulate_model): its band edge sticks
-    if (Family && outcome == physics::contact_outcome::grazing && v_[l] == 0.0)
+    if (Family && outcome == physics::contact_outcome::grazing && belt_velocity_[l] == 0.0)
       outcome = physics::contact_outcome::stick;
     switch (outcome) {
       case physics::contact_outcome::reversal:
-        sig_[l] = c.sigma;
-        arv_[l] = 1.0;
+        slip_centre_sign_[l] = c.sigma;
+        after_reversal_[l] = 1.0;
         if (count_reversal) {
-          n_rev_[l] += 1.0;
+          slip_reversals_[l] += 1.0;
           emit(l, event_kind::slip_reversal);
         }
         return;
       case physics::contact_outcome::grazing:  // zero-length stick: leave_edge
-        sig_[l] = c.sigma;
+        slip_centre_sign_[l] = c.sigma;
         if (Family && !equal_friction_)
-          arv_[l] = 1.0;
+          after_reversal_[l] = 1.0;
         else
-          grz_[l] = 1.0;
+          grazing_[l] = 1.0;
         return;
       case physics::contact_outcome::stick:
-        stk_[l] = 1.0;
-        n_on_[l] += 1.0;
+        sticking_[l] = 1.0;
+        stick_onsets_[l] += 1.0;
         emit(l, event_kind::stick_onset);
-        close_episode(l, t_[l], mode::stick);
+        close_episode(l, time_[l], mode::stick);
         return;
     }
   }
   // simulate(): a belt switch during a slip landed exactly on x' = v.
-  void contact_at_switch(int l) { root_contact(l, x_[l] > 0 ? -1.0 : 1.0, false); }
+  void contact_at_switch(int l) { root_contact(l, position_[l] > 0 ? -1.0 : 1.0, false); }
 
   // ---- the vector step: one event for every lane ----
   // Every expression is simulate()'s, operation for operation, lane-wise.
@@ -523,13 +534,15 @@ class lane_engine {
     mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K], arv[K];
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
-      t[k] = hn::Load(d, t_ + j), x[k] = hn::Load(d, x_ + j), z[k] = hn::Load(d, z_ + j);
-      v[k] = hn::Load(d, v_ + j), tsw[k] = hn::Load(d, tsw_ + j), sig[k] = hn::Load(d, sig_ + j);
-      stick[k] = hn::Gt(hn::Load(d, stk_ + j), half);
-      graz[k] = hn::Gt(hn::Load(d, grz_ + j), half);
-      mirr[k] = hn::Gt(hn::Load(d, mir_ + j), half);
-      run[k] = hn::Gt(hn::Load(d, run_ + j), half);
-      arv[k] = hn::Gt(hn::Load(d, arv_ + j), half);
+      t[k] = hn::Load(d, time_ + j), x[k] = hn::Load(d, position_ + j),
+      z[k] = hn::Load(d, velocity_ + j);
+      v[k] = hn::Load(d, belt_velocity_ + j), tsw[k] = hn::Load(d, next_switch_time_ + j),
+      sig[k] = hn::Load(d, slip_centre_sign_ + j);
+      stick[k] = hn::Gt(hn::Load(d, sticking_ + j), half);
+      graz[k] = hn::Gt(hn::Load(d, grazing_ + j), half);
+      mirr[k] = hn::Gt(hn::Load(d, mirror_ + j), half);
+      run[k] = hn::Gt(hn::Load(d, steps_this_round_ + j), half);
+      arv[k] = hn::Gt(hn::Load(d, after_reversal_ + j), half);
     }
     K_LOOP {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
@@ -685,7 +698,7 @@ class lane_engine {
       // holds the lane's next observe time, or ends at t_a and t_a is one
       if constexpr (samples_states) {
         if (observing_) [[unlikely]] {
-          const vec end = Min(nt, TA), next = hn::Load(d, obs_t_ + j);
+          const vec end = Min(nt, TA), next = hn::Load(d, next_observe_time_ + j);
           const mask holds = hn::And(
               run[k], hn::Or(hn::Lt(next, end), hn::And(hn::Ge(end, TA), hn::Le(next, TA))));
           if (!hn::AllFalse(d, holds)) [[unlikely]]
@@ -715,44 +728,53 @@ class lane_engine {
           cut_at_burn_in = !hn::AllFalse(d, at_burn_in);
           rn0 = hn::And(rn0, hn::Ge(t[k], T));
         }
-        hn::Store(Add(hn::Load(d, lt0_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d, lt0_ + j);
-        hn::Store(Add(hn::Load(d, lt1_ + j), hn::IfThenElseZero(hn::AndNot(up, rn0), dt)), d, lt1_ + j);
-        hn::Store(Add(hn::Load(d, trav_ + j), hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)), d,
-                  trav_ + j);
+        hn::Store(
+            Add(hn::Load(d, time_at_first_level_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d,
+            time_at_first_level_ + j);
+        hn::Store(Add(hn::Load(d, time_at_second_level_ + j),
+                      hn::IfThenElseZero(hn::AndNot(up, rn0), dt)),
+                  d, time_at_second_level_ + j);
+        hn::Store(Add(hn::Load(d, relative_travel_ + j),
+                      hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)),
+                  d, relative_travel_ + j);
         if (cut_at_burn_in) [[unlikely]]
           add_piece_after_burn_in(d, j, at_burn_in, stk, up, t[k], nt, x[k], x_end, z[k], v[k], sig[k]);
       }
 
       // idle lanes keep their state
       const mask rn = run[k];
-      hn::Store(IfThenElse(rn, nt, t[k]), d, t_ + j);
-      hn::Store(IfThenElse(rn, nx, x[k]), d, x_ + j);
-      hn::Store(IfThenElse(rn, nz, z[k]), d, z_ + j);
-      hn::Store(IfThenElse(rn, nv, v[k]), d, v_ + j);
-      hn::Store(IfThenElse(rn, nsig, sig[k]), d, sig_ + j);
-      hn::Store(IfThenElse(rn, nstk, hn::Load(d, stk_ + j)), d, stk_ + j);
-      hn::Store(IfThenElse(rn, ngrz, hn::Load(d, grz_ + j)), d, grz_ + j);
-      hn::Store(IfThenElse(rn, nmir, hn::Load(d, mir_ + j)), d, mir_ + j);
-      hn::Store(IfThenElse(rn, narv, hn::Load(d, arv_ + j)), d, arv_ + j);
-      hn::Store(IfThenElse(rn, code, zero), d, code_ + j);
+      hn::Store(IfThenElse(rn, nt, t[k]), d, time_ + j);
+      hn::Store(IfThenElse(rn, nx, x[k]), d, position_ + j);
+      hn::Store(IfThenElse(rn, nz, z[k]), d, velocity_ + j);
+      hn::Store(IfThenElse(rn, nv, v[k]), d, belt_velocity_ + j);
+      hn::Store(IfThenElse(rn, nsig, sig[k]), d, slip_centre_sign_ + j);
+      hn::Store(IfThenElse(rn, nstk, hn::Load(d, sticking_ + j)), d, sticking_ + j);
+      hn::Store(IfThenElse(rn, ngrz, hn::Load(d, grazing_ + j)), d, grazing_ + j);
+      hn::Store(IfThenElse(rn, nmir, hn::Load(d, mirror_ + j)), d, mirror_ + j);
+      hn::Store(IfThenElse(rn, narv, hn::Load(d, after_reversal_ + j)), d, after_reversal_ + j);
+      hn::Store(IfThenElse(rn, code, zero), d, step_event_ + j);
       // the bookkeeping after the round: event counts, and lane bits
       const vec cd = IfThenElse(rn, code, zero);
       const mask m_ssw = hn::Eq(cd, Set(d, ev_stick_sw)), m_lsw = hn::Eq(cd, Set(d, ev_slip_sw));
       const mask m_brk = hn::Eq(cd, Set(d, ev_stick_brk)), m_on = hn::Eq(cd, Set(d, ev_slip_onset));
       const mask m_pop = hn::Or(m_ssw, m_lsw);
       const mask m_fin = hn::Or(hn::Eq(cd, Set(d, ev_stick_ta)), hn::Eq(cd, Set(d, ev_slip_ta)));
-      hn::Store(Add(hn::Load(d, n_sw_ + j), hn::IfThenElseZero(m_pop, one)), d, n_sw_ + j);
-      hn::Store(Add(hn::Load(d, n_brk_ + j), hn::IfThenElseZero(m_brk, one)), d, n_brk_ + j);
-      hn::Store(Add(hn::Load(d, n_on_ + j), hn::IfThenElseZero(m_on, one)), d, n_on_ + j);
-      hn::Store(Add(hn::Load(d, n_rev_ + j), hn::IfThenElseZero(hn::Eq(cd, Set(d, ev_slip_rev)), one)),
-                d, n_rev_ + j);
+      hn::Store(Add(hn::Load(d, belt_switches_ + j), hn::IfThenElseZero(m_pop, one)), d,
+                belt_switches_ + j);
+      hn::Store(Add(hn::Load(d, stick_breaks_ + j), hn::IfThenElseZero(m_brk, one)), d,
+                stick_breaks_ + j);
+      hn::Store(Add(hn::Load(d, stick_onsets_ + j), hn::IfThenElseZero(m_on, one)), d,
+                stick_onsets_ + j);
+      hn::Store(Add(hn::Load(d, slip_reversals_ + j),
+                    hn::IfThenElseZero(hn::Eq(cd, Set(d, ev_slip_rev)), one)),
+                d, slip_reversals_ + j);
       const unsigned shift = static_cast<unsigned>(j);
       pop |= lane_bits(d, m_pop) << shift;
       cl_stick |= lane_bits(d, hn::Or(m_ssw, m_brk)) << shift;
       cl_slip |= lane_bits(d, m_on) << shift;
       fin |= lane_bits(d, m_fin) << shift;
     }
-    pop_ = pop, close_stick_ = cl_stick, close_slip_ = cl_slip, fin_ = fin;
+    took_switch_ = pop, close_stick_ = cl_stick, close_slip_ = cl_slip, finished_ = fin;
 #undef K_LOOP
   }
 
@@ -777,8 +799,8 @@ class lane_engine {
                                te[i] - ts[i], xs[i], xe[i], sticking ? vs[i] : zs[i],
                                vs[i], vs[i], sticking ? 0.0 : ss[i], ts[i], te[i]};
       const motion_piece part = burn_in_.after(whole);
-      (part.level == 0 ? lt0_ : lt1_)[j + i] += part.duration;
-      if (!sticking) trav_[j + i] += part.relative_travel();
+      (part.level == 0 ? time_at_first_level_ : time_at_second_level_)[j + i] += part.duration;
+      if (!sticking) relative_travel_[j + i] += part.relative_travel();
     }
   }
 
@@ -797,10 +819,10 @@ class lane_engine {
       for (std::uint32_t m = lane_bits(d, at); m != 0; m &= m - 1) {
         const auto i = static_cast<std::size_t>(std::countr_zero(m));
         const bool sticking = (stick_bits >> i) & 1u;
-        observer& o = *obs_[j + i];
+        observer& o = *observer_[j + i];
         o.sample_segment(sticking ? segment{mode::stick, ts[i], te[i], xs[i], vs[i], vs[i], 0.0, w_}
                                   : segment{mode::slip, ts[i], te[i], xs[i], zs[i], vs[i], cs[i], w_});
-        obs_t_[j + i] = o.sampler().next_time();
+        next_observe_time_[j + i] = o.sampler().next_time();
       }
     }
   }
@@ -809,21 +831,25 @@ class lane_engine {
   // Lanes are grouped by what they have to do (bit masks), so that the
   // branches go per group, not per lane through an unpredictable 9-way jump.
   HWY_NOINLINE void side_effects() {  // apart: small enough to inline on_episode
-    const std::uint32_t pop = pop_, close_stick = close_stick_, close_slip = close_slip_, fin = fin_;
+    const std::uint32_t pop = took_switch_, close_stick = close_stick_, close_slip = close_slip_,
+                        fin = finished_;
     if constexpr (with_events) emit_round_events();
     for (unsigned m = close_stick; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      close_episode(l, t_[l], mode::slip);
+      close_episode(l, time_[l], mode::slip);
     }
     for (unsigned m = close_slip; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      close_episode(l, t_[l], mode::stick);
+      close_episode(l, time_[l], mode::stick);
     }
     for (unsigned m = pop; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
-      if constexpr (with_causal) sws_[l] += t_[l];  // the switch just taken, at t_ (simulate()'s order)
-      tsw_[l] = next_switch(l);
-      if (z_[l] == v_[l] && stk_[l] == 0.0 && static_cast<int>(code_[l]) == ev_slip_sw) contact_at_switch(l);
+      if constexpr (with_causal)
+        switch_time_sum_[l] += time_[l];  // the switch just taken, at time_ (simulate()'s order)
+      next_switch_time_[l] = next_switch(l);
+      if (velocity_[l] == belt_velocity_[l] && sticking_[l] == 0.0 &&
+          static_cast<int>(step_event_[l]) == ev_slip_sw)
+        contact_at_switch(l);
     }
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
@@ -832,7 +858,7 @@ class lane_engine {
   // (a contact at a switch emits its stick onset later, in the pop loop).
   void emit_round_events() {
     for (int l = 0; l < lanes; ++l) {
-      switch (static_cast<int>(code_[l])) {
+      switch (static_cast<int>(step_event_[l])) {
         case ev_stick_sw:
         case ev_slip_sw: emit(l, event_kind::belt_switch); break;
         case ev_stick_brk: emit(l, event_kind::stick_break); break;
@@ -867,29 +893,61 @@ class lane_engine {
   std::vector<observer> pool_;
   std::vector<unsigned char> done_;
   // Lane state, one array per variable (structure of arrays): the vector
-  // step loads and stores whole vectors of it.
-  HWY_ALIGN double t_[lanes], x_[lanes], z_[lanes], v_[lanes], tsw_[lanes], sig_[lanes];
-  HWY_ALIGN double stk_[lanes], grz_[lanes], mir_[lanes], arv_[lanes], run_[lanes], code_[lanes];
+  // step loads and stores whole vectors of it. The state (t, x, x', v) and
+  // the next belt switch; sigma, the side of the slip centre sigma a_k.
+  HWY_ALIGN double time_[lanes], position_[lanes], velocity_[lanes], belt_velocity_[lanes];
+  HWY_ALIGN double next_switch_time_[lanes], slip_centre_sign_[lanes];
+  // What the lane is doing, as 0/1 masks: sticking; leaving the band's
+  // outward edge on the grazing orbit; a mirror slip after a switch out of a
+  // stick; a slip that returns by the reversal arc (after_reversal).
+  HWY_ALIGN double sticking_[lanes], grazing_[lanes], mirror_[lanes], after_reversal_[lanes];
+  // 1 if the lane takes this round's vector step; the event that step found
+  // (ev_*).
+  HWY_ALIGN double steps_this_round_[lanes], step_event_[lanes];
   // Event counts and the events so far (the max_events bound), exact in
-  // doubles up to 2^53; act_: 1 while the lane runs a realization.
-  HWY_ALIGN double n_sw_[lanes] = {}, n_on_[lanes] = {}, n_brk_[lanes] = {}, n_rev_[lanes] = {};
-  HWY_ALIGN double steps_[lanes] = {}, act_[lanes] = {};
-  // The sums of the pieces of motion (with_pieces): time at +V, at -V, and
-  // the slips' relative travel.
-  HWY_ALIGN double lt0_[lanes] = {}, lt1_[lanes] = {}, trav_[lanes] = {};
+  // doubles up to 2^53; busy_: 1 while the lane runs a realization.
+  HWY_ALIGN double belt_switches_[lanes] = {}, stick_onsets_[lanes] = {};
+  HWY_ALIGN double stick_breaks_[lanes] = {}, slip_reversals_[lanes] = {};
+  HWY_ALIGN double steps_[lanes] = {}, busy_[lanes] = {};
+  // The sums of the pieces of motion (with_pieces): time at the first level
+  // (+V), at the second (-V), and the slips' relative travel.
+  HWY_ALIGN double time_at_first_level_[lanes] = {}, time_at_second_level_[lanes] = {};
+  HWY_ALIGN double relative_travel_[lanes] = {};
   double max_steps_;
   // What the last vector step left to do, one bit per lane.
-  std::uint32_t pop_ = 0, close_stick_ = 0, close_slip_ = 0, fin_ = 0;
+  std::uint32_t took_switch_ = 0, close_stick_ = 0, close_slip_ = 0, finished_ = 0;
   bool active_[lanes] = {};
-  std::uint64_t r_[lanes] = {};
+  std::uint64_t realization_[lanes] = {};
   // The episode in progress: kind, start, and x, v at its start.
-  double ep_start_[lanes] = {}, ep_x_[lanes] = {}, ep_v_[lanes] = {};
-  double ep_nsw_[lanes] = {};  // episode::switches_before
-  double sws_[lanes] = {};            // event_counts::switch_time_sum
-  mode ep_kind_[lanes] = {};
-  observer* obs_[lanes] = {};
-  HWY_ALIGN double obs_t_[lanes] = {};  // each lane's next observe time (+inf: none left)
-  switch_source sw_[lanes] = {};
+  double episode_start_[lanes] = {}, episode_position_[lanes] = {};
+  double episode_belt_velocity_[lanes] = {};
+  double episode_switches_before_[lanes] = {};  // episode::switches_before
+  double switch_time_sum_[lanes] = {};          // event_counts::switch_time_sum
+  mode episode_kind_[lanes] = {};
+  observer* observer_[lanes] = {};
+  HWY_ALIGN double next_observe_time_[lanes] = {};  // +inf: none left
+  switch_source switch_times_[lanes] = {};
+};
+  HWY_ALIGN double steps_[lanes] = {}, busy_[lanes] = {};
+  // The sums of the pieces of motion (with_pieces): time at +V, at -V, and
+  // the slips' relative travel.
+  HWY_ALIGN double time_at_first_level_[lanes] = {}, time_at_second_level_[lanes] = {},
+                   relative_travel_[lanes] = {};
+  double max_steps_;
+  // What the last vector step left to do, one bit per lane.
+  std::uint32_t took_switch_ = 0, close_stick_ = 0, close_slip_ = 0, finished_ = 0;
+  bool active_[lanes] = {};
+  std::uint64_t realization_[lanes] = {};
+  // The episode in progress: kind, start, and x, v at its start.
+  double episode_start_[lanes] = {}, episode_position_[lanes] = {},
+         episode_belt_velocity_[lanes] = {};
+  double episode_switches_before_[lanes] = {};  // episode::switches_before
+  double switch_time_sum_[lanes] = {};            // event_counts::switch_time_sum
+  mode episode_kind_[lanes] = {};
+  observer* observer_[lanes] = {};
+  HWY_ALIGN double next_observe_time_[lanes] =
+      {};  // each lane's next observe time (+inf: none left)
+  switch_source switch_times_[lanes] = {};
 };
 
 // Runs the engine over [first, last); on max_events, the collector's fallback.
