@@ -928,27 +928,6 @@ class lane_engine {
   HWY_ALIGN double next_observe_time_[lanes] = {};  // +inf: none left
   switch_source switch_times_[lanes] = {};
 };
-  HWY_ALIGN double steps_[lanes] = {}, busy_[lanes] = {};
-  // The sums of the pieces of motion (with_pieces): time at +V, at -V, and
-  // the slips' relative travel.
-  HWY_ALIGN double time_at_first_level_[lanes] = {}, time_at_second_level_[lanes] = {},
-                   relative_travel_[lanes] = {};
-  double max_steps_;
-  // What the last vector step left to do, one bit per lane.
-  std::uint32_t took_switch_ = 0, close_stick_ = 0, close_slip_ = 0, finished_ = 0;
-  bool active_[lanes] = {};
-  std::uint64_t realization_[lanes] = {};
-  // The episode in progress: kind, start, and x, v at its start.
-  double episode_start_[lanes] = {}, episode_position_[lanes] = {},
-         episode_belt_velocity_[lanes] = {};
-  double episode_switches_before_[lanes] = {};  // episode::switches_before
-  double switch_time_sum_[lanes] = {};            // event_counts::switch_time_sum
-  mode episode_kind_[lanes] = {};
-  observer* observer_[lanes] = {};
-  HWY_ALIGN double next_observe_time_[lanes] =
-      {};  // each lane's next observe time (+inf: none left)
-  switch_source switch_times_[lanes] = {};
-};
 
 // Runs the engine over [first, last); on max_events, the collector's fallback.
 template <class Collector>
