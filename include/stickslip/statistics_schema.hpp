@@ -191,6 +191,15 @@ inline constexpr std::array<quantity_info, 9> quantity_table{{
      histogram_range::none},
 }};
 
+// The row of quantity_table whose `name` is `name`: tables and code name
+// rows, never number them. A name that is no row does not compile (the
+// throw is not a constant expression).
+consteval std::size_t quantity_row(std::string_view name) {
+  for (std::size_t i = 0; i < quantity_table.size(); ++i)
+    if (name == quantity_table[i].name) return i;
+  throw "quantity_row: no row of quantity_table has this name";
+}
+
 inline constexpr std::array<level_quantity_info, 1> level_table{{
     {"belt_level_fraction", "belt_level_fraction", "P", "1", "level time fraction",
      "fraction of [0, t_a] that the belt spends at each level v_j, one value per level and "
@@ -203,7 +212,8 @@ inline constexpr std::array<joint_histogram_info, 1> joint_table{{
      "joint counts of the stick duration D_i (first dimension, the bins of "
      "stick_duration) and the stick-onset position X_i (second dimension, the bins of "
      "stick_onset_position) of every stick",
-     3, 6, sampling::per_stick, sampling::per_stick_onset, &ps::stick_duration_onset},
+     quantity_row("stick_duration"), quantity_row("stick_onset_position"), sampling::per_stick,
+     sampling::per_stick_onset, &ps::stick_duration_onset},
 }};
 
 inline constexpr std::array<counter_info, 6> counter_table{{
@@ -251,12 +261,22 @@ inline constexpr std::array<survival_info, 2> survival_table{{
 inline constexpr const auto& quantity_table = detail::schema::quantity_table;
 inline constexpr const auto& counter_table = detail::schema::counter_table;
 inline constexpr const auto& level_table = detail::schema::level_table;
-// The first rows of quantity_table are the paper's; the rest, the level and
-// joint rows are the family's (sweep_spec::family_statistics).
-inline constexpr std::size_t paper_quantity_count = 6;
+using detail::schema::quantity_row;
+// The first rows of quantity_table are the paper's; the family's
+// (sweep_spec::family_statistics) begin at the stick-onset position, and the
+// level and joint rows are the family's too.
+inline constexpr std::size_t paper_quantity_count = quantity_row("stick_onset_position");
 inline constexpr const auto& joint_table = detail::schema::joint_table;
-static_assert(quantity_table[3].sampled == sampling::per_stick &&
-              quantity_table[6].sampled == sampling::per_stick_onset);
+static_assert(
+    [] {
+      for (const auto& j : joint_table)
+        if (quantity_table[j.x].sampled != j.x_sampled ||
+            quantity_table[j.y].sampled != j.y_sampled || !quantity_table[j.x].density ||
+            !quantity_table[j.y].density)
+          return false;
+      return true;
+    }(),
+    "a joint histogram's two rows have histograms and are sampled as it says");
 [[nodiscard]] inline std::span<const quantity_info> quantities() noexcept { return quantity_table; }
 [[nodiscard]] inline std::span<const counter_info> counters() noexcept { return counter_table; }
 [[nodiscard]] inline std::span<const level_quantity_info> level_quantities() noexcept {

@@ -280,6 +280,11 @@ TEST(TargetCi, BadTargetsAreRefusedByName) {
 namespace stickslip {
 namespace {
 
+// The schema row of R.
+const quantity_info& stick_fraction_row() {
+  return quantities()[quantity_row("stick_fraction")];
+}
+
 // The model family (Markov belts, damping) draws with the common key too;
 // the score estimators apply only where the belt switches at rate lambda.
 TEST(CommonRandomNumbers, FamilyPointsShareTheirRandomNumbersToo) {
@@ -322,7 +327,7 @@ TEST(BeltRateScore, AgreesWithCommonRandomNumberDifferences) {
       s.keep_records = true;
       const auto rs = run_sweep(s, 2);
       const auto [fd_mean, fd_se] = central_difference(rs, h);
-      const auto lr = belt_rate_derivative(rs.points[1].stats, quantities()[0], j);
+      const auto lr = belt_rate_derivative(rs.points[1].stats, stick_fraction_row(), j);
       std::printf("r = (%.2f, %.2f), d/dr%zu: LR %.5f +- %.5f, CRN difference %.5f +- %.5f\n", r1,
                   r2, j + 1, lr.value, lr.std_error, fd_mean, fd_se);
       ASSERT_TRUE(std::isfinite(lr.value));
@@ -359,7 +364,7 @@ TEST(BeltRateScore, RatesEqualToLambdaAddUpToTheLambdaDerivative) {
   }
   rates.family_statistics = false;
   const auto c = run_sweep(rates, 2);
-  EXPECT_TRUE(std::isnan(belt_rate_derivative(c.points[0].stats, quantities()[0], 0).value));
+  EXPECT_TRUE(std::isnan(belt_rate_derivative(c.points[0].stats, stick_fraction_row(), 0).value));
 }
 
 // The scores are centred: K_j has mean 0 over realizations (within 4 SE),
@@ -426,7 +431,7 @@ TEST(CrnSlopes, AgreeWithTheLikelihoodRatioDerivatives) {
   for (std::size_t p : {2u, 3u}) {  // r1 = 1.0, mu = 3 and 5
     const auto& c = slopes[p].front();
     EXPECT_EQ(c.axis, 0u);
-    const auto lr = belt_rate_derivative(rs.points[p].stats, quantities()[0], 0);
+    const auto lr = belt_rate_derivative(rs.points[p].stats, stick_fraction_row(), 0);
     EXPECT_LT(std::abs(c.slope.value - lr.value), 3.5 * std::hypot(c.slope.std_error, lr.std_error))
         << "point " << p << ": CRN " << c.slope.value << " LR " << lr.value;
   }
