@@ -216,11 +216,32 @@ survival_counts get_survival_counts(reader& r, std::string_view name) {
 
 // Quantile sketches (accumulators/quantile_sketch.hpp): each store trimmed,
 // as its range of bins (0: empty, nothing more), its first key, and its
-// counts, densely (one u32 per bin of the range) or, when fewer than half
+// counts, densely (a count per bin of the range) or, when fewer than half
 // the bins have a count (a block's few samples), sparsely (the number of
-// bins with a count, then (offset, count) of each); the form is a function
-// of the counts, so the bytes are canonical. The zero bin sits between the
-// negative and positive stores.
+// bins with a count, then (offset, count) of each); counts and offsets as
+// unsigned LEB128 varints (a merged point's counts are mostly one or two
+// bytes), minimal, so the bytes are canonical, as is the form, a function
+// of the counts. The zero bin sits between the negative and positive stores.
+void put_varint(writer& w, std::uint32_t v) {
+  while (v >= 0x80) {
+    w.u8(static_cast<std::uint8_t>(v | 0x80));
+    v >>= 7;
+  }
+  w.u8(static_cast<std::uint8_t>(v));
+}
+std::uint32_t get_varint(reader& r, std::string_view what) {
+  std::uint64_t v = 0;
+  for (int shift = 0; shift < 35; shift += 7) {
+    const auto b = r.u8(what);
+    v |= static_cast<std::uint64_t>(b & 0x7f) << shift;
+    if (!(b & 0x80)) {
+      if ((b == 0 && shift > 0) || v > 0xffffffffu)
+        throw corrupt(fmt::format("{}: a varint that is not minimal or exceeds 32 bits", what));
+      return static_cast<std::uint32_t>(v);
+    }
+  }
+  throw corrupt(fmt::format("{}: a varint longer than 5 bytes", what));
+}
 void put(writer& w, const quantile_sketch::store& st) {
   w.u64(st.counts.size());
   if (st.counts.empty()) return;
@@ -230,14 +251,14 @@ void put(writer& w, const quantile_sketch::store& st) {
   const bool sparse = 2 * filled < st.counts.size();
   w.u8(sparse ? 1 : 0);
   if (!sparse) {
-    for (auto c : st.counts) w.u32(c);
+    for (auto c : st.counts) put_varint(w, c);
     return;
   }
   w.u64(filled);
   for (std::size_t i = 0; i < st.counts.size(); ++i)
     if (st.counts[i] != 0) {
-      w.u32(static_cast<std::uint32_t>(i));
-      w.u32(st.counts[i]);
+      put_varint(w, static_cast<std::uint32_t>(i));
+      put_varint(w, st.counts[i]);
     }
 }
 quantile_sketch::store get_sketch_store(reader& r, std::string_view what) {
@@ -252,22 +273,22 @@ quantile_sketch::store get_sketch_store(reader& r, std::string_view what) {
   const bool sparse = r.boolean(what);
   std::uint64_t filled = 0;
   if (!sparse) {
-    if (range > r.remaining() / 4)
+    if (range > r.remaining())  // a varint is at least a byte
       throw corrupt(fmt::format("{}: {} bins exceed the bytes left", what, range));
     st.counts.resize(range);
-    for (auto& c : st.counts) filled += (c = r.u32(what)) != 0;
+    for (auto& c : st.counts) filled += (c = get_varint(r, what)) != 0;
   } else {
     filled = r.u64(what);
-    if (filled == 0 || filled > r.remaining() / 8)
+    if (filled == 0 || filled > r.remaining() / 2)
       throw corrupt(fmt::format("{}: {} bins with a count", what, filled));
     st.counts.assign(range, 0);
     std::uint64_t last = 0;
     for (std::uint64_t k = 0; k < filled; ++k) {
-      const auto i = r.u32(what);
+      const auto i = get_varint(r, what);
       if (i >= range || (k > 0 && i <= last))
         throw corrupt(fmt::format("{}: bin {} out of order or range", what, i));
       last = i;
-      if ((st.counts[i] = r.u32(what)) == 0)
+      if ((st.counts[i] = get_varint(r, what)) == 0)
         throw corrupt(fmt::format("{}: bin {} listed without a count", what, i));
     }
   }
@@ -303,7 +324,11 @@ void put(writer& w, const time_statistics& t) {
   for (std::size_t j = 0; j < t.times().size(); ++j) {
     const auto& a = t.at(j);
     w.u64(a.sticking);
-    for (const auto* m : {&a.position, &a.velocity, &a.relative_velocity, &a.energy}) put(w, *m);
+    // Every moment counts every realization: its mean and M2 only.
+    for (const auto* m : {&a.position, &a.velocity, &a.relative_velocity, &a.energy}) {
+      w.f64(m->count() ? m->mean() : 0.0);
+      w.f64(m->sum_sq_dev());
+    }
     put(w, a.position_quantiles);
     put(w, a.velocity_quantiles);
     for (std::size_t l = 0; l < t.levels(); ++l) w.u64(t.level_count(j, l));
@@ -326,8 +351,13 @@ time_statistics get_time_statistics(reader& r) {
   for (std::size_t j = 0; j < times.size(); ++j) {
     auto& a = at[j];
     a.sticking = r.u64(what);
-    for (auto* m : {&a.position, &a.velocity, &a.relative_velocity, &a.energy})
-      *m = get_mean_variance(r);
+    for (auto* m : {&a.position, &a.velocity, &a.relative_velocity, &a.energy}) {
+      const double mean = r.f64(what), m2 = r.f64(what);
+      if (n == 0 && (std::bit_cast<std::uint64_t>(mean) != 0 || std::bit_cast<std::uint64_t>(m2) != 0))
+        throw corrupt(fmt::format("{}: empty moments with mean {} and M2 {}", what, mean, m2));
+      if (!(m2 >= 0.0)) throw corrupt(fmt::format("{}: M2 {} is negative", what, m2));
+      *m = mean_variance::from_raw(n, mean, m2);
+    }
     a.position_quantiles = get_quantile_sketch(r, what);
     a.velocity_quantiles = get_quantile_sketch(r, what);
     std::uint64_t at_levels = 0;

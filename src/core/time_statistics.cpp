@@ -63,32 +63,18 @@ std::uint64_t store_total(const quantile_sketch::store& s) noexcept {
 }
 }  // namespace
 
-void quantile_sketch::settle() {
-  const auto codes = std::move(pending_);
-  pending_.clear();
-  for (auto c : codes) bump_code(c);
-}
-
 quantile_sketch& quantile_sketch::operator+=(const quantile_sketch& o) {
-  if (negative_.counts.empty() && positive_.counts.empty() && o.negative_.counts.empty() &&
-      o.positive_.counts.empty() && pending_.size() + o.pending_.size() <= max_pending) {
-    pending_.insert(pending_.end(), o.pending_.begin(), o.pending_.end());
-  } else {
-    settle();
-    for (auto c : o.pending_) bump_code(c);
-    merge_store(negative_, o.negative_, &cover);
-    merge_store(positive_, o.positive_, &cover);
-  }
+  merge_store(negative_, o.negative_, &cover);
+  merge_store(positive_, o.positive_, &cover);
   zero_ += o.zero_;
   return *this;
 }
 
 std::uint64_t quantile_sketch::count() const noexcept {
-  return store_total(negative_) + zero_ + store_total(positive_) + pending_.size();
+  return store_total(negative_) + zero_ + store_total(positive_);
 }
 
 double quantile_sketch::quantile(double q) const {
-  if (!pending_.empty()) return settled().quantile(q);
   const std::uint64_t n = count();
   if (n == 0) return std::numeric_limits<double>::quiet_NaN();
   // k = max(1, ceil(q n)): the k-th smallest sample, counted from the most
@@ -116,6 +102,7 @@ void time_statistics::add(std::span<const observed_state> states) {
   // Every moment counts every realization (count() + 1 = realizations_ for
   // each): one division for all (mean_variance::add with the reciprocal).
   const double inverse = 1.0 / static_cast<double>(realizations_);
+  if (codes_.empty()) codes_.reserve(2 * at_.size() * buffered_realizations);
   for (std::size_t j = 0; j < at_.size(); ++j) {
     const observed_state& s = states[j];
     time_point_statistics& a = at_[j];
@@ -125,12 +112,32 @@ void time_statistics::add(std::span<const observed_state> states) {
     a.velocity.add(s.velocity, inverse);
     a.relative_velocity.add(s.velocity - s.belt_velocity, inverse);
     a.energy.add(s.energy, inverse);
-    a.position_quantiles.add(s.position);
-    a.velocity_quantiles.add(s.velocity);
+    codes_.push_back(quantile_sketch::code(s.position));
+    codes_.push_back(quantile_sketch::code(s.velocity));
   }
+  if (codes_.size() >= 2 * at_.size() * buffered_realizations) settle();
+}
+
+// The buffered codes, realization by realization (each time's x then x'),
+// into the sketches: the same counts as adding each sample at once.
+void time_statistics::add_codes(const std::vector<std::uint32_t>& codes) const {
+  const std::size_t n = at_.size();
+  for (std::size_t i = 0; i < codes.size(); i += 2 * n)
+    for (std::size_t j = 0; j < n; ++j) {
+      at_[j].position_quantiles.add_code(codes[i + 2 * j]);
+      at_[j].velocity_quantiles.add_code(codes[i + 2 * j + 1]);
+    }
+}
+
+void time_statistics::settle() const {
+  if (codes_.empty()) return;
+  add_codes(codes_);
+  codes_ = {};
 }
 
 time_statistics& time_statistics::operator+=(const time_statistics& o) {
+  settle();
+  add_codes(o.codes_);
   realizations_ += o.realizations_;
   for (std::size_t j = 0; j < at_.size(); ++j) {
     time_point_statistics& a = at_[j];
@@ -165,6 +172,7 @@ double time_statistics::level_occupancy(std::size_t j, std::size_t level) const 
 void time_statistics::set_raw(std::uint64_t realizations, std::vector<time_point_statistics> at,
                               std::vector<std::uint64_t> level_counts) {
   realizations_ = realizations;
+  codes_.clear();
   at_ = std::move(at);
   level_counts_ = std::move(level_counts);
 }

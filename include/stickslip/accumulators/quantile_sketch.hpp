@@ -37,20 +37,21 @@ class quantile_sketch {
     friend bool operator==(const store&, const store&) = default;
   };
 
-  void add(double x) {
-    if (!(std::abs(x) >= zero_threshold)) {  // also NaN, which the engines never give
+  void add(double x) { add_code(code(x)); }
+  // The bin of x as one number: 0 for the zero bin, else key(x), with
+  // sign_bit set for x < 0 (keys are < 2^17). add(x) is add_code(code(x)):
+  // a buffer of codes can be added later (time_statistics keeps a block's
+  // codes in one array, so that its samples cost a store each).
+  static constexpr std::uint32_t sign_bit = 0x80000000u;
+  [[nodiscard]] static std::uint32_t code(double x) noexcept {
+    if (!(std::abs(x) >= zero_threshold)) return 0;  // also NaN, which the engines never give
+    return key(x) | (x < 0.0 ? sign_bit : 0u);
+  }
+  void add_code(std::uint32_t c) {
+    if (c == 0)
       ++zero_;
-      return;
-    }
-    const std::uint32_t code = key(x) | (x < 0.0 ? sign_bit : 0u);
-    // A few samples (a block's) as a list of bins, not two stores spanning
-    // their range: merging a block into its point then costs a bin per sample.
-    if (pending_.size() < max_pending && negative_.counts.empty() && positive_.counts.empty()) {
-      pending_.push_back(code);
-      return;
-    }
-    settle();
-    bump_code(code);
+    else
+      bump(c & sign_bit ? negative_ : positive_, c & ~sign_bit);
   }
   quantile_sketch& operator+=(const quantile_sketch& o);
 
@@ -77,34 +78,20 @@ class quantile_sketch {
   // The raw state (serialization), trimmed: negative values by |x|, the
   // zero bin, positive values. Precondition of set_raw: trimmed stores with
   // keys in [min_key, max_key] (the deserializer checks).
-  [[nodiscard]] store negative() const { return trimmed(settled().negative_); }
-  [[nodiscard]] store positive() const { return trimmed(settled().positive_); }
+  [[nodiscard]] store negative() const { return trimmed(negative_); }
+  [[nodiscard]] store positive() const { return trimmed(positive_); }
   [[nodiscard]] std::uint64_t zero() const noexcept { return zero_; }
   void set_raw(store negative, std::uint64_t zero, store positive) {
-    pending_.clear();
     negative_ = std::move(negative);
     zero_ = zero;
     positive_ = std::move(positive);
   }
-  // The same counts (whatever room either keeps to grow into, and however
-  // they are held).
+  // The same counts (whatever room either keeps to grow into).
   friend bool operator==(const quantile_sketch& a, const quantile_sketch& b) {
     return a.zero_ == b.zero_ && a.negative() == b.negative() && a.positive() == b.positive();
   }
 
  private:
-  static constexpr std::uint32_t sign_bit = 0x80000000u;  // keys are < 2^17
-  static constexpr std::size_t max_pending = 64;
-  // The pending codes into the stores.
-  void settle();
-  [[nodiscard]] quantile_sketch settled() const {
-    quantile_sketch q = *this;
-    q.settle();
-    return q;
-  }
-  void bump_code(std::uint32_t code) {
-    bump(code & sign_bit ? negative_ : positive_, code & ~sign_bit);
-  }
   static store trimmed(const store& s);
   // Makes room in s for the keys [lo, hi].
   static void cover(store& s, std::uint32_t lo, std::uint32_t hi);
@@ -114,7 +101,6 @@ class quantile_sketch {
   }
   store negative_, positive_;
   std::uint64_t zero_ = 0;
-  std::vector<std::uint32_t> pending_;  // bins (key | sign_bit if < 0) not yet in the stores
 };
 
 }  // namespace stickslip

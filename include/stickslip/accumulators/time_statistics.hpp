@@ -55,7 +55,12 @@ class time_statistics {
   [[nodiscard]] const std::vector<double>& times() const noexcept { return times_; }
   [[nodiscard]] std::size_t levels() const noexcept { return levels_; }
   [[nodiscard]] std::uint64_t realizations() const noexcept { return realizations_; }
-  [[nodiscard]] const time_point_statistics& at(std::size_t j) const noexcept { return at_[j]; }
+  // (Settles the buffered codes of the sketches first: const, but not to be
+  // called on one object from two threads at once.)
+  [[nodiscard]] const time_point_statistics& at(std::size_t j) const {
+    settle();
+    return at_[j];
+  }
   [[nodiscard]] std::uint64_t level_count(std::size_t j, std::size_t level) const noexcept {
     return level_counts_[j * levels_ + level];
   }
@@ -73,14 +78,27 @@ class time_statistics {
   // Precondition: sizes as the constructor makes them.
   void set_raw(std::uint64_t realizations, std::vector<time_point_statistics> at,
                std::vector<std::uint64_t> level_counts);
-  friend bool operator==(const time_statistics&, const time_statistics&) = default;
+  friend bool operator==(const time_statistics& a, const time_statistics& b) {
+    a.settle();
+    b.settle();
+    return a.times_ == b.times_ && a.levels_ == b.levels_ && a.realizations_ == b.realizations_ &&
+           a.at_ == b.at_ && a.level_counts_ == b.level_counts_;
+  }
 
  private:
+  // A block's quantile samples are kept as sketch codes (quantile_sketch::
+  // code) in one array, two per time per realization, and go into the
+  // sketches every buffered_realizations realizations, at a merge, or when
+  // read: one store per sample instead of a growing list per sketch.
+  static constexpr std::size_t buffered_realizations = 64;
+  void settle() const;
+  void add_codes(const std::vector<std::uint32_t>& codes) const;
   std::vector<double> times_;
   std::size_t levels_ = 0;
   std::uint64_t realizations_ = 0;
-  std::vector<time_point_statistics> at_;
+  mutable std::vector<time_point_statistics> at_;
   std::vector<std::uint64_t> level_counts_;  // times x levels, row-major
+  mutable std::vector<std::uint32_t> codes_;
 };
 
 // The quantile levels written for x and x' (5, 25, 50, 75, 95 %).

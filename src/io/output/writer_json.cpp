@@ -191,9 +191,15 @@ void emit_survival(json_emitter& j, const point_statistics& s) {
   }
 }
 
-// The ensemble at the observe times: `time`, `quantile` and results.nc's
-// variables over `time`, one array each (the values over belt levels or
-// quantile levels nested per time).
+// The ensemble at the observe times: `time` and the stick probability with
+// its standard error. The other variables over `time` (moments, level
+// occupancy, quantiles: about 40 numbers per time and point, which made
+// summary.json 16x larger on the paper grid with 101 times) are in
+// results.nc only. The variables whose values are nested per time (over
+// belt levels or quantile levels) would be written the same way.
+bool in_summary_json(const observed_variable& v) {
+  return v.name == "stick_probability" || v.name == "stick_probability_std_error";
+}
 void emit_observed(json_emitter& j, const time_statistics& s) {
   j.key("observed");
   j.begin_object(layout::multi_line);
@@ -201,11 +207,8 @@ void emit_observed(json_emitter& j, const time_statistics& s) {
   j.begin_array();
   for (double t : s.times()) j.value(t);
   j.end_array();
-  j.key("quantile");  // the levels of the quantile variables' inner arrays
-  j.begin_array();
-  for (double q : observed_quantile_levels) j.value(q);
-  j.end_array();
   for (const auto& v : observed_variables()) {
+    if (!in_summary_json(v)) continue;
     const std::size_t width = v.width(s.levels());
     const auto values = observed_values(v, s);
     j.key(v.name);
@@ -390,6 +393,9 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("config", meta.resolved_config);
   j.member("joint_histograms", options.json_joint_histograms ? "here and in results.nc"
                                                              : "in results.nc only");
+  if (!s.observe_times.empty())
+    j.member("observed", "time, stick_probability and its std error here; every observe-time "
+                         "variable in results.nc");
   j.end_object();
 }
 
