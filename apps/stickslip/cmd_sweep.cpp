@@ -141,6 +141,7 @@ sweep_spec build_sweep_spec(const CLI::App& cmd, const sweep_options& o) {
   if (o.engine_opt->count() > 0) spec.engine = io::parse_engine("--engine", o.engine);
   apply_precision_flags(o, spec);
   apply_statistics_flags(o, spec);
+  apply_statistics_selection(spec);
   resolve_survival_grid(spec);
   validate(spec);
   return spec;
@@ -271,11 +272,10 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                      ->type_name("NAME");
   o.statistics_opt =
       cmd->add_option("--statistics", o.statistics,
-                      fmt::format("groups of statistics, a comma list of {}: default (always "
-                                  "on), survival (Kaplan-Meier survival of stick and slip "
-                                  "durations, censored at t_a; docs/outputs.md) (default: "
-                                  "default)",
-                                  statistics_group_names()))
+                      fmt::format("what to compute and write, a comma list of {}. "
+                                  "Groups: {}. Unselected statistics cost nothing "
+                                  "(docs/outputs.md, \"Choosing statistics\"; default: paper)",
+                                  statistics_group_names(), statistics_group_descriptions()))
           ->type_name("LIST");
   o.burn_in_opt = cmd->add_option("--burn-in", o.burn_in,
                                   "count only [T, t_a]: every statistic over the window after "

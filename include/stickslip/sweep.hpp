@@ -128,6 +128,13 @@ struct sweep_spec {
   friend bool operator==(const sweep_spec&, const sweep_spec&) = default;
 };
 
+// Sets what the engines compute from the selection of statistics
+// (statistics_groups.hpp): family_statistics when the selection needs them,
+// means_only when it asks only for means of per-realization quantities.
+// The CLI and Python call it before a run; a spec built in code keeps the
+// flags it sets.
+void apply_statistics_selection(sweep_spec& s);
+
 // Sets the automatic (0) ends of s.survival: the largest d_max
 // (max_stick_duration) and the largest t_a over the grid's points (with laws,
 // at the quantiles histogram_parameters widens the ranges to). Nothing

@@ -484,6 +484,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   }
   // The CLI's --statistics and --survival-bins (their checks and messages).
   spec.statistics = parse_statistics_selection("statistics", statistics);
+  apply_statistics_selection(spec);
   spec.survival.bins = survival_bins;
   spec.burn_in = burn_in;  // the CLI's --burn-in (validate() checks 0 <= T < t_a)
   spec.observe_times = observe_times_from(observe_times);  // the CLI's --observe-times

@@ -625,6 +625,8 @@ bytes serialize(const sweep_spec& s) {
   }
   w.str(s.sensitivity_statistic);
   w.u8(to_bits(s.statistics));
+  w.u64(s.statistics.rows.size());
+  for (const auto& row : s.statistics.rows) w.str(row);
   w.u64(s.survival.bins);
   w.f64(s.survival.stick_duration_max);
   w.f64(s.survival.slip_duration_max);
@@ -693,6 +695,10 @@ sweep_spec deserialize_sweep_spec(std::string_view in) {
   s.sensitivity_statistic = r.str("sensitivity statistic");
   if (const auto bits = r.u8("statistics selection"); !from_bits(bits, s.statistics))
     throw corrupt(fmt::format("statistics selection {:#04x} names unknown groups", bits));
+  s.statistics.rows.resize(r.count("statistics rows", 8));
+  for (auto& row : s.statistics.rows) row = r.str("statistics row");
+  if (!canonical_rows(s.statistics))
+    throw corrupt(fmt::format("statistics selection '{}' is not canonical", to_string(s.statistics)));
   s.survival.bins = static_cast<std::size_t>(r.u64("survival bins"));
   s.survival.stick_duration_max = r.f64("survival stick_duration_max");
   s.survival.slip_duration_max = r.f64("survival slip_duration_max");

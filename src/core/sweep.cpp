@@ -109,6 +109,11 @@ void resolve_survival_grid(sweep_spec& s) {
   if (s.survival.slip_duration_max == 0.0) s.survival.slip_duration_max = slip;
 }
 
+void apply_statistics_selection(sweep_spec& s) {
+  s.family_statistics = needs_family_statistics(s.statistics);
+  s.means_only = needs_means_only(s.statistics);
+}
+
 void select_statistics(point_statistics& stats, const sweep_spec& s) {
   if (s.statistics.survival) stats.select_survival(s.survival);
   if (!s.observe_times.empty()) stats.select_observe_times(s.observe_times, s.base.levels().size());
@@ -215,7 +220,11 @@ void validate(const sweep_spec& s) {
   if (is_sensitivity(s) && s.target_halfwidth != 0.0 &&
       (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth)))
     throw invalid_parameter("target half-width", s.target_halfwidth, "finite and > 0");
-  if (target_quantity(s)) {
+  if (const quantity_info* q = target_quantity(s)) {
+    if (!selects(s.statistics, *q))
+      throw invalid_value("target CI statistic", s.target_statistic,
+                          fmt::format("one of the selected statistics (--statistics {})",
+                                      to_string(s.statistics)));
     if (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth))
       throw invalid_parameter("target CI half-width", s.target_halfwidth, "finite and > 0");
     if (s.min_realizations < 2 || s.min_realizations > s.realizations)

@@ -185,10 +185,16 @@ std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
                             dir, found.front(), problem, nothing_to_resume));
   std::string difference;
   try {
-    const sweep_spec theirs = io::parse_sweep_toml(
+    sweep_spec theirs = io::parse_sweep_toml(
         meta->resolved_config,
         (std::filesystem::path(dir) /
          (is_sensitivity(spec) ? io::sensitivity_file : io::results_file)).string());
+    // A configuration file holds the selection of statistics, not the engine
+    // settings the front ends derive from it (apply_statistics_selection).
+    if (theirs.statistics == spec.statistics) {
+      theirs.family_statistics = spec.family_statistics;
+      theirs.means_only = spec.means_only;
+    }
     if (!same_results(theirs, spec)) difference = first_difference(theirs, spec);
   } catch (const error& e) {
     difference = fmt::format("its resolved_config does not parse here: {}", e.what());

@@ -27,7 +27,7 @@ expect_eq "peak --statistic against sweep --target-ci" "$peak_err" "$sweep_err"
 IFS=', ' read -r -a names <<<"$sweep_err"
 for s in "${names[@]}"; do
   run_ok sweep --lambda 1 --ta 5 --target-ci "$s:1e9" --min-realizations 20 \
-    --max-realizations 40 --block-size 20 --threads 1 -o "t_$s"
+    --max-realizations 40 --block-size 20 --threads 1 --statistics "$s" -o "t_$s"
   "$BIN" peak --statistic "$s" --range 0.5:2 --initial-realizations 20 --max-realizations 100 \
     --ta 2 --threads 1 >/dev/null 2>peak_err
   checks=$((checks + 1))

@@ -14,7 +14,7 @@ source "$here/lib.sh"
 MPIRUN=${2:-}
 compare="$PY $here/../resume/compare_outputs.py"
 A=(sweep --preset paper-figures --lambda 0.5,3.8 --mu 2,5 --ta 20 --realizations 160
-   --block-size 20 --seed 3 --statistics survival --survival-bins 40 --records)
+   --block-size 20 --seed 3 --statistics all --survival-bins 40 --records)
 
 same() {  # same WHAT DIR: DIR's outputs equal the one-thread run's, bit for bit
   checks=$((checks + 1))
@@ -37,7 +37,7 @@ realizations = 160
 block_size = 20
 seed = 3
 keep_records = true
-statistics = ["survival"]
+statistics = ["all"]
 burn_in = 7.5
 [survival]
 bins = 40

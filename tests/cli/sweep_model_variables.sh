@@ -3,7 +3,7 @@
 # define the model swept and nothing meaningless for it, and no variable that
 # does not apply to it (no all-NaN variable). Checked with netCDF4.
 source "$(dirname "$0")/lib.sh" "$@"
-C=(--realizations 60 --block-size 20 --threads 1 --ta 10)
+C=(--realizations 60 --block-size 20 --threads 1 --ta 10 --statistics paper,family,derivatives)
 
 run_ok sweep --lambda 1,2 --mu 4,6 "${C[@]}" -o paper
 run_ok sweep --lambda 1,2 --mu-s 4,6 --mu-k 4 "${C[@]}" -o split

@@ -4,7 +4,8 @@
 # are); with it they equal results.nc's; results.nc stores its large
 # variables deflated, its small ones contiguous, with the same values.
 source "$(dirname "$0")/lib.sh" "$@"
-G=(--lambda 0.5,3.8,10 --mu 0.5,5 --ta 10 --realizations 200 --seed 4 --threads 1)
+G=(--lambda 0.5,3.8,10 --mu 0.5,5 --ta 10 --realizations 200 --seed 4 --threads 1
+   --statistics paper,family)
 run_ok sweep "${G[@]}" -o plain
 run_ok sweep "${G[@]}" --json-histograms -o full
 "$PY" - plain full <<'PY' >"$WORK/check.out" 2>&1

@@ -6,7 +6,8 @@ source "$(dirname "$0")/lib.sh"
 
 grid=(--k 40 --mu 0.5,5 --lambda log:0.1:30:10)
 for t in 1 2; do
-  run_ok sweep "${grid[@]}" --target-ci R:0.002 --threads "$t" -o "tci$t"
+  run_ok sweep "${grid[@]}" --target-ci R:0.002 --statistics paper,derivatives --threads "$t" \
+    -o "tci$t"
 done
 cmp -s tci1/summary.csv tci2/summary.csv || fail "summary.csv differs between --threads 1 and 2"
 "$PY" - <<'PY' || fail "target CI checks"

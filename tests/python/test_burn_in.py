@@ -8,14 +8,14 @@ import pytest
 
 import stickslip
 
-ARGS = dict(lam=[0.5, 3.8], mu=5.0, k=40.0, ta=20.0, realizations=100, seed=4)
+ARGS = dict(lam=[0.5, 3.8], mu=5.0, k=40.0, ta=20.0, realizations=100, seed=4, statistics="all")
 CLI = ["--lambda", "0.5,3.8", "--mu", "5", "--k", "40", "--ta", "20", "--realizations", "100",
-       "--seed", "4"]
+       "--seed", "4", "--statistics", "all"]
 
 
 def test_equals_the_cli_results_nc(cli, tmp_path):
-    ds = stickslip.sweep(burn_in=7.5, statistics="survival", **ARGS)
-    cli("sweep", *CLI, "--burn-in", "7.5", "--statistics", "survival", "-o", tmp_path / "cli")
+    ds = stickslip.sweep(burn_in=7.5, **ARGS)
+    cli("sweep", *CLI, "--burn-in", "7.5", "-o", tmp_path / "cli")
     nc = netCDF4.Dataset(tmp_path / "cli" / "results.nc")
     assert ds.attrs["burn_in"] == 7.5 == nc.burn_in
     assert "burn_in = 7.5" in ds.attrs["resolved_config"].splitlines()

@@ -196,13 +196,17 @@ def test_bad_switch_levels():
 
 # --- sweeps ---------------------------------------------------------------
 
-FAMILY_GRID = dict(c=[0.5, 2.0, 6.0], k=[4.0, 40.0], mu_s=6.0, mu_k=4.0, belt_levels=[1, 0], belt_rates=[2, 3])
+# Every group but survival: the family statistics and the derivatives too.
+GROUPS = ["paper", "family", "derivatives"]
+FAMILY_GRID = dict(c=[0.5, 2.0, 6.0], k=[4.0, 40.0], mu_s=6.0, mu_k=4.0, belt_levels=[1, 0], belt_rates=[2, 3],
+                   statistics=GROUPS)
 FAMILY_CLI = ["--c", "0.5,2,6", "--k", "4,40", "--mu-s", "6", "--mu-k", "4", "--belt-levels", "1,0",
-              "--belt-rates", "2,3"]
+              "--belt-rates", "2,3", "--statistics", ",".join(GROUPS)]
 LEVELS_GRID = dict(mu_k=[2.0, 3.0], c=np.array([0.5, 5.0]), mu_s=4.0, belt_levels=[1.0, 0.0, -2.0],
-                   belt_generator=np.array(GENERATOR3), belt_start=3)
+                   belt_generator=np.array(GENERATOR3), belt_start=3, statistics=GROUPS)
 LEVELS_CLI = ["--mu-k", "2,3", "--c", "0.5,5", "--mu-s", "4", "--belt-levels", "1,0,-2",
-              "--belt-generator", generator_text(GENERATOR3), "--belt-start", "3"]
+              "--belt-generator", generator_text(GENERATOR3), "--belt-start", "3",
+              "--statistics", ",".join(GROUPS)]
 
 
 @pytest.fixture(scope="module")

@@ -9,15 +9,15 @@ import stickslip
 
 ARGS = dict(lam=[0.5, 3.8], mu=5.0, k=40.0, ta=20.0, realizations=100, seed=4, survival_bins=30)
 CLI = ["--lambda", "0.5,3.8", "--mu", "5", "--k", "40", "--ta", "20", "--realizations", "100",
-       "--seed", "4", "--survival-bins", "30", "--statistics", "survival"]
+       "--seed", "4", "--survival-bins", "30", "--statistics", "paper,survival"]
 NAMES = ["survival", "survival_ci95_low", "survival_ci95_high", "at_risk", "restricted_mean"]
 
 
 def test_survival_variables_equal_the_cli_results_nc(cli, tmp_path):
-    ds = stickslip.sweep(statistics=["survival"], **ARGS)
+    ds = stickslip.sweep(statistics=["paper", "survival"], **ARGS)
     cli("sweep", *CLI, "-o", tmp_path / "cli")
     nc = netCDF4.Dataset(tmp_path / "cli" / "results.nc")
-    assert ds.attrs["statistics"] == "default,survival"
+    assert ds.attrs["statistics"] == "paper,survival"
     for law in ("stick", "slip"):
         coordinate = law + "_duration"
         assert ds[coordinate].attrs["units"] == "s" and ds.sizes[coordinate] == 31
@@ -39,7 +39,7 @@ def test_a_single_name_and_all_select_it_too():
 
 def test_off_by_default():
     ds = stickslip.sweep(**ARGS)
-    assert ds.attrs["statistics"] == "default"
+    assert ds.attrs["statistics"] == "paper"
     assert "stick_survival" not in ds and "stick_duration" not in ds.coords
 
 
@@ -50,7 +50,9 @@ def test_bad_names_raise_the_cli_error(cli):
     p = cli("sweep", "--lambda", "1", "--statistics", "survial", "-o", "none", check=False)
     assert p.returncode == 2
     # The same message but for the name of the setting (the keyword, not --statistics).
-    assert str(e.value) == "invalid statistics: 'survial' (allowed: a comma list of default, survival, all)"
+    assert str(e.value).startswith(
+        "invalid statistics: 'survial' (allowed: a comma list of paper, family, derivatives, "
+        "survival, default, all, or statistics by name (R, ")
     assert str(e.value).replace("invalid statistics", "invalid --statistics") in p.stderr
     with pytest.raises(stickslip.Error, match="invalid statistics: 3"):
         stickslip.sweep(statistics=[3], **ARGS)

@@ -155,7 +155,7 @@ TEST(SurvivalSweep, ASpecWithAnotherSelectionIsNamedAsTheDifference) {
   sweep_spec with = small_sweep(sweep_engine::fast), without = with;
   without.statistics.survival = false;
   EXPECT_FALSE(same_results(with, without));
-  EXPECT_EQ(first_difference(without, with), "statistics: default vs default,survival");
+  EXPECT_EQ(first_difference(without, with), "statistics: paper vs paper,survival");
   sweep_spec finer = with;
   finer.survival.bins = 400;
   EXPECT_NE(first_difference(with, finer).find("survival grid: 200 bins"), std::string::npos);

@@ -4,6 +4,8 @@
 // of D_1 without any stick, a std of one sample) is "nan".
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
 #include "writers_detail.hpp"
@@ -23,16 +25,18 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   // The burn-in T, only with one (every statistic is over [T, t_a]).
   const bool burn_in = rs.spec.burn_in != 0.0;
   if (burn_in) out.write(",burn_in");
+  // The selected statistics only (statistics_groups.hpp).
+  const auto& sel = rs.spec.statistics;
   for (const auto& q : quantities())
-    out.print(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", q.summary_name);
+    if (selects(sel, q)) out.print(",{0}_mean,{0}_std,{0}_ci95_low,{0}_ci95_high", q.summary_name);
   for (const auto& q : quantities())
-    if (pooled(q)) out.print(",{}_count", q.name);
+    if (pooled(q) && selects(sel, q)) out.print(",{}_count", q.name);
   for (const auto& c : counters()) out.print(",{}", c.summary_name);
   // Level quantities: the four columns per level j = 1..n. Joint histograms
   // are not in the CSV (results.nc and summary.json hold them).
   const std::size_t levels = rs.spec.base.levels().size();
   for (const auto& q : level_quantities())
-    for (std::size_t i = 1; i <= levels; ++i)
+    for (std::size_t i = 1; i <= levels && selects(sel, q); ++i)
       out.print(",{0}_{1}_mean,{0}_{1}_std,{0}_{1}_ci95_low,{0}_{1}_ci95_high", q.summary_name, i);
   out.put('\n');
   for (const auto& p : rs.points) {
@@ -41,18 +45,21 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
     out.print("{}", s.realizations);
     if (burn_in) out.print(",{}", rs.spec.burn_in);
     for (const auto& q : quantities()) {
+      if (!selects(sel, q)) continue;
       const auto& mv = s.*q.moments;
       const double half = mv.ci95_half_width();
       out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
     }
     for (const auto& q : quantities())
-      if (pooled(q)) out.print(",{}", (s.*q.moments).count());
+      if (pooled(q) && selects(sel, q)) out.print(",{}", (s.*q.moments).count());
     for (const auto& c : counters()) out.print(",{}", c.value(s));
-    for (const auto& q : level_quantities())
+    for (const auto& q : level_quantities()) {
+      if (!selects(sel, q)) continue;
       for (const auto& mv : s.*q.moments) {
         const double half = mv.ci95_half_width();
         out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
       }
+    }
     out.put('\n');
   }
 }
@@ -79,10 +86,14 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
       // -1 marks "no D_1" for first_stick_start/duration, as in realization_record
       // (with a burn-in a row can have sticks = 1 and -1 here: its stick is the
       // left-truncated one).
+      // The powers need the family statistics (pieces of motion): NaN
+      // without them, which the lanes and the reference alike do not sum.
+      const bool powers = rs.spec.family_statistics;
       out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
                 r.belt_start, r.sticks, r.slips, r.stick_fraction, r.first_stick_start,
-                r.first_stick_duration, r.first_stick_censored ? 1 : 0, r.friction_power,
-                r.damping_power, r.events.belt_switches,
+                r.first_stick_duration, r.first_stick_censored ? 1 : 0,
+                powers ? r.friction_power : std::nan(""), powers ? r.damping_power : std::nan(""),
+                r.events.belt_switches,
                 r.events.stick_onsets, r.events.stick_breaks, r.events.slip_reversals);
     }
   }

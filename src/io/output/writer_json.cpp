@@ -60,12 +60,12 @@ void emit_estimate_members(json_emitter& j, const estimate& e) {
 // the same slope with far less variance, and "control_variate": each mean
 // with the belt switch count as control (accumulators/score_moments.hpp).
 // Only with Poisson switching: without it there is no lambda.
-void emit_lambda_estimates(json_emitter& j, const point_result& p) {
+void emit_lambda_estimates(json_emitter& j, const point_result& p, const statistics_selection& sel) {
   const auto& s = p.stats;
   j.key("dmean_dlambda");
   j.begin_object();
   for (const auto& q : quantities()) {
-    if (!q.score) continue;
+    if (!q.score || !selects(sel, q)) continue;
     j.key(q.summary_name);
     j.begin_object();
     emit_estimate_members(j, score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate));
@@ -74,15 +74,17 @@ void emit_lambda_estimates(json_emitter& j, const point_result& p) {
   j.end_object();
   j.key("dmean_dlambda_causal");
   j.begin_object();
-  j.key("R");
-  j.begin_object();
-  emit_estimate_members(j, causal_score_derivative(s.stick_fraction_causal_score));
-  j.end_object();
+  if (selects(sel, quantity_table[quantity_row("stick_fraction")])) {
+    j.key("R");
+    j.begin_object();
+    emit_estimate_members(j, causal_score_derivative(s.stick_fraction_causal_score));
+    j.end_object();
+  }
   j.end_object();
   j.key("control_variate");
   j.begin_object();
   for (const auto& q : quantities()) {
-    if (!q.score) continue;
+    if (!q.score || !selects(sel, q)) continue;
     const auto c = control_variate_mean(s.*q.score, s.*q.moments);
     j.key(q.summary_name);
     j.begin_object();
@@ -99,13 +101,13 @@ void emit_lambda_estimates(json_emitter& j, const point_result& p) {
 // belt given its own rates, and "dmean_dgenerator": over each positive
 // off-diagonal entry q_ij of a belt given by its generator (levels numbered
 // from 1, as in --belt-start); each only at such points.
-void emit_belt_estimates(json_emitter& j, const point_result& p) {
+void emit_belt_estimates(json_emitter& j, const point_result& p, const statistics_selection& sel) {
   const auto& s = p.stats;
   if (s.belt_rates[0] > 0.0) {
     j.key("dmean_drates");
     j.begin_object();
     for (const auto& q : quantities()) {
-      if (!q.rate_score) continue;
+      if (!q.rate_score || !selects(sel, q)) continue;
       j.key(q.summary_name);
       j.begin_object();
       for (std::size_t r = 0; r < 2; ++r) {
@@ -124,7 +126,7 @@ void emit_belt_estimates(json_emitter& j, const point_result& p) {
     j.key("dmean_dgenerator");
     j.begin_object();
     for (const auto& q : quantities()) {
-      if (!q.generator_score) continue;
+      if (!q.generator_score || !selects(sel, q)) continue;
       j.key(q.summary_name);
       j.begin_array();
       for (std::size_t from = 0; from < n; ++from)
@@ -143,9 +145,12 @@ void emit_belt_estimates(json_emitter& j, const point_result& p) {
 }
 
 // The derivative estimates, each only where it applies.
-void emit_score_estimates(json_emitter& j, const point_result& p) {
-  if (has_poisson_switching(p.parameters)) emit_lambda_estimates(j, p);
-  emit_belt_estimates(j, p);
+// Only with the derivatives selected (statistics_groups.hpp), for the
+// selected quantities.
+void emit_score_estimates(json_emitter& j, const point_result& p, const statistics_selection& sel) {
+  if (!selects_derivatives(sel)) return;
+  if (has_poisson_switching(p.parameters)) emit_lambda_estimates(j, p, sel);
+  emit_belt_estimates(j, p, sel);
 }
 
 // "crn_slopes": per axis, the common-random-number slope of each
@@ -239,11 +244,14 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
   for (const auto& sym : symbols)
     j.member(sym, parameter_value(p.parameters, sym));
   j.member("realizations", s.realizations);
+  const auto& sel = spec.statistics;  // the selected statistics only
   for (const auto& q : quantities()) {
+    if (!selects(sel, q)) continue;
     j.key(q.summary_name);
     emit_statistic(j, s.*q.moments);
   }
   for (const auto& q : level_quantities()) {  // one object per belt level
+    if (!selects(sel, q)) continue;
     j.key(q.summary_name);
     j.begin_array();
     for (const auto& m : s.*q.moments) emit_statistic(j, m);
@@ -255,7 +263,8 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
   j.key("samples");  // how many values entered the pooled statistics
   j.begin_object();
   for (const auto& q : quantities())
-    if (q.sampled != sampling::per_realization) j.member(q.summary_name, (s.*q.moments).count());
+    if (q.sampled != sampling::per_realization && selects(sel, q))
+      j.member(q.summary_name, (s.*q.moments).count());
   j.end_object();
   std::vector<std::string_view> groups;
   for (const auto& c : counters())
@@ -268,14 +277,14 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
       if (c.group && group == c.group) j.member(c.summary_name, c.value(s));
     j.end_object();
   }
-  emit_score_estimates(j, p);
-  if (slopes) emit_crn_slopes(j, spec, *slopes);
+  emit_score_estimates(j, p, sel);
+  if (slopes && selects_derivatives(sel)) emit_crn_slopes(j, spec, *slopes);
   if (spec.statistics.survival) emit_survival(j, s);
   if (!spec.observe_times.empty()) emit_observed(j, s.observed);
   // Joint histograms, when asked: counts[i][k] of x bin i and y bin k (in
   // range), and the samples outside either range.
   for (const auto& jh : joint_histograms()) {
-    if (!options.json_joint_histograms) break;
+    if (!options.json_joint_histograms || !selects_joint_histograms(sel) || spec.means_only) break;
     const auto& h = s.*jh.counts;
     j.key(jh.summary_name);
     j.begin_array();

@@ -232,6 +232,7 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
 
 void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   for (const auto& q : quantities()) {
+    if (!selects(rs.spec.statistics, q)) continue;
     const std::string n = q.name, sym = q.symbol;
     const auto mv = [&](const point_result& p) -> const mean_variance& { return p.stats.*q.moments; };
     auto mean = add_double(f, n + "_mean", l.grid, q.units, std::string("mean ") + q.long_name,
@@ -280,13 +281,14 @@ void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
 // the lambda derivative and the control variate with Poisson switching, the
 // r1/r2 derivatives on a two-level belt given its own rates.
 void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  if (!selects_derivatives(rs.spec.statistics)) return;
   bool poisson = false, rates = false;
   for (const auto& p : rs.points) {
     poisson = poisson || has_poisson_switching(p.parameters);
     rates = rates || p.stats.belt_rates[0] > 0.0;
   }
   for (const auto& q : quantities()) {
-    if (!q.score) continue;
+    if (!q.score || !selects(rs.spec.statistics, q)) continue;
     const std::string n = q.name, sym = q.symbol;
     const std::string units = std::string(q.units) == "1" ? "s" : std::string(q.units) == "1/s"
                                                                   ? "1"
@@ -385,6 +387,7 @@ std::string per_unit_of(const std::string& q, const std::string& p) {
 // quantity, the slope of the mean from the point's neighbours on the axis,
 // paired per realization (precision/crn_slopes.hpp), with its 95 % CI.
 void write_crn_slopes(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  if (!selects_derivatives(rs.spec.statistics)) return;
   const auto slopes = precision::crn_slopes(rs);
   if (slopes.empty()) return;
   const auto at = [&](const point_result& p, std::size_t i) -> const precision::crn_slope& {
@@ -429,7 +432,8 @@ double bin_edge(const histogram& h, std::size_t i) {
 void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto dims = with(l.grid, l.bin);
   for (const auto& q : quantities()) {
-    if (!q.density) continue;
+    // (means_only fills no histogram)
+    if (!q.density || rs.spec.means_only || !selects(rs.spec.statistics, q)) continue;
     const std::string n = q.name, sym = q.symbol;
     const std::string density_units =
         std::string(q.units) == "1" ? "1" : fmt::format("1/{}", q.units);
@@ -502,7 +506,7 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
 // belt_level_to), the likelihood-ratio d mean/dq_ij from level i to level j;
 // NaN on the diagonal and where q_ij = 0.
 void write_generator_derivatives(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  if (rs.spec.base.belt_generator.empty()) return;
+  if (rs.spec.base.belt_generator.empty() || !selects_derivatives(rs.spec.statistics)) return;
   const std::size_t n = l.levels;
   const auto to = f.addDim("belt_level_to", n);
   auto to_index = f.addVar("belt_level_to", nc::ncInt, to);
@@ -511,7 +515,7 @@ void write_generator_derivatives(nc::NcFile& f, const layout_info& l, const resu
   to_index.putVar(level_numbers(n).data());
   const auto dims = with(with(l.grid, l.level), to);
   for (const auto& q : quantities()) {
-    if (!q.generator_score) continue;
+    if (!q.generator_score || !selects(rs.spec.statistics, q)) continue;
     const std::string n_ = std::string(q.name) + "_dmean_dgenerator", sym = q.symbol;
     const std::string units = per_unit_of(q.units, "1/s");
     const std::string how =
@@ -551,6 +555,7 @@ void write_level_statistics(nc::NcFile& f, const layout_info& l, const result_se
     for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < v.size() ? v[i] : nan;
   });
   for (const auto& q : level_quantities()) {
+    if (!selects(rs.spec.statistics, q)) continue;
     const std::string n = q.name, sym = q.symbol;
     const auto at = [&](const point_result& p, std::size_t i) -> const mean_variance& {
       return (p.stats.*q.moments)[i];
@@ -594,6 +599,7 @@ void write_level_statistics(nc::NcFile& f, const layout_info& l, const result_se
 // bin, bin_y), the bins of X_bin and Y_bin; J_outside over the grid: samples
 // outside either range (left out of J_counts).
 void write_joint_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  if (!selects_joint_histograms(rs.spec.statistics) || rs.spec.means_only) return;
   const auto dims = with(with(l.grid, l.bin), l.bin_y);
   for (const auto& j : joint_histograms()) {
     const std::string n = j.name, x = quantity_table[j.x].name, y = quantity_table[j.y].name;
