@@ -30,8 +30,8 @@ def run(binary, *args):
 def sweeps(binary, out, realizations):
     n = ["--realizations", str(realizations)]
     run(binary, "sweep", *POINT, *n, "--observe-times", "lin:0:5:201", "-o", str(out / "transient"))
-    run(binary, "sweep", *POINT, *n, "--observe-times", "lin:0:50:101", "--statistics", "survival",
-        "-o", str(out / "window"))
+    run(binary, "sweep", *POINT, *n, "--observe-times", "lin:0:50:101",
+        "--statistics", "paper,survival", "-o", str(out / "window"))
     run(binary, "sweep", *POINT, *n, "--burn-in", "25", "-o", str(out / "burn_in"))
 
 
