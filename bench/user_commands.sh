@@ -9,9 +9,11 @@
 #   NEW_BUILD, REF_BUILD  CMake build directories (apps/stickslip/stickslip,
 #                         and python/ for the python case)
 #   runs                  interleaved runs of each build (default 5)
-#   case                  any of: sweep damped family peak reproduce_nofig
-#                         reproduce python (default: sweep damped family
-#                         peak python)
+#   case                  any of: sweep sweep_R sweep_all observe damped family
+#                         peak reproduce_nofig reproduce python (default:
+#                         sweep damped family peak python); sweep_R and
+#                         sweep_all add --statistics R / all where the build
+#                         has the flag (0.1.0 then runs the plain sweep)
 # Make a reference build of any commit with bench/reference_build.sh.
 # A command the reference does not have (e.g. `peak` before 0.2) shows n/a.
 # Times are noisy on a shared 2-core machine: compare the ratios of one run.
@@ -31,6 +33,11 @@ paper_grid=(--lambda log:0.1:30:40 --mu 0.5,1,2,3,4,5,6,7 --realizations 2000 --
 args_of() {
   case $1 in
     sweep) echo sweep "${paper_grid[*]}" -o DIR ;;
+    # The paper grid for R alone: --statistics R with the new build, the
+    # plain sweep with a reference that has no --statistics (0.1.0).
+    sweep_R) echo sweep "${paper_grid[*]}" STATS_R -o DIR ;;
+    sweep_all) echo sweep "${paper_grid[*]}" STATS_ALL -o DIR ;;
+    observe) echo sweep "${paper_grid[*]}" --observe-times lin:0:50:101 -o DIR ;;
     damped) echo sweep "${paper_grid[*]}" --c 0.632 -o DIR ;;
     family) echo sweep --lambda log:0.1:30:40 --mu-k 0.5,1,2,3,4,5,6,7 --mu-s 8 --realizations 2000 --seed 1 -o DIR ;;
     peak) echo peak --statistic R --over lambda --range 0.1:30 --k 40 --mu 5 --seed 1 --format json ;;
@@ -52,6 +59,13 @@ run_once() {
          "import numpy as np, stickslip; stickslip.sweep(lam=np.geomspace(0.1, 30, 40), mu=[0.5,1,2,3,4,5,6,7], realizations=2000, seed=1, output='$dir')")
   else
     local line; line=$(args_of "$case")
+    # --statistics only where the build has it
+    local stats_r="" stats_all=""
+    if "$build/apps/stickslip/stickslip" sweep --help 2>/dev/null | grep -- '--statistics' >/dev/null; then
+      stats_r="--statistics R" stats_all="--statistics all"
+    fi
+    line=${line//STATS_R/$stats_r}
+    line=${line//STATS_ALL/$stats_all}
     # shellcheck disable=SC2206
     cmd=("$build/apps/stickslip/stickslip" ${line//DIR/$dir})
   fi

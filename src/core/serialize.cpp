@@ -930,6 +930,9 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
     return fmt::format("target CI: {}:{} (min {}) vs {}:{} (min {})", a.target_statistic,
                        a.target_halfwidth, a.min_realizations, b.target_statistic,
                        b.target_halfwidth, b.min_realizations);
+  // The selection first: the engine settings below follow from it.
+  if (!(a.statistics == b.statistics))
+    return fmt::format("statistics: {} vs {}", to_string(a.statistics), to_string(b.statistics));
   if (a.family_statistics != b.family_statistics)
     return fmt::format("family statistics: {} vs {}", a.family_statistics, b.family_statistics);
   if (a.means_only != b.means_only)
@@ -945,8 +948,6 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
   if (a.sensitivity_statistic != b.sensitivity_statistic)
     return fmt::format("sensitivity statistic: '{}' vs '{}'", a.sensitivity_statistic,
                        b.sensitivity_statistic);
-  if (!(a.statistics == b.statistics))
-    return fmt::format("statistics: {} vs {}", to_string(a.statistics), to_string(b.statistics));
   if (a.statistics.survival && !(a.survival == b.survival))
     return fmt::format("survival grid: {} bins on [0, {}] s and [0, {}] s vs {} bins on [0, {}] s "
                        "and [0, {}] s",

@@ -220,6 +220,14 @@ void validate(const sweep_spec& s) {
   if (is_sensitivity(s) && s.target_halfwidth != 0.0 &&
       (!(s.target_halfwidth > 0.0) || !std::isfinite(s.target_halfwidth)))
     throw invalid_parameter("target half-width", s.target_halfwidth, "finite and > 0");
+  // The derivatives differentiate the selected means (R, S_T/t_a, S_L/t_a).
+  if (s.statistics.derivatives &&
+      std::none_of(quantities().begin(), quantities().end(), [&](const quantity_info& q) {
+        return q.score && selects(s.statistics, q);
+      }))
+    throw invalid_value("statistics", to_string(s.statistics),
+                        "the derivatives with a mean they differentiate: paper,derivatives or "
+                        "R,derivatives (R, sticks_per_time, slips_per_time)");
   if (const quantity_info* q = target_quantity(s)) {
     if (!selects(s.statistics, *q))
       throw invalid_value("target CI statistic", s.target_statistic,

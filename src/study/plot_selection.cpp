@@ -65,7 +65,8 @@ quantity find_quantity(const io::result_file& f, const std::string& flag, const 
   if (!q.value)
     throw invalid_value(flag, name,
                         fmt::format("a statistic of {}: {}; or another variable of it over the "
-                                    "grid (ncdump -h lists them)",
+                                    "grid (ncdump -h lists them); a statistic the sweep did not "
+                                    "select is not there: rerun it with --statistics",
                                     f.path(), statistic_list(f)));
   const std::string& var = q.value->name;
   const std::string base = ends_with(var, "_mean") ? var.substr(0, var.size() - 5) : var;

@@ -66,6 +66,17 @@ r_own=$("$PY" -c 'import json; print(float(json.load(open("own.json"))["statisti
   >/dev/null 2>stderr && fail "resume without --common-random-numbers was accepted"
 grep -qi "common random numbers" stderr || fail "resume refusal does not name the flag: $(cat stderr)"
 
+# The CRN slopes follow the selection: R's only with --statistics R,derivatives.
+run_ok sweep --k 40 --mu 5 --lambda 1,3.8 --realizations 60 --seed 9 --common-random-numbers \
+  --records --statistics R,derivatives -o crn_r
+vars=$(ncdump -h crn_r/results.nc)
+grep -q 'stick_fraction_dmean_dlambda_crn(' <<<"$vars" || fail "no CRN slope of R"
+grep -q 'sticks_per_time_dmean_dlambda_crn(' <<<"$vars" && fail "a CRN slope of an unselected mean"
+"$PY" -c '
+import json; p = json.load(open("crn_r/summary.json"))["points"][0]
+assert list(p["crn_slopes"]["lambda"]) == ["R"], p["crn_slopes"]' || fail "summary.json CRN slopes"
+checks=$((checks + 1))
+
 expect_fail "--target-ci|STAT:HALFWIDTH" sweep --mu 5 --lambda 1 --target-ci R
 expect_fail "--target-ci|stick_duration" sweep --mu 5 --lambda 1 --target-ci stick_duration:0.1
 expect_fail "--target-ci|> 0" sweep --mu 5 --lambda 1 --target-ci R:-1

@@ -93,6 +93,13 @@ import netCDF4; d = netCDF4.Dataset("toml/results.nc")
 assert d.statistics == "survival" and len(d["stick_duration"]) == 31' ||
   fail "[sweep] statistics = [\"survival\"] in TOML"
 checks=$((checks + 1))
+# One string is the CLI's comma list.
+printf '[sweep]\nstatistics = "paper, survival"\n[survival]\nbins = 30\n' >s2.toml
+run_ok sweep --lambda 1 --mu 5 --ta 5 --realizations 20 --config s2.toml -o toml2
+"$PY" -c '
+import netCDF4; d = netCDF4.Dataset("toml2/results.nc")
+assert d.statistics == "paper,survival"' || fail "[sweep] statistics = \"paper, survival\" in TOML"
+checks=$((checks + 1))
 printf '[sweep]\nstatistics = ["survival", "papers"]\n' >bad.toml
 expect_fail "invalid sweep.statistics: 'papers' (allowed: a comma list of paper, family," \
   sweep --lambda 1 --config bad.toml

@@ -95,6 +95,30 @@ TEST(StatisticsSelection, DecidesWhatTheEnginesCompute) {
   EXPECT_TRUE(selects_joint_histograms(parse("family")));
 }
 
+// A resume or merge with another selection names the selection, not the
+// engine settings that follow from it; the derivatives need a mean.
+TEST(StatisticsSelection, IsNamedFirstAndDerivativesNeedAMean) {
+  sweep_spec a, b;
+  a.axes = b.axes = {{"lambda", {1.0}}};
+  a.statistics = parse("R");
+  b.statistics = parse("all");
+  apply_statistics_selection(a);
+  apply_statistics_selection(b);
+  EXPECT_EQ(first_difference(a, b), "statistics: stick_fraction vs paper,family,derivatives,survival");
+  for (const char* list : {"derivatives", "derivatives,D", "derivatives,survival,W_f"}) {
+    sweep_spec s;
+    s.statistics = parse(list);
+    apply_statistics_selection(s);
+    EXPECT_THROW(validate(s), error) << list;
+  }
+  for (const char* list : {"R,derivatives", "paper,derivatives", "S_L/t_a,derivatives"}) {
+    sweep_spec s;
+    s.statistics = parse(list);
+    apply_statistics_selection(s);
+    EXPECT_NO_THROW(validate(s)) << list;
+  }
+}
+
 // A target CI needs its statistic selected.
 TEST(StatisticsSelection, ATargetStatisticMustBeSelected) {
   sweep_spec s;

@@ -365,7 +365,11 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       if (!n.is_string()) cx.wrong(dotted, n, "a string naming a statistic, e.g. \"R\"");
       s.sensitivity_statistic = n.as_string()->get();
     } else if (key == "statistics") {
-      s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
+      // One string is the CLI's comma list ("paper,survival"), an array its names.
+      if (const auto* one = n.as_string())
+        s.statistics = parse_statistics_selection(dotted, std::string_view(one->get()));
+      else
+        s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
     } else if (key == "burn_in") {
       s.burn_in = read_number(cx, dotted, n);  // 0 <= T < t_a: validate()
     } else if (key == "observe_times") {

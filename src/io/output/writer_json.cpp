@@ -164,7 +164,7 @@ void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
     j.key(spec.axes[k].name);
     j.begin_object();
     for (const auto& c : slopes) {
-      if (c.axis != k) continue;
+      if (c.axis != k || !selects(spec.statistics, *c.quantity)) continue;
       j.key(c.quantity->summary_name);
       j.begin_object();
       emit_estimate_members(j, c.slope);
@@ -400,8 +400,10 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("command_line", meta.command_line);
   j.member("created_utc", meta.created_utc);
   j.member("config", meta.resolved_config);
-  j.member("joint_histograms", options.json_joint_histograms ? "here and in results.nc"
-                                                             : "in results.nc only");
+  j.member("joint_histograms", !selects_joint_histograms(s.statistics) || s.means_only
+                                   ? "not computed (--statistics family)"
+                               : options.json_joint_histograms ? "here and in results.nc"
+                                                               : "in results.nc only");
   if (!s.observe_times.empty())
     j.member("observed", "time, stick_probability and its std error here; every observe-time "
                          "variable in results.nc");

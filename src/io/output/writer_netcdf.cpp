@@ -395,6 +395,7 @@ void write_crn_slopes(nc::NcFile& f, const layout_info& l, const result_set& rs)
   };
   for (std::size_t i = 0; i < slopes.front().size(); ++i) {
     const auto& c = slopes.front()[i];
+    if (!selects(rs.spec.statistics, *c.quantity)) continue;
     const std::string ax = rs.spec.axes[c.axis].name, sym = c.quantity->symbol;
     const std::string n = std::string(c.quantity->name) + "_dmean_d" + ax + "_crn";
     const std::string units = per_unit_of(c.quantity->units, info_for(ax).units);
