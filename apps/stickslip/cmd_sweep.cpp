@@ -273,8 +273,10 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
   o.statistics_opt =
       cmd->add_option("--statistics", o.statistics,
                       fmt::format("what to compute and write, a comma list of {}. "
-                                  "Groups: {}. Unselected statistics cost nothing "
-                                  "(docs/outputs.md, \"Choosing statistics\"; default: paper)",
+                                  "Groups: {}. Unselected statistics are not written, and the "
+                                  "engine computes the family statistics and the histograms "
+                                  "only when asked (docs/outputs.md, \"Choosing statistics\"; "
+                                  "default: paper)",
                                   statistics_group_names(), statistics_group_descriptions()))
           ->type_name("LIST");
   o.burn_in_opt = cmd->add_option("--burn-in", o.burn_in,

@@ -36,8 +36,9 @@ namespace stickslip {
 // moments in point statistics, the drawn values in records.
 // 9: a spec's statistics selection and survival grid, the survival counts
 // in point statistics.
-// 10: a spec's observe times, the observe-time statistics in point
-// statistics (before the optional burn-in of 9's spec).
+// 10: a spec's observe times and the rows of its statistics selection, the
+// observe-time statistics in point statistics (before the optional burn-in
+// of 9's spec).
 inline constexpr std::uint32_t serial_format_version = 10;
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.

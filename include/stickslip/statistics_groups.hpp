@@ -70,8 +70,8 @@ inline constexpr std::array<statistics_group_info, 4> statistics_group_table{{
 // offending name and what is allowed, for an unknown or empty name.
 [[nodiscard]] statistics_selection parse_statistics_selection(std::string_view key,
                                                               std::string_view list);
-// The same for a list of names (TOML arrays, Python lists); an empty list is
-// the default selection.
+// The same for a list of names (TOML arrays, Python lists), each of which may
+// be a comma list itself; an empty list is the default selection.
 [[nodiscard]] statistics_selection parse_statistics_selection(
     std::string_view key, const std::vector<std::string>& names);
 // The selected groups in table order, then the rows: {"paper"},

@@ -261,10 +261,14 @@ void put(writer& w, const quantile_sketch::store& st) {
       put_varint(w, st.counts[i]);
     }
 }
-quantile_sketch::store get_sketch_store(reader& r, std::string_view what) {
+quantile_sketch::store get_sketch_store(reader& r, std::string_view what,
+                                        std::uint64_t& bin_budget) {
   quantile_sketch::store st;
   const auto range = r.u64(what);
   if (range == 0) return st;
+  if (range > bin_budget)
+    throw corrupt(fmt::format("{}: {} bins exceed what the record's size allows", what, range));
+  bin_budget -= range;
   st.first = r.u32(what);
   if (st.first < quantile_sketch::min_key() || range > quantile_sketch::max_key() ||
       st.first > quantile_sketch::max_key() - (range - 1))
@@ -303,10 +307,10 @@ void put(writer& w, const quantile_sketch& q) {
   w.u64(q.zero());
   put(w, q.positive());
 }
-quantile_sketch get_quantile_sketch(reader& r, std::string_view what) {
-  auto negative = get_sketch_store(r, what);
+quantile_sketch get_quantile_sketch(reader& r, std::string_view what, std::uint64_t& bin_budget) {
+  auto negative = get_sketch_store(r, what, bin_budget);
   const auto zero = r.u64(what);
-  auto positive = get_sketch_store(r, what);
+  auto positive = get_sketch_store(r, what, bin_budget);
   quantile_sketch q;
   q.set_raw(std::move(negative), zero, std::move(positive));
   return q;
@@ -341,10 +345,20 @@ time_statistics get_time_statistics(reader& r) {
   if (times.size() > max_observe_times)
     throw corrupt(fmt::format("{}: {} times", what, times.size()));
   for (std::size_t j = 0; j < times.size(); ++j)
-    if (!(times[j] >= 0.0) || !std::isfinite(times[j]) || (j > 0 && !(times[j] > times[j - 1])))
+    if (!(times[j] >= 0.0) || std::signbit(times[j]) || !std::isfinite(times[j]) ||
+        (j > 0 && !(times[j] > times[j - 1])))
       throw corrupt(fmt::format("{}: time {} out of order or range", what, times[j]));
   const auto levels = r.u64(what);
   if (levels < 1 || levels > 4096) throw corrupt(fmt::format("{}: {} belt levels", what, levels));
+  // Every level count is 8 bytes of the record: nothing is allocated for
+  // more than the bytes left can hold.
+  if (times.size() * levels > r.remaining() / 8)
+    throw corrupt(fmt::format("{}: {} times x {} levels exceed the bytes left", what,
+                              times.size(), levels));
+  // The sketches' bins: at most 16 per byte of the record (a sparse store of
+  // real samples holds a few per byte), plus 2^20, so a crafted record
+  // cannot make its decoder allocate more than a small multiple of itself.
+  std::uint64_t bin_budget = (std::uint64_t{1} << 20) + 16 * std::uint64_t{r.remaining()};
   const auto n = r.u64(what);
   std::vector<time_point_statistics> at(times.size());
   std::vector<std::uint64_t> level_counts(times.size() * levels);
@@ -358,8 +372,8 @@ time_statistics get_time_statistics(reader& r) {
       if (!(m2 >= 0.0)) throw corrupt(fmt::format("{}: M2 {} is negative", what, m2));
       *m = mean_variance::from_raw(n, mean, m2);
     }
-    a.position_quantiles = get_quantile_sketch(r, what);
-    a.velocity_quantiles = get_quantile_sketch(r, what);
+    a.position_quantiles = get_quantile_sketch(r, what, bin_budget);
+    a.velocity_quantiles = get_quantile_sketch(r, what, bin_budget);
     std::uint64_t at_levels = 0;
     for (std::size_t l = 0; l < levels; ++l) at_levels += level_counts[j * levels + l] = r.u64(what);
     for (auto m : {a.position.count(), a.velocity.count(), a.relative_velocity.count(),

@@ -90,14 +90,7 @@ std::string statistics_group_descriptions() {
 }
 
 statistics_selection parse_statistics_selection(std::string_view key, std::string_view list) {
-  std::vector<std::string> names;
-  std::size_t from = 0;
-  while (true) {
-    const auto comma = list.find(',', from);
-    names.emplace_back(list.substr(from, comma - from));
-    if (comma == std::string_view::npos) return parse_statistics_selection(key, names);
-    from = comma + 1;
-  }
+  return parse_statistics_selection(key, std::vector<std::string>{std::string(list)});
 }
 
 statistics_selection parse_statistics_selection(std::string_view key,
@@ -105,7 +98,16 @@ statistics_selection parse_statistics_selection(std::string_view key,
   if (names.empty()) return {};  // Python's statistics=None, TOML's []: the default
   statistics_selection s;
   s.paper = false;
-  for (const auto& n : names) select(key, trimmed(n), s);
+  // Each name may itself be a comma list ("paper,survival" as one string).
+  for (const std::string_view n : names) {
+    std::size_t from = 0;
+    while (true) {
+      const auto comma = n.find(',', from);
+      select(key, trimmed(n.substr(from, comma - from)), s);
+      if (comma == std::string_view::npos) break;
+      from = comma + 1;
+    }
+  }
   return canonical(std::move(s));
 }
 

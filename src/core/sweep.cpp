@@ -156,7 +156,7 @@ void validate_observe_times(const sweep_spec& s) {
                             fmt::format("at most {} times", max_observe_times));
   const double shortest = shortest_window(s);
   for (std::size_t j = 0; j < t.size(); ++j) {
-    if (!(t[j] >= 0.0) || !(t[j] <= shortest))
+    if (!(t[j] >= 0.0) || std::signbit(t[j]) || !(t[j] <= shortest))
       throw invalid_parameter("observe_times", t[j],
                               fmt::format("0 <= t <= t_a = {} (the shortest window of the sweep)",
                                           shortest));

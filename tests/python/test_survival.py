@@ -37,6 +37,11 @@ def test_a_single_name_and_all_select_it_too():
     assert one["stick_survival"].equals(every["stick_survival"])
 
 
+def test_one_string_is_the_cli_comma_list():
+    ds = stickslip.sweep(statistics="paper, survival", **ARGS)
+    assert ds.attrs["statistics"] == "paper,survival" and "stick_survival" in ds
+
+
 def test_off_by_default():
     ds = stickslip.sweep(**ARGS)
     assert ds.attrs["statistics"] == "paper"

@@ -736,14 +736,14 @@ TEST(ObserveTimes, SurviveTheJournalAndAResume) {
 }
 
 // Observe times are part of the sweep's validation: ascending, in [0, t_a]
-// at every point, finite.
+// at every point, finite, not -0 (whose bits would name another spec).
 TEST(ObserveTimes, OutOfRangeTimesAreRefused) {
   sweep_spec s = paper_spec();
   s.realizations = 10;
   EXPECT_NO_THROW(validate(s));
   for (const std::vector<double>& bad :
        {std::vector<double>{-0.1, 1.0}, {1.0, 0.5}, {0.0, 50.5}, {std::nan(""), 1.0},
-        {0.0, HUGE_VAL}}) {
+        {0.0, HUGE_VAL}, {-0.0, 1.0}, {1.0, 1.0}}) {
     s.observe_times = bad;
     EXPECT_THROW(validate(s), error) << bad[0] << " " << bad[1];
   }

@@ -41,6 +41,10 @@ TEST(StatisticsSelection, NamesAndGroupsAreCanonical) {
               std::string::npos)
         << e.what();
   }
+  // One string of a list is a comma list itself (TOML "paper,survival",
+  // Python statistics="paper,survival").
+  EXPECT_EQ(parse_statistics_selection("statistics", std::vector<std::string>{"paper, survival"}),
+            parse("paper,survival"));
   // Python's statistics=None and TOML's []: the default.
   EXPECT_EQ(parse_statistics_selection("statistics", std::vector<std::string>{}),
             statistics_selection{});

@@ -39,7 +39,7 @@ class quantile_sketch {
 
   void add(double x) { add_code(code(x)); }
   // The bin of x as one number: 0 for the zero bin, else key(x), with
-  // sign_bit set for x < 0 (keys are < 2^17). add(x) is add_code(code(x)):
+  // sign_bit set for x < 0 (keys are < 2^15). add(x) is add_code(code(x)):
   // a buffer of codes can be added later (time_statistics keeps a block's
   // codes in one array, so that its samples cost a store each).
   static constexpr std::uint32_t sign_bit = 0x80000000u;

@@ -261,7 +261,8 @@ std::vector<double> read_axis_values(const context& cx, const std::string& dotte
   return values;
 }
 
-// [sweep] statistics: an array of group names, or one name.
+// [sweep] statistics: an array of names, or one string (a name or a comma
+// list of them, as --statistics).
 std::vector<std::string> read_names(const context& cx, const std::string& dotted,
                                     const toml::node& n) {
   if (const auto* one = n.as_string()) return {one->get()};
@@ -366,10 +367,7 @@ void read_sweep(const context& cx, const toml::table& t, sweep_spec& s) {
       s.sensitivity_statistic = n.as_string()->get();
     } else if (key == "statistics") {
       // One string is the CLI's comma list ("paper,survival"), an array its names.
-      if (const auto* one = n.as_string())
-        s.statistics = parse_statistics_selection(dotted, std::string_view(one->get()));
-      else
-        s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
+      s.statistics = parse_statistics_selection(dotted, read_names(cx, dotted, n));
     } else if (key == "burn_in") {
       s.burn_in = read_number(cx, dotted, n);  // 0 <= T < t_a: validate()
     } else if (key == "observe_times") {

@@ -72,15 +72,15 @@ void emit_lambda_estimates(json_emitter& j, const point_result& p, const statist
     j.end_object();
   }
   j.end_object();
-  j.key("dmean_dlambda_causal");
-  j.begin_object();
-  if (selects(sel, quantity_table[quantity_row("stick_fraction")])) {
+  if (selects(sel, quantity_table[quantity_row("stick_fraction")])) {  // R's only
+    j.key("dmean_dlambda_causal");
+    j.begin_object();
     j.key("R");
     j.begin_object();
     emit_estimate_members(j, causal_score_derivative(s.stick_fraction_causal_score));
     j.end_object();
+    j.end_object();
   }
-  j.end_object();
   j.key("control_variate");
   j.begin_object();
   for (const auto& q : quantities()) {
@@ -401,7 +401,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.member("created_utc", meta.created_utc);
   j.member("config", meta.resolved_config);
   j.member("joint_histograms", !selects_joint_histograms(s.statistics) || s.means_only
-                                   ? "not computed (--statistics family)"
+                                   ? "not selected (--statistics family)"
                                : options.json_joint_histograms ? "here and in results.nc"
                                                                : "in results.nc only");
   if (!s.observe_times.empty())
