@@ -95,6 +95,8 @@ class quantile_sketch {
   static store trimmed(const store& s);
   // Makes room in s for the keys [lo, hi].
   static void cover(store& s, std::uint32_t lo, std::uint32_t hi);
+  // a += b, bin by bin.
+  static void merge(store& a, const store& b);
   static void bump(store& s, std::uint32_t k) {
     if (s.counts.empty() || k < s.first || k - s.first >= s.counts.size()) cover(s, k, k);
     ++s.counts[k - s.first];

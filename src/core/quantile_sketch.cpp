@@ -1,0 +1,99 @@
+#include "stickslip/accumulators/quantile_sketch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace stickslip {
+
+namespace {
+// The indices [lo, hi) of a store's counts from its first to its last
+// non-zero count (lo == hi: none).
+std::pair<std::size_t, std::size_t> nonzero_range(const quantile_sketch::store& s) noexcept {
+  std::size_t lo = 0, hi = s.counts.size();
+  while (lo < hi && s.counts[lo] == 0) ++lo;
+  while (hi > lo && s.counts[hi - 1] == 0) --hi;
+  return {lo, hi};
+}
+std::uint64_t store_total(const quantile_sketch::store& s) noexcept {
+  std::uint64_t n = 0;
+  for (auto c : s.counts) n += c;
+  return n;
+}
+}  // namespace
+
+quantile_sketch::store quantile_sketch::trimmed(const store& s) {
+  const auto [lo, hi] = nonzero_range(s);
+  if (lo == hi) return {};
+  return {s.first + static_cast<std::uint32_t>(lo),
+          std::vector<std::uint32_t>(s.counts.begin() + static_cast<std::ptrdiff_t>(lo),
+                                     s.counts.begin() + static_cast<std::ptrdiff_t>(hi))};
+}
+
+// Grows with room for a quarter of the size held (at least 32 bins) beyond
+// the key asked for, so that a stream of adds moves the counts a number of
+// times logarithmic in the range, and the room stays small.
+void quantile_sketch::cover(store& s, std::uint32_t lo, std::uint32_t hi) {
+  constexpr std::uint32_t initial = 32;
+  if (s.counts.empty()) {
+    s.first = lo >= min_key() + initial / 2 ? lo - initial / 2 : min_key();
+    s.counts.assign(std::max<std::uint32_t>(initial, hi - s.first + 1), 0);
+    return;
+  }
+  const auto size = static_cast<std::uint32_t>(s.counts.size());
+  std::uint32_t first = s.first, end = s.first + size;  // [first, end)
+  const std::uint32_t room = std::max<std::uint32_t>(initial, size / 4);
+  if (lo < first)
+    first = static_cast<std::uint32_t>(std::max<std::int64_t>(
+        std::int64_t{min_key()}, std::int64_t{lo} - room));
+  if (hi >= end) end = hi + 1 + room;
+  if (first == s.first && end == s.first + size) return;
+  std::vector<std::uint32_t> grown(end - first, 0);
+  std::copy(s.counts.begin(), s.counts.end(), grown.begin() + (s.first - first));
+  s.first = first;
+  s.counts = std::move(grown);
+}
+
+void quantile_sketch::merge(store& a, const store& b) {
+  const auto [lo, hi] = nonzero_range(b);
+  if (lo == hi) return;
+  const auto k_lo = b.first + static_cast<std::uint32_t>(lo);
+  const auto k_hi = b.first + static_cast<std::uint32_t>(hi - 1);
+  if (a.counts.empty() || k_lo < a.first || k_hi - a.first >= a.counts.size()) cover(a, k_lo, k_hi);
+  for (std::size_t i = lo; i < hi; ++i) a.counts[b.first + i - a.first] += b.counts[i];
+}
+
+quantile_sketch& quantile_sketch::operator+=(const quantile_sketch& o) {
+  merge(negative_, o.negative_);
+  merge(positive_, o.positive_);
+  zero_ += o.zero_;
+  return *this;
+}
+
+std::uint64_t quantile_sketch::count() const noexcept {
+  return store_total(negative_) + zero_ + store_total(positive_);
+}
+
+double quantile_sketch::quantile(double q) const {
+  const std::uint64_t n = count();
+  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
+  // k = max(1, ceil(q n)): the k-th smallest sample, counted from the most
+  // negative (the negative store from its largest |x| down).
+  auto k = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(n)));
+  k = std::clamp<std::uint64_t>(k, 1, n);
+  auto middle = [](std::uint32_t key) { return 0.5 * (lower(key) + upper(key)); };
+  for (std::size_t i = negative_.counts.size(); i-- > 0;) {
+    if (k <= negative_.counts[i]) return -middle(negative_.first + static_cast<std::uint32_t>(i));
+    k -= negative_.counts[i];
+  }
+  if (k <= zero_) return 0.0;
+  k -= zero_;
+  for (std::size_t i = 0; i < positive_.counts.size(); ++i) {
+    if (k <= positive_.counts[i]) return middle(positive_.first + static_cast<std::uint32_t>(i));
+    k -= positive_.counts[i];
+  }
+  return middle(positive_.first + static_cast<std::uint32_t>(positive_.counts.size()) - 1);
+}
+
+}  // namespace stickslip
