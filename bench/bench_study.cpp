@@ -1,4 +1,4 @@
-// The paper's full study (issue 6): 40 lambda log-spaced in [0.1, 30] x 8 mu
+// The paper's full study: 40 lambda log-spaced in [0.1, 30] x 8 mu
 // in [0.5, 7] x 2000 realizations, t_a = 50, every statistic and histogram of
 // the sweep, timed as run_sweep runs it; beside it the floor (floor.hpp), the
 // time to draw all of the study's belt switch times alone, in the same run.
@@ -7,7 +7,7 @@
 //
 //   stickslip_bench_study [--k 4] [--threads 2] [--realizations 2000]
 //                         [--engine fast|reference] [--no-floor] [--family-statistics]
-//   --family-statistics: also the statistics of issue 11 (off in the study)
+//   --family-statistics: also the model family's statistics (off in the study)
 //   fast = the lane engine (the default), reference = simulate one
 //   realization at a time (same results). The SIMD target is the one chosen
 //   at run time (printed).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One comparison table (issue 6): our exact method beside Octave ode45 (the
+# One comparison table: our exact method beside Octave ode45 (the
 # paper's method), SUNDIALS CVODE and Boost.Odeint dopri5, on identical
 # scenarios (initial conditions and switch times from the core's streams).
 #

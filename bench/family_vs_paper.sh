@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 11's speed requirement: "with mu_s != mu_k and two-level belts, at
+# The model family's speed requirement: "with mu_s != mu_k and two-level belts, at
 # most 1.5 x the paper model's time on the paper grid". Times `stickslip
 # sweep` on the paper's grid (40 lambda log-spaced in [0.1, 30] x 8 mu x
 # 2000 realizations, k = 40, t_a = 50) for
@@ -55,4 +55,4 @@ for c in "${cases[@]}"; do
   printf '%-8s %10.3f %10.3f %14.2f %14.2f\n' "$c" "$w" "$u" "$(echo "$w / $pw" | bc -l)" \
     "$(echo "$u / $pc" | bc -l)"
 done
-echo "issue 11 targets: family / paper <= 1.5, damped / paper <= 4"
+echo "model family targets: family / paper <= 1.5, damped / paper <= 4"

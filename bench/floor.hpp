@@ -1,4 +1,4 @@
-// The floor of the full study (issue 6): the time to draw every belt switch
+// The floor of the full study: the time to draw every belt switch
 // time of the same study and nothing else. Per realization: Philox4x64 blocks
 // from substream::belt_switches (the same counters the engines use), the
 // 64-bit words to (0,1) by u01fixedpt, the exponential transform

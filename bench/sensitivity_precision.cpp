@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     std::vector<std::pair<const char*, const char*>> laws;
   };
   const study studies[] = {
-      {"issue 26 speed case", {{"mu", "uniform(2,7)"}, {"lambda", "loguniform(0.5,10)"}}},
+      {"sensitivity speed case", {{"mu", "uniform(2,7)"}, {"lambda", "loguniform(0.5,10)"}}},
       {"docs example",
        {{"mu", "gamma(mean=5,cv=0.2)"}, {"k", "lognormal(mean=40,cv=0.1)"},
         {"lambda", "loguniform(0.5,10)"}}},

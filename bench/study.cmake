@@ -1,4 +1,4 @@
-# The full-study benchmark and its floor (issue 6), included by
+# The full-study benchmark and its floor, included by
 # bench/CMakeLists.txt. floor.cpp is compiled once per Highway target and
 # dispatched at run time like the core's lane engine (src/core/CMakeLists.txt),
 # so that its Log runs at the engine's vector width with FMA.

@@ -1,4 +1,4 @@
-// stickslip_compare: the side-by-side comparison of issue 6.
+// stickslip_compare: the side-by-side comparison with ODE solvers (bench/compare.sh).
 //   emit  --dir D ...   write one scenario file per realization for Octave
 //   table --dir D ...   time exact / CVODE / odeint on the full window, read
 //                       Octave's results for the short window, print the table
@@ -247,7 +247,7 @@ void table(const grid_options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"stickslip_compare: exact method vs ODE solvers with events (issue 6)"};
+  CLI::App app{"stickslip_compare: exact method vs ODE solvers with events"};
   app.require_subcommand(1);
   grid_options o;
   auto add_grid = [&](CLI::App* c) {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad-input suite (issue 5; the table is docs/bad-input.md). Every case must
+# Bad-input suite (the table is docs/bad-input.md). Every case must
 # end with the documented exit code and message, never a crash (exit >= 128),
 # a hang (timeout) or a partial/wrong file; recoverable cases are resumed and
 # must then equal the clean run bit for bit.
@@ -157,7 +157,7 @@ $compare ref merged >/dev/null || bad "a refused merge changed merged/"
 cases=$((cases + 1))
 "$bin" merge --overwrite -o merged h0 h1 m0 2>err.txt || bad "merge --overwrite failed: $(cat err.txt)"
 
-# 8. issue 14: existing results, duplicate grid values, missing inputs,
+# 8. What a new user hit: existing results, duplicate grid values, missing inputs,
 #    command-line syntax, partial simulate outputs
 cp -r ref ref_copy
 expect 2 "ref_copy/results.nc' already exists.*--overwrite" - -- sweep "${A[@]}" -o ref_copy

@@ -1,5 +1,5 @@
 # `simulate` rejects bad input with a non-zero exit and a message naming the
-# parameter, the value and the allowed range (issue 2, "Bad input").
+# parameter, the value and the allowed range (docs/bad-input.md).
 source "$(dirname "$0")/lib.sh"
 
 # non-finite values, for every parameter

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 14: --help shows the values of --belt-start, no "Excludes:" squeezed
+# --help shows the values of --belt-start, no "Excludes:" squeezed
 # onto a metavar line, named metavars for `reproduce` (no TEXT/UINT), the
 # summary line says "1 thread" (not "1 threads"), and `reproduce --quick` is
 # announced as a demo.

@@ -1,4 +1,4 @@
-# Laws for parameters (issue 26): every bad law exits 2 with a message naming
+# Laws for uncertain parameters: every bad law exits 2 with a message naming
 # the parameter, the law and what is wrong (the domain, for a law whose
 # support leaves it), and writes nothing (expect_fail: no -o DIR created).
 # The same for TOML keys, `simulate` without --realization, and `peak`.

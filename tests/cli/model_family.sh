@@ -1,5 +1,5 @@
-# The model family from the command line (issue 11): flags, TOML, replay
-# files with levels, every bad input of the issue refused before any work
+# The model family from the command line: flags, TOML, replay
+# files with levels, every bad input of the family refused before any work
 # (exit 2, the parameter, the value and the allowed range, nothing written),
 # and the paper's model written as a family member giving the paper's bits.
 source "$(dirname "$0")/lib.sh"

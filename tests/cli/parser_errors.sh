@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 14: command-line syntax errors read like every other error,
+# Command-line syntax errors read like every other error,
 # "stickslip: error: ...", suggest the nearest subcommand or flag, say
 # plainly that a flag was repeated, and exit 2 (invalid input), the
 # documented code, instead of CLI11's 105 .. 114.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 14: --preset paper-printed / paper-figures name the paper's printed
+# --preset paper-printed / paper-figures name the paper's printed
 # parameters and the k = 40 N/m its figures used; flags given after still win.
 source "$(dirname "$0")/lib.sh" "$@"
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 14: `simulate` writes all of its files or none, never replaces an
+# `simulate` writes all of its files or none, never replaces an
 # earlier output silently (--overwrite to allow it), reports the system's
 # reason for an unwritable path, and accepts --lambda 0 with given switch
 # times (lambda plays no role then).

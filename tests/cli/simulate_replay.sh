@@ -1,5 +1,5 @@
 # Replay mode of `simulate`: given switch times and initial conditions give
-# one exact, deterministic realization (issue 2).
+# one exact, deterministic realization.
 source "$(dirname "$0")/lib.sh"
 
 given=(--x0 0.3 --xdot0 -0.2 --belt-start -1 --switch-times 1.5,2.25,7,7.5,12 --ta 15)

@@ -1,11 +1,12 @@
-# A sweep with an uncertain parameter (issue 26: laws and grid axes combined)
+# A sweep with an uncertain parameter (laws and grid axes combined)
 # is bit-identical for 1 and 2 threads, from a TOML config and from flags,
 # after kill -9 and --resume, from 3 merged shards, and under `mpirun -np 2`; --resume on its
 # finished outputs recognizes them (the resolved config, laws included,
 # reads back exactly); and every realization replays alone with `simulate
 # --realization r`, drawing the same value as its record.
 #   sweep_laws_reproducible.sh STICKSLIP [REALIZATIONS [MPIRUN]]
-# ctest runs it with few realizations; issue 26's case is
+# ctest runs it with few realizations; the full reproducibility case
+# (20000 realizations, MPI included) is
 #   bash tests/cli/sweep_laws_reproducible.sh build/apps/stickslip/stickslip 20000 mpirun
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/lib.sh"

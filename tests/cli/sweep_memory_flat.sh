@@ -1,4 +1,4 @@
-# Memory does not grow with the number of realizations (issue 3): peak RSS of
+# Memory does not grow with the number of realizations: peak RSS of
 # a one-point sweep with N = 10^3 and N = 10^5 differ by less than 4 MiB.
 # (The journal buffers about --checkpoint-interval seconds of finished units,
 # which is bounded by time, not N; a short interval keeps it small here.)

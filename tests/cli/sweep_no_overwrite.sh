@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 14: `sweep -o DIR` on a folder that holds finished results refuses to
+# `sweep -o DIR` on a folder that holds finished results refuses to
 # replace them (naming the file and the ways on: --overwrite, --resume, another
 # -o), leaves them untouched, and replaces them with --overwrite.
 source "$(dirname "$0")/lib.sh" "$@"
@@ -24,7 +24,7 @@ mkdir other && touch other/notes.txt
 run_ok sweep "${A[@]}" -o other
 [[ -s other/summary.csv && -e other/notes.txt ]] || fail "sweep into a folder with other files"
 
-# Duplicate grid values are refused (issue 14).
+# Duplicate grid values are refused.
 expect_fail "grid axis lambda|each value once|#1 and #2" sweep --lambda 1,1 --realizations 10
 expect_fail "grid axis mu|#1 and #3" sweep --mu 5,7,5 --realizations 10
 finish

@@ -1,4 +1,4 @@
-# Issue 13's sweep flags: --common-random-numbers (recorded in summary.json,
+# The precision flags of sweep: --common-random-numbers (recorded in summary.json,
 # results.nc and the journal fingerprint; replayable with `simulate
 # --common-random-numbers`) and --target-ci STAT:HALFWIDTH (every point meets
 # the target; identical outputs for any thread count), and their bad input.

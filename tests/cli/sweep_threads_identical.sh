@@ -1,9 +1,9 @@
-# The sweep's results are bit-identical for --threads 1, 2 and 8 (issue 3):
+# The sweep's results are bit-identical for --threads 1, 2 and 8:
 # the "points" text of summary.json, summary.csv, records.csv and every
 # NetCDF variable (ncdump without the global attributes, which hold the
 # creation time, elapsed time, thread count and command line). The same holds
 # for --engine reference (the plain one-realization-at-a-time exact path)
-# against the default SIMD lane engine (issue 6).
+# against the default SIMD lane engine.
 source "$(dirname "$0")/lib.sh"
 
 for t in 1 2 8; do

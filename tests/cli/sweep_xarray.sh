@@ -1,4 +1,4 @@
-# results.nc and summary.json as a new user reads them with xarray (issue 14):
+# results.nc and summary.json as a new user reads them with xarray:
 #  - each histogram has a bin coordinate <X>_bin with CF bounds <X>_bin_bounds,
 #    and plots against it (the plotted x values are the bin centres, the bounds
 #    are the bin edges also stored as <X>_bin_low/<X>_bin_high);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# issue 14: limit messages state the real limits (2^40 realizations, 100000
+# Limit messages state the real limits (2^40 realizations, 100000
 # bins), TOML errors carry file:line and shortest-form numbers, and the
 # memory estimate is printed with a sensible number of digits.
 source "$(dirname "$0")/lib.sh" "$@"

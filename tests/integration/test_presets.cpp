@@ -1,4 +1,4 @@
-// issue 14: the presets name exactly the parameter sets the paper study runs
+// The presets name exactly the parameter sets the paper study runs
 // (printed: k = 4; concluded, what the figures used: k = 40).
 #include <gtest/gtest.h>
 

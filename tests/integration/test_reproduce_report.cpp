@@ -287,7 +287,7 @@ TEST(ReproduceFigures, SampledRealizationFollowsTheSegments) {
 
 }  // namespace
 
-// ---- issue 14: what a new user hit in the report ----
+// ---- what a new user hit in the report ----
 
 TEST_F(ReproduceReport, QuickReportIsMarkedAsADemoAndNamesItsGridSize) {
   const auto md = slurp(files_->markdown);
@@ -384,7 +384,7 @@ TEST(Chi2PoorFit, NinetyFivePercentPointsMatchTheTable) {
   EXPECT_FALSE(study::poor_fit(p));
 }
 
-// Issue 13: reproduce quotes `peak` for every lambda* and R*. The study's
+// reproduce quotes `peak` for every lambda* and R*. The study's
 // located maximum must be what find_peak_by_sweeps (the code behind `stickslip
 // peak`) returns for the same request, bit for bit, and the report must quote
 // it.

@@ -1,4 +1,4 @@
-// Issue 3: statistical checks of the sweep against closed-form expectations,
+// Statistical checks of the sweep against closed-form expectations,
 // with tolerances from standard errors (fixed seeds).
 #include <gtest/gtest.h>
 

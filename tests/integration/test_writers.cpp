@@ -92,7 +92,7 @@ TEST_F(writers, NetcdfHasOneDimensionPerAxisWithCoordinatesAndUnits) {
   EXPECT_EQ(text_att(f.getVar("sticks_per_time_mean"), "units"), "1/s");
 }
 
-// The family's statistics (issue 11): names, dimensions, units and long
+// The model family's statistics: names, dimensions, units and long
 // names written from docs/outputs.md, values equal to the result set.
 TEST_F(writers, NetcdfHasTheFamilyStatisticsWithDimensionsAndUnits) {
   const auto path = dir_ / "results.nc";

@@ -1,4 +1,4 @@
-// What every output says about the run (issue 14): the MPI ranks and threads
+// What every output says about the run: the MPI ranks and threads
 // it ran with, the belt start law by name, and which parameters were swept
 // (a swept parameter has no single base value).
 #include <gtest/gtest.h>

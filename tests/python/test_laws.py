@@ -1,4 +1,4 @@
-"""Laws for model parameters (issue 26) through the Python keywords: any
+"""Laws for model parameters (uncertain parameters) through the Python keywords: any
 model keyword takes a law's text, parsed by the library's parse_law, so that
 sweep() equals the CLI's `sweep` with the same law bit for bit, simulate()
 with realization= replays a sweep's realization and returns the values it

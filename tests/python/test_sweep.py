@@ -195,7 +195,7 @@ def test_an_exception_in_the_progress_callback_stops_the_sweep_cleanly(tmp_path)
 
 
 def test_common_random_numbers_and_target_ci_equal_the_cli(cli, tmp_path):
-    """Issue 13's flags give the CLI's results.nc, bit for bit."""
+    """Common random numbers and --target-ci give the CLI's results.nc, bit for bit."""
     out = tmp_path / "cli"
     cli("sweep", *CLI_GRID, "--common-random-numbers", "--target-ci", "R:0.004",
         "--max-realizations", "20000", "--min-realizations", "500", "--threads", "2",
@@ -230,7 +230,7 @@ def _halfwidth(ds, name):
 
 
 def test_derivatives_reach_the_dataset_and_agree():
-    """Issue 13's derivatives in Python: the likelihood-ratio d E[R]/d lambda
+    """The derivative estimates in Python: the likelihood-ratio d E[R]/d lambda
     and the common-random-number slope over lambda are Dataset variables with
     units and intervals, and the two independent estimators agree within
     their combined 95 % half-widths at every interior point; so do the score

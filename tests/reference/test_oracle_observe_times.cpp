@@ -1,4 +1,4 @@
-// Issue 27 (sweep --observe-times): the ensemble's state at observe times,
+// Observe times (sweep --observe-times): the ensemble's state at observe times,
 // point_statistics::observed, against the independent RK4 oracles
 // (oracle.hpp for the paper's model, model_oracle.hpp for the family), which
 // sample x, x', v and stick/slip on their own paths (the path is cut at each

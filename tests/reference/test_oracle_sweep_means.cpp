@@ -1,4 +1,4 @@
-// Issue 3: the sweep's per-point means agree with means computed by the
+// The sweep's per-point means agree with means computed by the
 // independent RK4 oracle (oracle.hpp) on the same realizations: the oracle
 // is fed the initial conditions and belt switch times that the sweep's
 // Philox streams produce for (seed, point, realization), and never sees the

@@ -1,4 +1,4 @@
-// Regression (issue 14): `--lambda 1,1` was accepted. The two grid points
+// Regression: `--lambda 1,1` was accepted. The two grid points
 // have the same parameters, hence the same point_key and the same random
 // streams: they are copies, not independent replicates, and their coordinate
 // cannot be selected from. validate() must refuse a value given twice on one

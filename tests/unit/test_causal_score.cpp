@@ -108,7 +108,7 @@ paired_difference central_difference(const result_set& rs, double h) {
   return {m, std::sqrt(var / static_cast<double>(n))};
 }
 
-// Issue 13's derivative check for the causal score: it must agree with
+// The derivative check for the causal score: it must agree with
 // common-random-number central differences within 3.5 combined standard
 // errors at every lambda (mu = 5 and 0.5, and a damped family model with
 // mu_s > mu_k), the test must have power (several derivatives far from 0),

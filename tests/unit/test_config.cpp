@@ -225,7 +225,7 @@ TEST(ToToml, RoundTripsTheEngine) {
   EXPECT_THROW((void)parse_sweep_toml("[sweep]\nengine = 1\n", "e.toml"), stickslip::error);
 }
 
-// Issue 13's keys: written only when set (configurations without them read
+// The precision keys (common_random_numbers, target_ci): written only when set (configurations without them read
 // and print as before), and read back exactly.
 TEST(ToToml, RoundTripsCommonRandomNumbersAndTheTargetCi) {
   sweep_spec s;
@@ -246,7 +246,7 @@ TEST(ToToml, RoundTripsCommonRandomNumbersAndTheTargetCi) {
                stickslip::error);
 }
 
-// Laws (issue 26): a [model] key holds a law's text; to_toml writes the
+// Laws for uncertain parameters: a [model] key holds a law's text; to_toml writes the
 // canonical text back, so the resolved config in results.nc reads back to the
 // same spec (resume identifies finished outputs by it).
 sweep_spec uncertain_spec() {
@@ -410,7 +410,7 @@ INSTANTIATE_TEST_SUITE_P(
         bad_toml{"[model]\nmu = \"five\"\n", {"model.mu", "bad.toml:2:6", "a number", "a string"}},
         bad_toml{"model = 3\n", {"model", "a table"}},
         bad_toml{"[sweep]\nrealizations = 2.5\n", {"sweep.realizations", "a float"}},
-        // issue 14: the true range, with file:line, in every limit message
+        // the true range, with file:line, in every limit message
         bad_toml{"[sweep]\nrealizations = 100.5\n",
                  {"sweep.realizations at bad.toml:2:", "1 to 2^40 = 1099511627776"}},
         bad_toml{"[sweep]\nrealizations = 0\n",
@@ -443,7 +443,7 @@ INSTANTIATE_TEST_SUITE_P(
         bad_toml{"[grid]\norder = [\"lambda\", \"lambda\"]\nlambda = [1]\n", {"repeated"}},
         bad_toml{"[grid]\norder = []\nlambda = [1]\n", {"grid.order", "every swept"}}));
 
-// issue 14: a missing input file is bad input (exit 2), not an I/O failure.
+// A missing input file is bad input (exit 2), not an I/O failure.
 TEST(ReadSweepTomlFile, MissingFileIsInvalidInputThatDoesNotExist) {
   const auto msg = error_of([] { (void)read_sweep_toml_file("/nonexistent/x.toml"); },
                             exit_code::invalid_input);

@@ -1,4 +1,4 @@
-// issue 14: the ETA of `sweep` was far off (13:47, then 55 s, then 28 s for a
+// The ETA of `sweep` was far off (13:47, then 55 s, then 28 s for a
 // 9 s sweep): the costliest units run first and the ETA extrapolated from the
 // unit count. The ETA now extrapolates from the expected work
 // (expected_unit_cost). Checked deterministically, without timing: the

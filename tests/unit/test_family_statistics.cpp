@@ -1,4 +1,4 @@
-// The statistics of issue 11 on sweeps, for the paper's model (lane engine)
+// The model family's statistics on sweeps, for the paper's model (lane engine)
 // and the family (simulate_model), fixed seeds, tolerances from standard
 // errors:
 //   - the time fraction at each belt level: per realization the fractions

@@ -1,4 +1,4 @@
-// Issue 27 (sweep --observe-times): the ensemble's state at observe times,
+// Observe times (sweep --observe-times): the ensemble's state at observe times,
 // point_statistics::observed, against an independent computation from the
 // same realizations' episodes and events.
 //   - the stick count at t equals, exactly, the number of realizations whose

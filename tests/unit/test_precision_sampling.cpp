@@ -1,4 +1,4 @@
-// Issue 13's sampling tools: common random numbers (sweep_spec::
+// Sampling tools for precision: common random numbers (sweep_spec::
 // common_random_numbers), the likelihood-ratio derivative of a mean over
 // lambda and the control-variate mean (accumulators/score_moments.hpp), and
 // adaptive sampling to a target CI half-width (sweep_spec::target_statistic).
@@ -306,7 +306,7 @@ TEST(CommonRandomNumbers, FamilyPointsShareTheirRandomNumbersToo) {
   EXPECT_FALSE(has_poisson_switching(q));
 }
 
-// Issue 13: the likelihood-ratio derivative over the rates of a Markov belt.
+// The likelihood-ratio derivative over the rates of a Markov belt.
 // Independent oracle: common-random-number central differences in r_j
 // (the same realizations at r_j - h and r_j + h, paired per realization),
 // on a two-level belt with unequal levels and rates, stationary start.
@@ -387,7 +387,7 @@ TEST(BeltRateScore, ScoresHaveMeanZero) {
   }
 }
 
-// Issue 13: common-random-number finite differences for every parameter
+// Common-random-number finite differences for every parameter
 // (precision/crn_slopes.hpp). Independent oracle: the likelihood-ratio
 // derivatives (over lambda, and over a Markov belt's rate r1), which use
 // one point and no differencing; a narrow central difference must agree

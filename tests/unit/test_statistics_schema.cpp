@@ -28,7 +28,7 @@ const std::vector<expected_quantity> paper = {
     {"stick_duration", "D", "s", histogram_range::stick_duration},
     {"first_stick_duration", "D_1", "s", histogram_range::stick_duration},
     {"slip_duration", "H", "s", histogram_range::slip_duration},
-    // The model family's (issue 11), after the paper's.
+    // The model family's, after the paper's.
     {"stick_onset_position", "X", "m", histogram_range::stick_band},
     {"friction_power", "W_f", "W", histogram_range::none},
     {"damping_power", "W_c", "W", histogram_range::none},

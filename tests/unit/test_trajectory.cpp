@@ -1,4 +1,4 @@
-// The one trajectory sampler (issue 10): sample_trajectory over hand-made
+// The one trajectory sampler: sample_trajectory over hand-made
 // closed-form segments, checked against the motion written out here
 // independently, and against the samples Fig. 2 uses.
 #include <gtest/gtest.h>
