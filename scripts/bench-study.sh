@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The paper's full study (issue 6) timed end to end, beside its floor.
+# The paper's full study timed end to end, beside its floor.
 # Prints, as medians of N runs: the study wall time for k = 4 and k = 40,
 # the floor (all belt switch times of the same study drawn alone), the ratio
 # study/floor, realizations/s, events/s by type, peak RSS, and the thread

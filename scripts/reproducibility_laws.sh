@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Issue 26's reproducibility check, at the issue's size: the random-parameter
+# The reproducibility check of laws for uncertain parameters, at full size: the random-parameter
 # sweep
 #   stickslip sweep --k 40 --lambda 1,3.8 --mu 'gamma(mean=5,cv=0.2)' --realizations 20000
-# run every way the issue names, each compared bit for bit with the
+# run every way a user may run it, each compared bit for bit with the
 # one-thread run (tests/resume/compare_outputs.py: every results.nc variable,
 # summary.json's points, summary.csv, records.csv):
 #   --threads 2; kill -9 at random points and --resume until it completes;

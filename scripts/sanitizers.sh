@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sanitizer runs for CI (issue 5), each in its own build directory:
+# Sanitizer runs for CI, each in its own build directory:
 #   build-asan  AddressSanitizer + UndefinedBehaviorSanitizer (no recovery):
 #               the unit, property, regression, reference and resume test
 #               suites (GoogleTest executables) under ctest. Every SIMD

@@ -3,8 +3,9 @@
 1. No include cycle among the project's headers (include/, src/,
    backends/*/include/): a header reaches itself through no chain of
    `#include "..."`.
-2. No tracker issue numbers in code or comments ("issue 11"): code names
-   the concept, and a reader of the source has no tracker.
+2. No tracker issue numbers in code, tests, benchmarks, scripts or their
+   comments ("issue" and a number): code names the concept, and a reader of
+   the source has no tracker.
 
 Usage: python3 layering.py SOURCE_DIR. Prints every violation and exits 1
 if there is one.
@@ -16,7 +17,7 @@ import sys
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 ISSUE = re.compile(r"\bissues?[ _#-]{0,2}\d+\b", re.I)
 HEADER = (".hpp", ".h", ".inl")
-CODE = HEADER + (".cpp", ".py", ".cmake")
+CODE = HEADER + (".cpp", ".py", ".cmake", ".sh", ".in")
 
 
 def include_roots(top):
@@ -70,19 +71,26 @@ def cycles(graph):
     return out
 
 
+SCANNED = ("include", "src", "apps", "backends", "python/src", "python/stickslip", "cmake",
+           "tests", "bench", "scripts", "examples")
+
+
+def scanned_files(top):
+    yield os.path.join(top, "CMakeLists.txt")
+    for sub in SCANNED:
+        for d, _, names in os.walk(os.path.join(top, sub)):
+            for n in sorted(names):
+                if n.endswith(CODE) or n == "CMakeLists.txt":
+                    yield os.path.join(d, n)
+
+
 def issue_numbers(top):
     hits = []
-    for sub in ("include", "src", "apps", "backends", "python/src", "python/stickslip", "cmake"):
-        base = os.path.join(top, sub)
-        for d, _, names in os.walk(base):
-            for n in sorted(names):
-                if not n.endswith(CODE) and n != "CMakeLists.txt":
-                    continue
-                p = os.path.join(d, n)
-                with open(p, encoding="utf-8") as f:
-                    for i, line in enumerate(f, 1):
-                        if ISSUE.search(line):
-                            hits.append(f"{os.path.relpath(p, top)}:{i}: {line.strip()}")
+    for p in scanned_files(top):
+        with open(p, encoding="utf-8") as f:
+            for i, line in enumerate(f, 1):
+                if ISSUE.search(line):
+                    hits.append(f"{os.path.relpath(p, top)}:{i}: {line.strip()}")
     return hits
 
 
