@@ -1,6 +1,8 @@
-// What the integrator reports: events (instants) and episodes (maximal stick
-// or slip intervals). Episodes tile [0, t_a]; a slip episode runs through belt
-// switches and slip reversals.
+// What the engines report (simulate, simulate_model and the lanes): events
+// (instants) and episodes (maximal stick or slip intervals). Episodes tile
+// [0, t_a]; a slip episode runs through belt switches and slip reversals.
+// The stick band at belt level v is |x - b| <= a_s, b = -c v / k
+// (docs/model.md); in the paper's model b = 0 and a_s = a_k = a.
 #pragma once
 
 namespace stickslip {
@@ -8,9 +10,10 @@ namespace stickslip {
 enum class mode : unsigned char { stick, slip };
 
 enum class event_kind : unsigned char {
-  belt_switch,    // the belt velocity flips sign (Poisson time); ends any stick
-  stick_onset,    // a slip reaches x' = v inside the band |x| <= a
-  stick_break,    // a stick reaches the band edge x = sgn(v) a
+  belt_switch,    // the belt changes level (in the paper's model it flips sign at
+                  // Poisson times); ends any stick
+  stick_onset,    // a slip reaches x' = v inside the stick band
+  stick_break,    // a stick reaches the band edge x = b + sgn(v) a_s
   slip_reversal,  // a slip reaches x' = v outside the band; slip continues the other way
 };
 
@@ -56,7 +59,8 @@ struct episode {
 // One closed-form piece of motion between two consecutive events.
 // Stick:  x(t) = x0 + v (t - t0),                 x'(t) = v.
 // Slip:   x(t) = c + (x0 - c) cos w(t-t0) + (x0'/w) sin w(t-t0),
-//         x'(t) = x0' cos w(t-t0) - w (x0 - c) sin w(t-t0),   c = sigma a.
+//         x'(t) = x0' cos w(t-t0) - w (x0 - c) sin w(t-t0),
+//         c = sigma a_k, sigma = sgn(v - x') (sigma a in the paper's model).
 // With damping (the model family, model/model_engine.hpp), y = x - c obeys
 // y'' + 2 gamma y' + w^2 y = 0 from (x0 - c, x0'): model/damped_slip.hpp.
 struct segment {
@@ -64,7 +68,7 @@ struct segment {
   double start, end;
   double position, velocity;  // x, x' at start
   double belt_velocity;       // v during the segment
-  double center;              // c = sigma a while slipping (0 while sticking)
+  double center;              // c = sigma a_k while slipping (0 while sticking)
   double omega;               // omega_0 = sqrt(k/m)
   double decay_rate = 0.0;    // gamma = c / 2m: 0 in the paper's model
 };

@@ -1,14 +1,14 @@
 // Exact binary (de)serialization of sweep specs, work units and block results,
-// for MPI messages and the checkpoint journal (src/io/journal*.cpp).
+// for MPI messages and the checkpoint journal (src/io/store/journal*.cpp).
 //
 // Format: little-endian; doubles travel as their IEEE-754 bit patterns, so a
 // round trip is bit-exact (NaN payloads and -0 included). Every message starts
 // with a 4-byte tag, the format version and the layout id (layout_id(): the
 // list of statistics a block result holds and of model parameters a spec
 // holds); vectors carry their length. Both lists are laid out by iterating
-// them (statistics_schema.hpp, parameter_names), so adding a statistic or a
-// parameter changes the layout id, and data from before is refused, never
-// misread.
+// them (statistics_schema.hpp, recorded_parameter_names in parameters.hpp),
+// so adding a statistic or a parameter changes the layout id, and data
+// written without it is refused, never misread.
 // Deserialization never trusts its input: every length is checked against
 // the bytes that remain, every count against a sane bound, and histogram
 // binnings against their invariants. Any problem throws stickslip::error
@@ -29,16 +29,9 @@
 
 namespace stickslip {
 
-// Bumped whenever the layout of anything below changes. Readers refuse other
-// versions (a journal from another version is recomputed, never misread).
-// Version 2: the layout id follows the version.
-// 8: a spec's uncertain parameters and sensitivity statistic, the design's
-// moments in point statistics, the drawn values in records.
-// 9: a spec's statistics selection and survival grid, the survival counts
-// in point statistics.
-// 10: a spec's observe times and the rows of its statistics selection, the
-// observe-time statistics in point statistics (before the optional burn-in
-// of 9's spec).
+// Bumped whenever the layout of anything below changes (CHANGELOG.md says
+// what each version added). Readers refuse other versions: a journal from
+// another version is recomputed, never misread.
 inline constexpr std::uint32_t serial_format_version = 10;
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.

@@ -1,10 +1,16 @@
 // The one list of per-point statistics. Everything that handles statistics
 // iterates over it: point_statistics (the histogram ranges, add, merge), the
 // binary serialization (MPI messages, the journal), and every writer (NetCDF,
-// JSON, CSV); the Python layer reads it too. Adding a statistic is one row
-// in the table below plus its accumulator member in point_statistics
-// (statistics.hpp), and its tests. The order of the rows is the order of the
-// serialized accumulators and of the output columns.
+// JSON, CSV); the Python layer reads it too. A statistic of a value the
+// realization record already holds is one row in the table below plus its
+// accumulator member in point_statistics (statistics.hpp), and its tests; a
+// new per-realization value also needs its field in realization_record and
+// the observer line that computes it. The order of the rows is the order of
+// the serialized accumulators and of the output columns.
+// Outside the table, each written by hand: the causal score of R
+// (point_statistics::stick_fraction_causal_score), the observe-time
+// statistics (point_statistics::observed, accumulators/time_statistics.hpp)
+// and the convergence trace.
 //
 // Five kinds of rows:
 //   quantity  a value of a realization (R, S_T/t_a, S_L/t_a, D_i, D_1, H_i,
@@ -307,14 +313,16 @@ static_assert(
 
 // d mean/dr_j (j = 0: r1, 1: r2) of a quantity with rate scores, by the
 // likelihood ratio of a two-level belt's own rates (belt_rate_scores,
-// docs/precision.md); NaN where the point has no such rates or the family
-// statistics were off.
+// docs/precision.md); NaN where the point has no such rates, the family
+// statistics were off, or a burn-in cut the window (the scores need the
+// time at each level over all of [0, t_a]).
 [[nodiscard]] estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
                                             std::size_t j) noexcept;
 // d mean/dq_ij (i != j, 0-based levels) of a quantity with generator scores,
 // by the likelihood ratio of the belt's generator (belt_generator_scores,
 // docs/precision.md); NaN where the point's belt has no generator of its
-// own, q_ij = 0, i = j, or the family statistics were off.
+// own, q_ij = 0, i = j, the family statistics were off, or a burn-in cut
+// the window.
 [[nodiscard]] estimate belt_generator_derivative(const point_statistics& s,
                                                  const quantity_info& q, std::size_t i,
                                                  std::size_t j) noexcept;

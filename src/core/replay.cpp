@@ -94,8 +94,9 @@ realization_trace replay(const replay_request& r) {
     replay_family(r, spec, out);
     return out;
   }
-  // The parameters as asked (lambda may be 0 with given switch times): the
-  // same key, hence the same x0 and x'0, as before this replay had a family.
+  // The parameters as asked (lambda may be 0 with given switch times), in
+  // the paper's form: the stream key of the sweep's point, hence the sweep's
+  // x0 and x'0 for this realization.
   const model_parameters p = paper_form(r.parameters);
   const auto key = stream_key(spec, p);  // point_key(p), or the common key
   auto& ic = out.initial;
