@@ -29,9 +29,9 @@
 
 namespace stickslip {
 
-// Bumped whenever the layout of anything below changes (CHANGELOG.md says
-// what each version added). Readers refuse other versions: a journal from
-// another version is recomputed, never misread.
+// Bumped whenever the layout of anything below changes (CHANGELOG.md notes
+// the recent bumps). Readers refuse other versions: a journal from another
+// version is recomputed, never misread.
 inline constexpr std::uint32_t serial_format_version = 10;
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.
