@@ -4,6 +4,7 @@
 // The stick band at belt level v is |x - b| <= a_s, b = -c v / k
 // (docs/model.md); in the paper's model b = 0 and a_s = a_k = a.
 #pragma once
+#include <cstdint>
 
 namespace stickslip {
 
@@ -38,6 +39,27 @@ struct event {
   double position;       // x
   double velocity;       // x'
   double belt_velocity;  // v after the event
+};
+
+// The events of a realization (or of many: += merges), by kind.
+struct event_counts {
+  std::uint64_t belt_switches = 0, stick_onsets = 0, stick_breaks = 0, slip_reversals = 0;
+  // The sum of the belt switch times in [0, t_a], in time order (not a
+  // count: the integral of N(t) over the window is N t_a minus it, which the
+  // causal likelihood-ratio derivative needs; docs/precision.md).
+  double switch_time_sum = 0.0;
+  [[nodiscard]] std::uint64_t total() const noexcept {
+    return belt_switches + stick_onsets + stick_breaks + slip_reversals;
+  }
+  friend bool operator==(const event_counts&, const event_counts&) = default;
+  event_counts& operator+=(const event_counts& o) noexcept {
+    belt_switches += o.belt_switches;
+    stick_onsets += o.stick_onsets;
+    stick_breaks += o.stick_breaks;
+    slip_reversals += o.slip_reversals;
+    switch_time_sum += o.switch_time_sum;
+    return *this;
+  }
 };
 
 struct episode {

@@ -32,8 +32,8 @@
 #include <limits>
 #include <numbers>
 
-#include "stickslip/detail/event_physics.hpp"
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/event_physics.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/error.hpp"
@@ -41,26 +41,6 @@
 #include "stickslip/parameters.hpp"
 
 namespace stickslip {
-
-struct event_counts {
-  std::uint64_t belt_switches = 0, stick_onsets = 0, stick_breaks = 0, slip_reversals = 0;
-  // The sum of the belt switch times in [0, t_a], in time order (not a
-  // count: the integral of N(t) over the window is N t_a minus it, which the
-  // causal likelihood-ratio derivative needs; docs/precision.md).
-  double switch_time_sum = 0.0;
-  [[nodiscard]] std::uint64_t total() const noexcept {
-    return belt_switches + stick_onsets + stick_breaks + slip_reversals;
-  }
-  friend bool operator==(const event_counts&, const event_counts&) = default;
-  event_counts& operator+=(const event_counts& o) noexcept {
-    belt_switches += o.belt_switches;
-    stick_onsets += o.stick_onsets;
-    stick_breaks += o.stick_breaks;
-    slip_reversals += o.slip_reversals;
-    switch_time_sum += o.switch_time_sum;
-    return *this;
-  }
-};
 
 // The default bound on events per realization. Hitting it is reported as an
 // error, never silently truncated.

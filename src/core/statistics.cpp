@@ -1,5 +1,6 @@
 #include "stickslip/statistics.hpp"
 
+#include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/model/oscillator_model.hpp"
 #include "stickslip/statistics_schema.hpp"
