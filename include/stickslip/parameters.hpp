@@ -11,7 +11,8 @@
 //     |k x + c v| <= mu_s m g, a slip feels mu_k m g);
 //   a Markov belt: levels v_1..v_n (n >= 2, distinct, any sign, zero allowed)
 //     with a generator Q; for two levels, the rates of leaving each level.
-// The engines consume this through model_of() (model/oscillator_model.hpp);
+// The engines consume this through model_of(), its engine form
+// (model/oscillator_model.hpp, which knows nothing of this description);
 // when the resolved model is the paper's (is_paper_model), the lane engine
 // runs it with the bits of 0.1.0.
 #pragma once
@@ -20,6 +21,8 @@
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "stickslip/model/oscillator_model.hpp"
 
 namespace stickslip {
 
@@ -77,8 +80,11 @@ struct model_parameters {
 // and V = 2) thereby get the same point_key and the same bits.
 [[nodiscard]] model_parameters paper_form(const model_parameters& p);
 
-// Magnitudes the closed form handles without overflow in its squares.
-inline constexpr double min_magnitude = 1e-60, max_magnitude = 1e60;
+// The engine form of a model description: the resolved mu_s, mu_k, c, belt
+// levels and generator. For the paper's parameters this is the paper's model
+// inside the family: mu_s = mu_k = mu, c = 0, levels (+V, -V), both rates
+// lambda. No validation (validate(p) calls validate() of the result).
+[[nodiscard]] oscillator_model model_of(const model_parameters& p);
 
 // Throws stickslip::error naming the first invalid parameter, its value and
 // the allowed range. The paper's parameters must be finite and > 0, and they
@@ -87,7 +93,8 @@ inline constexpr double min_magnitude = 1e-60, max_magnitude = 1e60;
 // > 0 when given, mu_k <= mu_s; belt levels: none or n >= 2 distinct finite
 // values; belt rates: none or one per level of a two-level belt, finite and
 // > 0; a generator: n x n with rows summing to 0; not both rates and a
-// generator; then validate(model_of(p)) (model/oscillator_model.hpp).
+// generator; then validate(model_of(p)) (model/oscillator_model.hpp, with
+// min_magnitude and max_magnitude).
 void validate(const model_parameters& p);
 
 // The scalar parameters as they appear on the command line, in config files,

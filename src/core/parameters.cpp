@@ -6,7 +6,6 @@
 #include <charconv>
 
 #include "stickslip/error.hpp"
-#include "stickslip/model/oscillator_model.hpp"
 
 namespace stickslip {
 namespace {
@@ -111,6 +110,19 @@ void validate_family(const model_parameters& p) {
 }
 
 }  // namespace
+
+oscillator_model model_of(const model_parameters& p) {
+  oscillator_model m;
+  m.mass = p.mass;
+  m.stiffness = p.stiffness;
+  m.damping = p.damping;
+  m.gravity = p.gravity;
+  m.static_friction = p.mu_s();
+  m.kinetic_friction = p.mu_k();
+  m.belt = markov_belt{p.levels(), p.generator()};
+  m.window = p.window;
+  return m;
+}
 
 std::vector<double> model_parameters::generator() const {
   if (!belt_generator.empty()) return belt_generator;

@@ -7,7 +7,8 @@
 // on a belt whose velocity v(t) is a continuous-time Markov chain on n >= 2
 // distinct levels v_1..v_n (any sign, zero allowed) with generator Q
 // (q_ij >= 0 for i != j, rows sum to 0). The paper's model is the special case
-// mu_s = mu_k = mu, c = 0, levels (+V, -V), both rates lambda (model_of() of the paper's parameters).
+// mu_s = mu_k = mu, c = 0, levels (+V, -V), both rates lambda (model_of() of the
+// paper's parameters, parameters.hpp).
 //
 // A value type: validate() once at the edge, then the engines trust it.
 #pragma once
@@ -15,9 +16,10 @@
 #include <cstddef>
 #include <vector>
 
-#include "stickslip/parameters.hpp"
-
 namespace stickslip {
+
+// Magnitudes the closed form handles without overflow in its squares.
+inline constexpr double min_magnitude = 1e-60, max_magnitude = 1e60;
 
 // The belt: a continuous-time Markov chain on `levels` with generator
 // `generator` (n x n, row-major: generator[i * n + j] = q_ij).
@@ -98,13 +100,6 @@ inline constexpr double max_decay_periods = 1e12;
 // rates finite and >= 0, every level left at a finite rate > 0, and each row
 // sums to 0 within a relative 1e-12 of its largest entry.
 void validate(const markov_belt& belt);
-
-// The engine form of a model description: the resolved mu_s, mu_k, c, belt
-// levels and generator (parameters.hpp). For the paper's parameters this is
-// the paper's model inside the family: mu_s = mu_k = mu, c = 0, levels
-// (+V, -V), both rates lambda. No validation (validate(p) calls validate() of
-// the result).
-[[nodiscard]] oscillator_model model_of(const model_parameters& p);
 
 // Initial state of one realization of the family: x0, x'0 and the index of
 // the starting belt level.

@@ -199,17 +199,4 @@ void validate(const model_initial_state& state, const markov_belt& belt) {
                             "an existing level index, 0.." + std::to_string(belt.level_count() - 1));
 }
 
-oscillator_model model_of(const model_parameters& p) {
-  oscillator_model m;
-  m.mass = p.mass;
-  m.stiffness = p.stiffness;
-  m.damping = p.damping;
-  m.gravity = p.gravity;
-  m.static_friction = p.mu_s();
-  m.kinetic_friction = p.mu_k();
-  m.belt = markov_belt{p.levels(), p.generator()};
-  m.window = p.window;
-  return m;
-}
-
 }  // namespace stickslip
