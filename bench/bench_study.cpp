@@ -21,7 +21,7 @@
 #include <string>
 
 #include "floor.hpp"
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace {

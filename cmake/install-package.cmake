@@ -47,16 +47,16 @@ endforeach()
 
 install(TARGETS stickslip RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
-# Public headers: include/stickslip (core, io/, detail/), the generated
-# version header, and the MPI backend's header when it is built. Not the
-# lane engine's own headers: fast_math_simd.hpp includes Highway, which
-# stickslip links PRIVATE, and fast_block.hpp is the interface between the
-# sweep and the lanes inside the library (package.downstream checks that no
-# installed header names Highway).
+# Public headers: include/stickslip but its detail/ folder, the generated
+# version header, and the MPI backend's header when it is built. detail/ is
+# private to the build: the lane engine's interface with the sweep
+# (fast_block.hpp) and its Highway kernels (fast_math_simd.hpp: Highway is
+# linked PRIVATE, and a user need not have it). package.installed_headers
+# checks that no installed header is under detail/, includes Highway or
+# includes a header that is not installed, and that each compiles alone.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/stickslip
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  PATTERN "fast_math_simd.hpp" EXCLUDE
-  PATTERN "fast_block.hpp" EXCLUDE)
+  PATTERN "detail" EXCLUDE)
 install(FILES ${PROJECT_BINARY_DIR}/generated/stickslip/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stickslip)
 if(TARGET stickslip_mpi)

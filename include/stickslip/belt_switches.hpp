@@ -14,7 +14,7 @@
 #include <limits>
 #include <span>
 
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/random_stream.hpp"
 
 namespace stickslip {

@@ -1,5 +1,5 @@
 // Scalar entry points of the shared kernels, dispatched at run time to the
-// SIMD target of the CPU: see detail/fast_math.hpp. This file is compiled
+// SIMD target of the CPU: see stickslip/fast_math.hpp. This file is compiled
 // once per Highway target (foreach_target.h re-includes it).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "fast_math.cpp"  // src/core is on the core's include path
@@ -7,7 +7,7 @@
 
 #include <hwy/highway.h>
 
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
 
 HWY_BEFORE_NAMESPACE();

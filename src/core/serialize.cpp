@@ -1,5 +1,5 @@
 #include "stickslip/serialize.hpp"
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/version.hpp"
 
 #include <array>

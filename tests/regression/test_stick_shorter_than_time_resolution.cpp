@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "regression/recorded.hpp"
-#include "stickslip/detail/event_physics.hpp"
+#include "stickslip/event_physics.hpp"
 #include "stickslip/model/belt_chain.hpp"
 #include "stickslip/model/model_engine.hpp"
 

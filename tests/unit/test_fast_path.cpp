@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "stickslip/belt_switches.hpp"
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/random_stream.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/sweep.hpp"

@@ -3,7 +3,7 @@
 // vectors) against the reference engine: every statistic and record bit for bit, for any block size (including
 // blocks longer than the lane engine's reorder ring), seed, stiffness and
 // thread count; the same error when a realization exceeds max_events; and the
-// shared kernels (detail/fast_math.hpp) against libm.
+// shared kernels (stickslip/fast_math.hpp) against libm.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +15,7 @@
 #include <string>
 
 #include "stickslip/detail/fast_block.hpp"
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/sweep.hpp"
 #include "unit/same_bits.hpp"

@@ -27,7 +27,7 @@
 
 #include <hwy/targets.h>
 
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
 

@@ -2,7 +2,7 @@
 // src/core/fast_lanes.cpp): several realizations per thread in lock step,
 // their transcendentals evaluated as SIMD vectors of the target chosen at
 // run time. It runs the physics of `simulate` (integrator.hpp), with the same
-// operations in the same order and the same kernels (detail/fast_math.hpp),
+// operations in the same order and the same kernels (fast_math.hpp),
 // and gives every observer the same episodes (every field) and, when the
 // observer takes them, the same events as `simulate` does; it refuses at
 // compile time an observer of segments (observer.hpp: observes_segments).

@@ -1,4 +1,4 @@
-// Vector forms of the kernels of detail/fast_math.hpp, for every SIMD target.
+// Vector forms of the kernels of stickslip/fast_math.hpp, for every SIMD target.
 // Include only from translation units that are compiled once per Highway
 // target (hwy/foreach_target.h: src/core/fast_math.cpp, src/core/fast_lanes.cpp):
 // like Highway's own -inl headers it is re-included for each target, and
@@ -20,7 +20,7 @@
 
 #include <numbers>
 
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace stickslip::detail::simd {

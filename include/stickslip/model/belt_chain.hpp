@@ -21,7 +21,7 @@
 #include <span>
 #include <vector>
 
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/model/oscillator_model.hpp"
 #include "stickslip/random_stream.hpp"
 

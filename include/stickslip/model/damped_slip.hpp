@@ -31,7 +31,7 @@
 #include <limits>
 #include <numbers>
 
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 
 namespace stickslip::detail {
 

@@ -1,0 +1,63 @@
+// The transcendental kernels of the integrator and of the belt switch draws,
+// shared by every engine so that they give bit-identical results.
+//
+// All of them are Highway's vector polynomials (hwy/contrib/math,
+// detail/fast_math_simd.hpp), compiled once per SIMD target (AVX3 = AVX-512,
+// AVX2, SSE4, SSSE3 and Highway's one-lane SCALAR baseline) with Highway's
+// foreach_target.h, and chosen at run time (HWY_DYNAMIC_DISPATCH) for the
+// CPU the program runs on: one binary runs on any x86-64 CPU. The scalar
+// functions below broadcast their argument to a whole vector of the chosen
+// target and return lane 0; the lane engine
+// (src/core/fast_lanes.cpp) is dispatched the same way and evaluates the very
+// same kernels on whole vectors of realizations. Every dispatch in the
+// process reads Highway's one chosen target, so the scalar integrator and the
+// lane engine always run the same target, and Highway's math is lane-wise:
+// the engines agree bit for bit.
+//
+// Targets with FMA (AVX3, AVX2) give the same bits (same polynomials, same
+// fused multiply-adds); targets without it (SSE4, SSSE3, SCALAR) evaluate
+// the same polynomials with separately rounded multiplies and adds, and give
+// other (equally valid) bits, identical among themselves.
+// tests/unit/test_reproducible_bits.cpp pins one digest per family and runs
+// every compiled target. Accuracy: a few ulp (Highway's documented bounds;
+// atan2 adds the rounding of one division), far below anything the
+// statistics resolve.
+//
+// These functions are out of line on purpose: they are compiled in exactly
+// one translation unit, whatever the flags of the caller, so no caller can
+// get a differently rounded copy.
+#pragma once
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+
+namespace stickslip::detail::fm {
+
+[[nodiscard]] double log(double x) noexcept;             // x > 0
+[[nodiscard]] double atan(double x) noexcept;
+[[nodiscard]] double atan2(double y, double x) noexcept;  // not both zero
+[[nodiscard]] double sin(double x) noexcept;
+[[nodiscard]] double cos(double x) noexcept;
+// p[i] = log(p[i]) for i < n, the same values as log() (vectorized).
+void log_inplace(double* p, std::size_t n) noexcept;
+
+// Highway's Sin/Cos are valid for |x| <= 39000: larger phases are reduced
+// first with fmod by the double nearest 2 pi (fmod itself is exact; the
+// rounding of 2 pi shifts such huge phases slightly). Both engines apply this.
+inline constexpr double max_direct_phase = 39000.0;
+[[nodiscard]] inline double reduce_phase(double x) noexcept {
+  return std::abs(x) > max_direct_phase ? std::fmod(x, 2.0 * std::numbers::pi) : x;
+}
+
+// The SIMD target the kernels and the lane engine run on now, as Highway's
+// bit (HWY_AVX3, HWY_AVX2, ...) and name ("AVX3", "AVX2", "SSE4", "SSSE3",
+// "SCALAR"). The journal fingerprint records the name. Tests may switch it
+// with hwy::SetSupportedTargetsForTest.
+[[nodiscard]] std::int64_t target() noexcept;
+[[nodiscard]] const char* target_name() noexcept;
+// Whether the target has fused multiply-adds (AVX3, AVX2): the family whose
+// bits tests/unit/test_reproducible_bits.cpp pins as the paper's.
+[[nodiscard]] bool target_fuses_multiply_add() noexcept;
+
+}  // namespace stickslip::detail::fm
