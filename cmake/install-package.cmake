@@ -51,7 +51,7 @@ install(TARGETS stickslip RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # version header, and the MPI backend's header when it is built. detail/ is
 # private to the build: the lane engine's interface with the sweep
 # (fast_block.hpp) and its Highway kernels (fast_math_simd.hpp: Highway is
-# linked PRIVATE, and a user need not have it). package.installed_headers
+# linked PRIVATE, and a user need not have it). package.downstream
 # checks that no installed header is under detail/, includes Highway or
 # includes a header that is not installed, and that each compiles alone.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/stickslip

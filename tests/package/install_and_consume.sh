@@ -2,8 +2,10 @@
 # fail at the first step that fails:
 #   1. cmake --install the build into a fresh temporary prefix;
 #   2. configure the consumer project (tests/package/downstream) with only
-#      CMAKE_PREFIX_PATH pointing there; this also compiles every installed
-#      header on its own and checks that stickslip::core has no I/O libraries;
+#      CMAKE_PREFIX_PATH pointing there; this also checks that the installed
+#      headers are the public API (none under detail/, none includes Highway
+#      or a header that is not installed), compiles each of them in its own
+#      translation unit, and checks that stickslip::core has no I/O libraries;
 #   3. build it and run its two programs;
 #   4. compare what they computed with the installed `stickslip` binary
 #      running the same sweep: summary.csv byte for byte, and the R means.
