@@ -1,13 +1,13 @@
 # cmake --install and the package config behind
-#   find_package(stickslip CONFIG REQUIRED [COMPONENTS core precision io mpi])
+#   find_package(stickslip CONFIG REQUIRED [COMPONENTS core precision io run study mpi])
 # which gives the imported targets
 #   stickslip::core  the simulation library (model, engines, statistics, sweep;
 #                    no I/O: its interface has fmt, Threads and Random123 only)
 #   stickslip::precision  local fits and peak finders (model-free), and the
 #                    drivers above the sweep: peak_sweep, crn_slopes
-#   stickslip::io    config, writers, journal, figures, report (toml++, netCDF)
+#   stickslip::io    config, result files, journal, writers (toml++, netCDF)
 #   stickslip::run   journaled runs (resume, shards, stop), runners, shard merging
-#   stickslip::study the paper study: design, peak refinement, claims, figures, report
+#   stickslip::study the paper study: design, peak refinement, claims, figures, report, plot
 #   stickslip::mpi   the MPI sweep backend, when it was built
 # Each library has its own export set, so a consumer that asks only for
 # `core` needs none of the I/O libraries on its machine.
