@@ -203,7 +203,8 @@ peak_result find_peak_score(const score_group_evaluator& eval, const score_peak_
     const double denom = ss * ss + sv * sv - 2.0 * cov;
     // The weight comes from the previous look's groups: weights fitted to
     // the same groups would favour the mixes whose noise is small by chance
-    // (the stand-in for mu = 5 covered 93.3 % so, 94.2 % now). In a frozen
+    // (the stand-in for mu = 5 covered 93.3 % with weights fitted to the
+    // same groups, 94.2 % with the previous look's). In a frozen
     // window those groups are still in the pool, so this only dilutes that
     // selection; the synthetic coverage is what checks it.
     const double alpha = values_design ? alpha_prior : 1.0;
