@@ -188,24 +188,86 @@ TEST_F(writers, NetcdfStatisticsEqualTheResultSetExactly) {
   }
 }
 
-TEST_F(writers, NetcdfRowsAreTheSameWrittenWholeBySlabOrByPoint) {
+TEST_F(writers, NetcdfRowsAreTheSameWrittenWholeBySlabByPointOrByPartRow) {
   const auto read_all = [](const std::string& path) {
     nc::NcFile f(path, nc::NcFile::read);
     return std::make_pair(doubles(f.getVar("slip_duration_density")),
                           doubles(f.getVar("convergence_stick_duration_mean")));
   };
+  const auto chunks_of = [](const std::string& path, const std::string& name) {
+    nc::NcFile f(path, nc::NcFile::read);
+    nc::NcVar::ChunkMode mode{};
+    std::vector<std::size_t> sizes;
+    f.getVar(name).getChunkingParameters(mode, sizes);
+    return mode == nc::NcVar::nc_CHUNKED ? sizes : std::vector<std::size_t>{};
+  };
+  const auto saved = io::detail::netcdf_chunk_values;
+  io::detail::netcdf_chunk_values = 4096;  // (3, 2, 20) bin variables: one chunk each
   io::write_netcdf(rs(), small_metadata(), dir_ / "whole.nc");
-  const auto saved = io::detail::netcdf_buffer_values;
-  io::detail::netcdf_buffer_values = 60;  // bin rows: one slab per lambda (3 x 20 values)
+  io::detail::netcdf_chunk_values = 60;  // one slab per lambda (2 x 20 values)
   io::write_netcdf(rs(), small_metadata(), dir_ / "slabs.nc");
-  io::detail::netcdf_buffer_values = 3;  // every row alone
+  io::detail::netcdf_chunk_values = 20;  // every row alone
   io::write_netcdf(rs(), small_metadata(), dir_ / "points.nc");
-  io::detail::netcdf_buffer_values = saved;
+  io::detail::netcdf_chunk_values = 3;  // a row in 7 chunks
+  io::write_netcdf(rs(), small_metadata(), dir_ / "parts.nc");
+  io::detail::netcdf_chunk_values = saved;
   const auto whole = read_all(dir_ / "whole.nc");
   EXPECT_EQ(whole.first.size(), 6u * 20u);
   EXPECT_EQ(whole.first[5 * 20 + 7], rs().points[5].stats.slip_duration_hist.density(7));
   EXPECT_EQ(whole, read_all(dir_ / "slabs.nc"));
   EXPECT_EQ(whole, read_all(dir_ / "points.nc"));
+  EXPECT_EQ(whole, read_all(dir_ / "parts.nc"));
+  // Below 4096 values a variable is contiguous (no chunks to set).
+  EXPECT_TRUE(chunks_of(dir_ / "slabs.nc", "slip_duration_density").empty());
+}
+
+TEST(netcdf_chunks, AChunkIsARunOfWholeTrailingDimensions) {
+  using io::detail::chunk_shape;
+  using v = std::vector<std::size_t>;
+  EXPECT_EQ(chunk_shape({40, 8, 50}, 1 << 17), (v{40, 8, 50}));  // the paper grid: one chunk
+  EXPECT_EQ(chunk_shape({400, 250, 50}, 1 << 17), (v{10, 250, 50}));  // 10 slabs of lambda
+  EXPECT_EQ(chunk_shape({400, 250}, 1 << 17), (v{400, 250}));
+  EXPECT_EQ(chunk_shape({400, 250, 50, 50}, 1 << 17), (v{1, 52, 50, 50}));
+  EXPECT_EQ(chunk_shape({4, 3, 20}, 3), (v{1, 1, 3}));  // part of a row
+  EXPECT_EQ(chunk_shape({4, 3, 20}, 20), (v{1, 1, 20}));
+  EXPECT_EQ(chunk_shape({4, 3, 20}, 130), (v{2, 3, 20}));
+}
+
+// Every write covers whole chunks and the writes tile the grid in order:
+// each chunk is compressed once (with netCDF's default chunks, writing a
+// 400 x 250 grid's histograms slab by slab did not end in 11 minutes).
+TEST(netcdf_chunks, RowRunsTileTheGridInWholeChunks) {
+  using io::detail::chunk_shape;
+  using io::detail::row_runs;
+  const std::vector<std::vector<std::size_t>> shapes = {
+      {400, 250, 50}, {40, 8, 50}, {7, 5, 3, 20}, {7, 5, 3, 20, 20}, {1, 9, 20}, {13, 1, 4}};
+  for (const auto& shape : shapes)
+    for (const std::size_t target : {1, 3, 20, 60, 100, 4096, 1 << 17}) {
+      const auto chunk = chunk_shape(shape, target);
+      std::size_t values = 1;
+      for (auto c : chunk) values *= c;
+      EXPECT_LE(values, target);
+      const std::size_t grid_rank = shape.size() - 1;  // the last dimension is the row
+      const std::vector<std::size_t> grid(shape.begin(), shape.begin() + grid_rank);
+      const std::vector<std::size_t> grid_chunk(chunk.begin(), chunk.begin() + grid_rank);
+      std::size_t next = 0, points = 1;
+      for (auto n : grid) points *= n;
+      for (const auto& r : row_runs(grid, grid_chunk)) {
+        ASSERT_EQ(r.first, next);
+        std::size_t covered = 1;
+        for (std::size_t d = 0; d < grid_rank; ++d) {
+          covered *= r.count[d];
+          // whole chunks: starts on a chunk boundary, and ends on one or at the edge
+          EXPECT_EQ(r.start[d] % grid_chunk[d], 0u);
+          EXPECT_TRUE(r.count[d] % grid_chunk[d] == 0 || r.start[d] + r.count[d] == grid[d]);
+          EXPECT_LE(r.start[d] + r.count[d], grid[d]);
+        }
+        EXPECT_EQ(covered, r.points);
+        EXPECT_LE(r.points, std::max<std::size_t>(1, target / shape.back()));
+        next += r.points;
+      }
+      EXPECT_EQ(next, points);
+    }
 }
 
 TEST_F(writers, NetcdfGlobalAttributesHoldSeedConfigAndFixedParameters) {

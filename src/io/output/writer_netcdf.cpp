@@ -61,16 +61,27 @@ std::vector<nc::NcDim> with(std::vector<nc::NcDim> dims, const nc::NcDim& last) 
 // convergence entry past the trace's end); variables that always exist
 // (parameters) carry no _FillValue.
 // Variables of 4096 values or more are stored deflated (level 1) with the
-// byte shuffle filter, in netCDF's default chunks: statistics of
-// neighbouring grid points share exponents and leading bytes, so a paper
-// grid's file shrinks several times for a few percent of the write time;
-// readers decompress transparently (xarray, ncdump, netCDF4). Smaller ones
-// stay contiguous: a chunked variable's index costs more than deflate saves
-// on them (a 1-point sweep's file grew from 162 KB to 513 KB).
+// byte shuffle filter: statistics of neighbouring grid points share exponents
+// and leading bytes, so a paper grid's file shrinks several times for a few
+// percent of the write time; readers decompress transparently (xarray,
+// ncdump, netCDF4). Smaller ones stay contiguous: a chunked variable's index
+// costs more than deflate saves on them (a 1-point sweep's file grew from
+// 162 KB to 513 KB).
+// The chunks are chosen here, not by netCDF: each is a run of whole rows in
+// row-major order (chunk_shape), and put_rows writes one chunk per call, so
+// every chunk is compressed once. With netCDF's default chunks (which span
+// many slabs of the first axis) the slab-wise writes of a 400 x 250 grid
+// decompressed and recompressed the same chunks over and over: hours
+// instead of seconds.
 void compress(nc::NcVar& v, const std::vector<nc::NcDim>& dims) {
+  std::vector<std::size_t> shape;
+  for (const auto& d : dims) shape.push_back(d.getSize());
   std::size_t values = 1;
-  for (const auto& d : dims) values *= d.getSize();
-  if (!dims.empty() && values >= 4096) v.setCompression(true, true, 1);
+  for (auto n : shape) values *= n;
+  if (dims.empty() || values < 4096) return;
+  auto chunks = chunk_shape(shape, netcdf_chunk_values);
+  v.setChunking(nc::NcVar::nc_CHUNKED, chunks);
+  v.setCompression(true, true, 1);
 }
 
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
@@ -108,45 +119,32 @@ void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
   v.putVar(data.data());
 }
 
-// A row of `len` values per grid point (the last dimension is bin or trace).
-// Written in as few calls as memory allows: everything at once, else one slab
-// per index of the first axis, else one point at a time, so memory stays
-// bounded whatever the grid size. Relies on rs.points being in row-major grid
-// order (check_shape verifies it).
+// A row of `len` values per grid point (the dimensions after the grid's).
+// Written one chunk at a time (chunk_shape of the variable's shape, also for
+// a contiguous variable): each call covers whole chunks, so each is
+// compressed once, and the buffer holds at most one chunk (or one row, if a
+// row alone is longer than a chunk). Relies on rs.points being in row-major
+// grid order (check_shape verifies it).
 template <class T>
 void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
               const std::function<void(const point_result&, std::vector<T>&)>& row) {
-  const std::size_t max_buffer = netcdf_buffer_values;
   const auto dims = v.getDims();
-  const std::size_t rank = dims.size();
-  const std::size_t points = rs.points.size();
-  const std::size_t first = dims.front().getSize();  // first grid dim (or `point`)
-  const std::size_t per_slab = points / first;
-  std::size_t batch = 1;  // points per write
-  if (points * len <= max_buffer)
-    batch = points;
-  else if (per_slab * len <= max_buffer)
-    batch = per_slab;
-  std::vector<T> buf(batch * len), one(len);
-  for (std::size_t b = 0; b < points; b += batch) {
-    for (std::size_t i = 0; i < batch; ++i) {
-      row(rs.points[b + i], one);
+  std::vector<std::size_t> shape;
+  for (const auto& d : dims) shape.push_back(d.getSize());
+  const std::size_t grid_rank = std::max<std::size_t>(1, rs.spec.axes.size());
+  const auto chunk = chunk_shape(shape, netcdf_chunk_values);
+  const auto runs = row_runs(std::vector<std::size_t>(shape.begin(), shape.begin() + grid_rank),
+                             std::vector<std::size_t>(chunk.begin(), chunk.begin() + grid_rank));
+  std::vector<T> buf, one(len);
+  for (const auto& run : runs) {
+    buf.resize(run.points * len);
+    for (std::size_t i = 0; i < run.points; ++i) {
+      row(rs.points[run.first + i], one);
       std::copy(one.begin(), one.end(), buf.begin() + static_cast<std::ptrdiff_t>(i * len));
     }
-    std::vector<std::size_t> start(rank, 0), count(rank);
-    for (std::size_t d = 0; d < rank; ++d) count[d] = dims[d].getSize();
-    if (batch == points) {
-      // the whole variable
-    } else if (batch == per_slab) {
-      start[0] = b / per_slab;
-      count[0] = 1;
-    } else {
-      const auto& idx = rs.points[b].index;
-      for (std::size_t d = 0; d < idx.size(); ++d) {
-        start[d] = idx[d];
-        count[d] = 1;
-      }
-    }
+    auto start = run.start, count = run.count;
+    start.resize(shape.size(), 0);
+    for (std::size_t d = grid_rank; d < shape.size(); ++d) count.push_back(shape[d]);
     v.putVar(start, count, buf.data());
   }
 }

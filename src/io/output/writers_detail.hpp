@@ -41,10 +41,32 @@ namespace stickslip::io::detail {
 // A parameter's NetCDF variable name: its long alias with '_' ("switch_rate").
 [[nodiscard]] std::string parameter_variable_name(const std::string& symbol);
 
-// How many values results.nc's writer buffers per call for the (grid, bin)
-// and (grid, trace) variables. Tests lower it to exercise the slab-wise and
-// point-wise paths.
-inline std::size_t netcdf_buffer_values = std::size_t{1} << 22;  // 32 MiB of doubles
+// The most values one chunk of a compressed results.nc variable holds, and
+// so one write call of put_rows (1 MiB of doubles). Tests lower it to
+// exercise chunks of a few rows, of one row and of part of a row.
+inline std::size_t netcdf_chunk_values = std::size_t{1} << 17;
+
+// The chunk shape of a variable of `shape` (row-major) holding at most
+// `target` values: [1, ..., 1, c, n_{j+1}, ..., n_last], the trailing
+// dimensions whole and c = min(n_j, target / (n_{j+1} ... n_last)) for the
+// outermost j where that is >= 1 (the last dimension alone is cut to
+// `target`). A chunk is thus a contiguous row-major run of whole sub-boxes,
+// and writing it whole (row_runs) never touches another chunk.
+[[nodiscard]] std::vector<std::size_t> chunk_shape(const std::vector<std::size_t>& shape,
+                                                   std::size_t target);
+
+// One write of a chunk-aligned hyperslab over the grid dimensions: points
+// [first, first + points) in row-major order, at `start` with `count`.
+struct row_run {
+  std::size_t first = 0, points = 0;
+  std::vector<std::size_t> start, count;
+};
+// The runs that tile a grid of `grid` (row-major) in order, each covering
+// the grid extent of one chunk of shape `chunk` (the grid part of a
+// chunk_shape): a chunk that is partial in dimension j is a run of
+// chunk[j] (fewer at the edge) indices of j with the inner dimensions whole.
+[[nodiscard]] std::vector<row_run> row_runs(const std::vector<std::size_t>& grid,
+                                            const std::vector<std::size_t>& chunk);
 
 // Throws stickslip::error (internal) unless rs has one point per grid point.
 void check_shape(const result_set& rs);
