@@ -366,11 +366,6 @@ class realization_observer : public observer_base {
   [[nodiscard]] bool observes_times() const noexcept { return sampler_.active(); }
   [[nodiscard]] const state_sampler& sampler() const noexcept { return sampler_; }
   void sample_segment(const segment& s) { sampler_.on_segment(s); }
-  // The lane engine's path: the state at sampler().next_time(), evaluated
-  // by the engine itself (state_sampler::record_next).
-  void record_observed_state(double x, double xd, double v, bool sticking) noexcept {
-    sampler_.record_next(x, xd, v, sticking);
-  }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
   // Without every observe time sampled (an engine that missed a segment),
   // observed_states is nullptr, and point_statistics::add refuses it.
