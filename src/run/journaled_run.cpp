@@ -45,35 +45,79 @@ io::journal_contents load_journal(const sweep_spec& spec, const run_plan& plan) 
 // advanced since the last one, the blocks waiting for an earlier block (each
 // once), and the unit just finished (not merged yet), then a segment.
 // Called from the runner's serialized unit_done hook, where the merger is
-// not being changed.
+// not being changed. The merger holds a window of the grid whose point 0 is
+// point `offset` of the journal's spec (grid_window).
 class prefix_checkpoint {
  public:
-  prefix_checkpoint(const sweep_spec& spec, const ordered_merger& merger, io::journal_writer& journal)
-      : merger_(merger), journal_(journal), written_(point_count(spec)) {
+  prefix_checkpoint(const sweep_spec& window, const ordered_merger& merger,
+                    io::journal_writer& journal, std::size_t offset)
+      : merger_(merger), journal_(journal), offset_(offset), written_(point_count(window)) {
     for (std::size_t p = 0; p < written_.size(); ++p) written_[p] = merger.merged_blocks(p);
   }
   void write(const work_unit* just_done, const block_result* result) {
     for (std::size_t p = 0; p < written_.size(); ++p) {
       const auto blocks = merger_.merged_blocks(p);
       if (blocks == written_[p]) continue;
-      journal_.add_prefix(p, blocks, merger_.merged(p));
+      journal_.add_prefix(p + offset_, blocks, merger_.merged(p));
       written_[p] = blocks;
     }
     std::erase_if(waiting_written_, [&](const work_unit& u) {
       return u.block < merger_.merged_blocks(u.point);
     });
     for (const auto& [u, r] : merger_.waiting())
-      if (waiting_written_.insert(u).second) journal_.add(u, r);
-    if (just_done) journal_.add(*just_done, *result);
+      if (waiting_written_.insert(u).second) journal_.add({u.point + offset_, u.block}, r);
+    if (just_done) journal_.add({just_done->point + offset_, just_done->block}, *result);
     journal_.flush();
   }
 
  private:
   const ordered_merger& merger_;
   io::journal_writer& journal_;
+  std::size_t offset_;
   std::vector<std::uint64_t> written_;  // blocks in the last prefix written, per point
   std::set<work_unit> waiting_written_;
 };
+
+// A window of the grid: the slabs [first, first + count) of its first axis,
+// as a spec of its own whose point i is point offset + i of the whole grid
+// (row-major order). A point's results depend only on its parameters (its
+// random streams are keyed by them, point_key; its bins by
+// histogram_parameters), so a window's points have the same bits as in the
+// whole grid.
+struct grid_window {
+  sweep_spec spec;
+  std::size_t offset = 0;
+};
+
+// Whether `spec` may run window by window on `r`: a whole run (a shard
+// journals units for merge instead) on a runner that takes any spec, a grid
+// of more than one window, and nothing that depends on the whole grid at run
+// time (a sensitivity design; a survival grid still to be resolved).
+bool runs_in_windows(const sweep_spec& spec, const run_plan& plan, const runner& r) {
+  if (plan.slice || !r.runs_any_spec() || plan.window_points == 0 || spec.axes.empty()) return false;
+  if (is_sensitivity(spec)) return false;
+  if (spec.statistics.survival &&
+      (spec.survival.stick_duration_max == 0.0 || spec.survival.slip_duration_max == 0.0))
+    return false;
+  return point_count(spec) > plan.window_points;
+}
+
+std::vector<grid_window> grid_windows(const sweep_spec& spec, const run_plan& plan,
+                                      const runner& r) {
+  if (!runs_in_windows(spec, plan, r)) return {{spec, 0}};
+  const auto& first_axis = spec.axes.front().values;
+  const std::size_t slab = point_count(spec) / first_axis.size();  // points per slab
+  const std::size_t per_window = std::max<std::size_t>(1, plan.window_points / slab);
+  std::vector<grid_window> out;
+  for (std::size_t a = 0; a < first_axis.size(); a += per_window) {
+    const std::size_t n = std::min(per_window, first_axis.size() - a);
+    grid_window w{spec, a * slab};
+    w.spec.axes.front().values.assign(first_axis.begin() + static_cast<std::ptrdiff_t>(a),
+                                      first_axis.begin() + static_cast<std::ptrdiff_t>(a + n));
+    out.push_back(std::move(w));
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -84,27 +128,12 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     throw invalid_value("--shard", fmt::format("{}/{}", plan.slice->index, plan.slice->count),
                         "no shards with a precision target (--target-ci): the stop rule "
                         "needs every block of a point in one run");
-  check_result_memory(spec, r.threads());  // every front end: sweep, reproduce, Python
+  const bool windowed = runs_in_windows(spec, plan, r);
+  // For every front end (sweep, reproduce, Python), with what the windows hold.
+  check_result_memory(spec, r.threads(), windowed ? plan.window_points : 0);
   run_outcome out;
   io::journal_contents loaded = load_journal(spec, plan);
   out.metadata = loaded.metadata ? *loaded.metadata : fresh;
-
-  ordered_merger merger(spec);
-  if (plan.slice) merger.discard_results();  // a shard only journals (merge combines them)
-  const std::uint64_t nb = blocks_per_point(spec);
-  std::vector<char> done(unit_count(spec), 0);
-  for (auto& [point, prefix] : loaded.prefixes) {
-    std::fill_n(done.begin() + static_cast<std::ptrdiff_t>(point * nb), prefix.blocks, 1);
-    out.resumed_units += prefix.blocks;
-    if (!plan.slice) merger.restore(std::move(prefix));
-  }
-  loaded.prefixes.clear();
-  for (auto& [u, res] : loaded.units) {
-    done[u.point * nb + u.block] = 1;
-    merger.add(u, std::move(res));
-    ++out.resumed_units;
-  }
-  loaded.units.clear();
 
   io::journal_writer journal(plan.dir, spec, out.metadata, plan.slice ? plan.slice->tag() : "run",
                              plan.checkpoint_interval);
@@ -112,44 +141,94 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   // blocks of a point are not contiguous, and a sweep that keeps raw
   // records journal every unit.
   const bool journal_prefixes = !plan.slice && !spec.keep_records;
-  prefix_checkpoint checkpoint(spec, merger, journal);
+  const std::uint64_t nb = blocks_per_point(spec);
+  std::vector<char> done(unit_count(spec), 0);
+  for (const auto& [point, prefix] : loaded.prefixes) {
+    std::fill_n(done.begin() + static_cast<std::ptrdiff_t>(point * nb), prefix.blocks, 1);
+    out.resumed_units += prefix.blocks;
+  }
+  for (const auto& [u, res] : loaded.units) {
+    done[u.point * nb + u.block] = 1;
+    ++out.resumed_units;
+  }
+  if (plan.slice) loaded.prefixes.clear();  // a shard journals its own units only
   auto to_run = [&](const work_unit& u) {
     return !done[u.point * nb + u.block] && (!plan.slice || plan.slice->owns(spec, u));
   };
   std::optional<work_meter> work;
-  sweep_hooks hooks;
-  if (plan.progress) {
-    work.emplace(spec, to_run);
-    hooks.progress = [&](std::uint64_t d, std::uint64_t total) {
-      plan.progress(d, total, work->fraction());
+  if (plan.progress) work.emplace(spec, to_run);
+  const auto stopped = [&] { return plan.stop && plan.stop->requested(); };
+
+  // A large grid runs window by window (grid_windows): only one window's
+  // accumulators are held in full; a finished window's points keep what the
+  // outputs read (release_unselected) and join `all` in grid order.
+  result_set all;
+  all.spec = spec;
+  if (!plan.slice) all.points.reserve(point_count(spec));
+  if (!plan.slice && spec.keep_records) all.records.reserve(point_count(spec));
+  std::uint64_t merged_before = 0;  // units merged in the earlier windows
+  for (auto& w : grid_windows(spec, plan, r)) {
+    if (stopped()) {  // the later windows' journaled units count as finished
+      for (const auto& [point, prefix] : loaded.prefixes) merged_before += prefix.blocks;
+      merged_before += loaded.units.size();
+      break;
+    }
+    const std::size_t points = point_count(w.spec), offset = w.offset;
+    ordered_merger merger(w.spec);
+    if (plan.slice) merger.discard_results();  // a shard only journals (merge combines them)
+    for (auto it = loaded.prefixes.lower_bound(offset);
+         it != loaded.prefixes.end() && it->first < offset + points;) {
+      it->second.point -= offset;
+      merger.restore(std::move(it->second));
+      it = loaded.prefixes.erase(it);
+    }
+    for (auto it = loaded.units.lower_bound(work_unit{offset, 0});
+         it != loaded.units.end() && it->first.point < offset + points;) {
+      merger.add({it->first.point - offset, it->first.block}, std::move(it->second));
+      it = loaded.units.erase(it);
+    }
+    const auto whole = [offset](const work_unit& u) { return work_unit{u.point + offset, u.block}; };
+    prefix_checkpoint checkpoint(w.spec, merger, journal, offset);
+    sweep_hooks hooks;
+    if (plan.progress)
+      hooks.progress = [&](std::uint64_t d, std::uint64_t) {
+        plan.progress(merged_before + d, unit_count(spec), work->fraction());
+      };
+    hooks.unit_done = [&](const work_unit& u, const block_result& res) {
+      ++out.computed_units;
+      if (work) work->add(whole(u));
+      if (!journal_prefixes)
+        journal.add(whole(u), res);
+      else if (journal.due())
+        checkpoint.write(&u, &res);  // u is merged right after this hook
     };
+    hooks.wanted = [&](const work_unit& u) { return !stopped() && to_run(whole(u)); };
+    r.run(w.spec, merger, hooks);
+    if (journal_prefixes) checkpoint.write(nullptr, nullptr);
+    merged_before += merger.merged_units();
+    if (stopped() || plan.slice) continue;
+    if (!merger.complete())
+      throw error(exit_code::internal, "the run ended with units missing from the merge");
+    auto part = make_result_set(w.spec, std::move(merger));
+    for (std::size_t i = 0; i < part.points.size(); ++i) {
+      auto& p = part.points[i];
+      p.index = point_index(spec, offset + i);
+      if (windowed) release_unselected(p.stats, spec);
+      all.points.push_back(std::move(p));
+    }
+    for (auto& rec : part.records) all.records.push_back(std::move(rec));
   }
-  hooks.unit_done = [&](const work_unit& u, const block_result& res) {
-    ++out.computed_units;
-    if (work) work->add(u);
-    if (!journal_prefixes)
-      journal.add(u, res);
-    else if (journal.due())
-      checkpoint.write(&u, &res);  // u is merged right after this hook
-  };
-  hooks.wanted = [&](const work_unit& u) {
-    return !(plan.stop && plan.stop->requested()) && to_run(u);
-  };
-  r.run(spec, merger, hooks);
-  if (journal_prefixes) checkpoint.write(nullptr, nullptr);
   journal.flush();
   out.elapsed_this_run = seconds_since(t0);
-  if (plan.stop && plan.stop->requested()) {
+  if (stopped()) {
     const int sig = plan.stop->reason();
     throw error(static_cast<exit_code>(128 + sig),
                 fmt::format("interrupted by signal {}: {} finished units are journaled in {}; "
                             "continue with the same command and --resume",
-                            sig, merger.merged_units(), io::journal_path(plan.dir)));
+                            sig, merged_before, io::journal_path(plan.dir)));
   }
   if (plan.slice) return out;
-  if (!merger.complete())
-    throw error(exit_code::internal, "the run ended with units missing from the merge");
-  out.results = make_result_set(spec, std::move(merger));
+  out.results = std::move(all);
   out.results->elapsed_seconds = loaded.elapsed_seconds + out.elapsed_this_run;
   out.results->threads = r.threads();
   out.results->ranks = static_cast<unsigned>(r.ranks());

@@ -8,32 +8,64 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/run/runner.hpp"
+#include "stickslip/statistics_groups.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 namespace stickslip::run {
+namespace {
 
-double estimated_result_bytes(const sweep_spec& spec, unsigned threads) noexcept {
-  const double points = static_cast<double>(point_count(spec));
-  const double blocks = static_cast<double>(blocks_per_point(spec));
-  const double trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
+// The heap of one point's statistics: its histograms of `densities`
+// quantities and `joints` joint histograms (of (bins + 2)^2 cells, plus the
+// two binnings each carries), the observe times, the convergence trace and
+// ~256 bytes of small vectors (level fractions, the trace's and the grid
+// index's blocks), with malloc's 16 bytes per block.
+double statistics_heap(const sweep_spec& spec, double densities, double joints, double trace) {
   const double bins = static_cast<double>(spec.histograms.bins);
+  const double histogram = 8.0 * bins + 16.0;
   // The observe times (accumulators/time_statistics.hpp): about 3 KB per
   // time and point (moments, level counts and two quantile sketches of a
   // few hundred bins: measured 146 MB on the 320-point paper grid at 101
   // times, 1.0 GB at 1001, against 42 MB without).
   const double observed = 3072.0 * static_cast<double>(spec.observe_times.size());
-  const double statistics = 1024.0 + 4.0 * 8.0 * bins +
-                            8.0 * bins * bins * static_cast<double>(joint_histograms().size()) +
-                            observed;
+  return densities * histogram + joints * (8.0 * (bins + 2) * (bins + 2) + 16.0 + 2 * histogram) +
+         observed + 40.0 * trace + 256.0;
+}
+
+}  // namespace
+
+double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
+                              std::size_t window_points) noexcept {
+  const double points = static_cast<double>(point_count(spec));
+  const double blocks = static_cast<double>(blocks_per_point(spec));
+  const double trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
+  double all_densities = 0, kept_densities = 0;
+  for (const auto& q : quantities()) {
+    if (!q.density) continue;
+    all_densities += 1;
+    if (selects(spec.statistics, q)) kept_densities += 1;
+  }
+  const double all_joints = static_cast<double>(joint_histograms().size());
+  const double kept_joints = selects_joint_histograms(spec.statistics) && !spec.means_only ? all_joints : 0.0;
+  // While merged, every accumulator (point_statistics allocates them all);
+  // once finished, what the outputs read (release_unselected).
+  const double merging = static_cast<double>(sizeof(point_statistics)) +
+                         statistics_heap(spec, all_densities, all_joints, trace);
+  const double finished = static_cast<double>(sizeof(point_result)) +
+                          statistics_heap(spec, kept_densities, kept_joints, trace);
   const double records = spec.keep_records ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
+  const double window = window_points == 0 ? points : std::min(points, static_cast<double>(window_points));
   const double in_flight = std::min(static_cast<double>(resolve_threads(threads)) *
                                         static_cast<double>(units_per_batch(spec)),
                                     static_cast<double>(unit_count(spec)));
-  return 2.0 * points * (statistics + 40.0 * trace + records) + in_flight * statistics;
+  // Without windows the merger's statistics become the result set's
+  // (moved): one copy of each point at a time.
+  const double held = window_points == 0 ? points * (merging + sizeof(model_parameters) + 64.0)
+                                         : window * merging + points * finished;
+  return held + points * records + in_flight * merging;
 }
 
-void check_result_memory(const sweep_spec& spec, unsigned threads) {
-  const double bytes = estimated_result_bytes(spec, threads);
+void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t window_points) {
+  const double bytes = estimated_result_bytes(spec, threads, window_points);
   const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
   if (ram > 0 && bytes > 0.8 * ram)
@@ -43,6 +75,13 @@ void check_result_memory(const sweep_spec& spec, unsigned threads) {
                             "use fewer grid points, bins{}",
                             bytes / (1u << 30), ram / (1u << 30),
                             spec.observe_times.empty() ? "" : " or observe times"));
+}
+
+void release_unselected(point_statistics& stats, const sweep_spec& spec) {
+  if (!selects_joint_histograms(spec.statistics) || spec.means_only)
+    for (const auto& j : joint_histograms()) stats.*j.counts = histogram2d{};
+  for (const auto& q : quantities())
+    if (q.density && !selects(spec.statistics, q)) stats.*q.density = histogram{};
 }
 
 }  // namespace stickslip::run

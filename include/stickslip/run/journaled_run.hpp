@@ -45,6 +45,14 @@ struct run_plan {
   std::string replace_advice;
   io::output_options outputs;  // what the outputs hold beyond the defaults
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
+  // A whole run on a runner that takes any spec (runner::runs_any_spec)
+  // merges a grid of more points than this window by window: whole slabs of
+  // its first axis, at least one, about this many points at a time. Only a
+  // window's accumulators are held in full (26 KB a point with the default
+  // bins); the finished points of such a run keep only what the outputs
+  // read (release_unselected: no unselected histograms). 0: the whole grid
+  // at once. The outputs are the same bits either way.
+  std::size_t window_points = 2048;
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
   // fraction of this run's expected work done (work_meter: for an honest

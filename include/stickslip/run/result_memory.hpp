@@ -8,18 +8,31 @@
 
 namespace stickslip::run {
 
-// Bytes held at once by a sweep run on `threads` threads (0 = all cores):
-// per grid point the accumulators, four histograms of `bins` counts, the
-// joint (D, X) histograms of bins^2 counts each (allocated for every point,
-// also when the family's statistics are off) and the convergence trace
-// (every block up to 64, then 32 entries per doubling:
-// records_convergence_after), plus the raw records when kept, all twice (the
-// writers hold about as much again); and one point's statistics per block in
-// flight (a batch per thread, at most every unit).
-[[nodiscard]] double estimated_result_bytes(const sweep_spec& spec, unsigned threads) noexcept;
+// Bytes held at once by a sweep run on `threads` threads (0 = all cores),
+// merged `window_points` points at a time (run_plan::window_points; 0 = the
+// whole grid at once): the points being merged hold every accumulator
+// (sizeof(point_statistics), the histograms of every binned quantity, the
+// joint (D, X) histograms of (bins + 2)^2 cells each, allocated for every
+// point also when the family's statistics are off, the observe times and
+// the convergence trace: every block up to 64, then 32 entries per
+// doubling, records_convergence_after); the finished points (point_result)
+// only what the outputs read (release_unselected); plus the raw records when
+// kept, and one point's statistics per block in flight (a batch per thread,
+// at most every unit). The writers add no copy (results.nc is written a
+// chunk of at most 1 MiB at a time, the text files a buffer at a time).
+[[nodiscard]] double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
+                                            std::size_t window_points = 0) noexcept;
 
 // Throws invalid_input (exit 2) when estimated_result_bytes exceeds 80 % of
 // this machine's RAM, naming both.
-void check_result_memory(const sweep_spec& spec, unsigned threads);
+void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t window_points = 0);
+
+// Frees what no output of `spec` reads from a point's finished statistics:
+// the joint histograms unless selected (point_statistics allocates their
+// (bins + 2)^2 cells at every point, ~22 KB with 50 bins, also when the
+// family statistics are off) and the histograms of unselected quantities.
+// The writers read only selected statistics, so the outputs keep their bits.
+// Not for statistics that are merged further or journaled.
+void release_unselected(point_statistics& stats, const sweep_spec& spec);
 
 }  // namespace stickslip::run

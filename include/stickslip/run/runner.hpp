@@ -19,6 +19,10 @@ class runner {
   // What the outputs record: processes (MPI ranks) and threads per process.
   [[nodiscard]] virtual int ranks() const noexcept { return 1; }
   [[nodiscard]] virtual unsigned threads() const noexcept = 0;
+  // Whether run() may be handed any spec, one after another (run_journaled
+  // runs a large grid window by window); a runner whose processes agreed on
+  // one spec beforehand (MPI) says no.
+  [[nodiscard]] virtual bool runs_any_spec() const noexcept { return false; }
 };
 
 // All units in this process on `threads` threads (0 = all cores): run_units.
@@ -27,6 +31,7 @@ class thread_runner final : public runner {
   explicit thread_runner(unsigned threads) noexcept;
   void run(const sweep_spec& s, ordered_merger& merger, const sweep_hooks& hooks) override;
   [[nodiscard]] unsigned threads() const noexcept override { return threads_; }
+  [[nodiscard]] bool runs_any_spec() const noexcept override { return true; }
 
  private:
   unsigned threads_;
