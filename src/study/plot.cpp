@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "plot_selection.hpp"
+#include "plot_sensitivity.hpp"
 #include "stickslip/error.hpp"
 
 namespace stickslip::study {

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "stickslip/io/result_file.hpp"
-#include "stickslip/study/plot.hpp"
 
 namespace stickslip::study::detail {
 
@@ -88,8 +87,5 @@ struct quantity_slice {
 [[nodiscard]] std::string short_number(double x);
 // A file stem from free text: letters, digits, '.', '-', '_'; others -> '_'.
 [[nodiscard]] std::string stem_text(const std::string& s);
-
-// The bars of a sensitivity result (plot_sensitivity.cpp).
-[[nodiscard]] bar_plot plan_sensitivity_bars(const io::result_file& f, const plot_request& r);
 
 }  // namespace stickslip::study::detail

@@ -1,6 +1,8 @@
-// A sensitivity result as bars (plot_selection.hpp): one group per index
+// A sensitivity result as bars (plot_sensitivity.hpp): one group per index
 // variable over `input` (by default first_order and total_order), one bar
 // per uncertain input, whiskers from the variable's _ci95_low/_high.
+#include "plot_sensitivity.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 

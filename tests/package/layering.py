@@ -76,9 +76,6 @@ KNOWN_COMPONENT_CYCLES = {
      "include/stickslip/uncertainty/uncertain_realization.hpp"):
         "sweep.cpp sends a spec with laws to uncertain_block, which takes the "
         "sweep_spec: the engine choice is to move out of sweep.cpp",
-    ("include/stickslip/study/plot.hpp", "src/study/plot_selection.hpp"):
-        "plot_selection.hpp declares plan_sensitivity_bars, which takes plot.hpp's "
-        "types, and plot.cpp uses the selection helpers",
 }
 
 

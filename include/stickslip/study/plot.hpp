@@ -18,16 +18,9 @@
 
 #include "stickslip/io/result_file.hpp"
 #include "stickslip/study/plot_figures.hpp"
+#include "stickslip/study/plot_request.hpp"
 
 namespace stickslip::study {
-
-struct plot_request {
-  std::string y, x, by;          // --y, --x, --by ("" when not given)
-  std::vector<std::string> at;   // each --at: "NAME=VALUE[,NAME=VALUE...]"
-  std::string histogram;         // --histogram STAT
-  std::string survival;          // --survival stick|slip
-  bool time = false, map = false, logx = false;
-};
 
 // DIR/results.nc, else DIR/sensitivity.nc. Throws invalid_input when DIR
 // holds neither.
