@@ -7,11 +7,13 @@
 //     t_j, one that ends there is not); a zero-length segment holds no time;
 //   - t_j = t_a belongs to the last segment (end = t_a): the state at t_a.
 // The reference engines pass every segment (state_sampling_observer in
-// sweep.cpp); the lane engine builds the segment of a round only when an
-// observe time falls in it (fast_lanes.cpp), with the same fields, so both
-// give the same bits.
+// sweep.cpp); the lane engine queues each observe time in the round that
+// holds it and fills the states in batches with the vector forms of
+// evaluate()'s closed forms and kernels and of record_next's energy and
+// level (fast_lanes.cpp): both give the same bits.
 #pragma once
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "stickslip/accumulators/time_statistics.hpp"
@@ -32,7 +34,9 @@ class state_sampler {
   [[nodiscard]] bool active() const noexcept { return times_ && !times_->empty(); }
   void reset() noexcept { next_ = 0; }
   // The next observe time not yet sampled (+inf when all are).
-  [[nodiscard]] double next_time() const noexcept;
+  [[nodiscard]] double next_time() const noexcept {
+    return next_ < states_.size() ? (*times_)[next_] : std::numeric_limits<double>::infinity();
+  }
   // Whether segment `s` holds an observe time not yet sampled.
   [[nodiscard]] bool holds_next(const segment& s) const noexcept {
     return next_ < states_.size() &&
@@ -41,9 +45,21 @@ class state_sampler {
   void on_segment(const segment& s) {
     if (holds_next(s)) sample(s);
   }
+  // The state (x, x') at next_time(), evaluated by the caller as evaluate()
+  // would, in a segment at belt velocity v; the time is then sampled.
+  // Precondition: !complete().
+  void record_next(double position, double velocity, double belt_velocity, bool sticking) noexcept;
+  // The lane engine's path: it fills the state of every time itself, in
+  // batches, with record_next's values (fast_lanes.cpp), and then marks them
+  // sampled. Precondition of mark_sampled: each of the times filled.
+  [[nodiscard]] observed_states& states_to_fill() noexcept { return states_; }
+  void mark_sampled() noexcept { next_ = states_.size(); }
+  [[nodiscard]] const std::vector<double>& levels() const noexcept { return levels_; }
+  [[nodiscard]] double mass() const noexcept { return mass_; }
+  [[nodiscard]] double stiffness() const noexcept { return stiffness_; }
   // After the last segment: every time sampled (the segments tile [0, t_a]).
   [[nodiscard]] bool complete() const noexcept { return next_ == states_.size(); }
-  [[nodiscard]] const std::vector<observed_state>& states() const noexcept { return states_; }
+  [[nodiscard]] const observed_states& states() const noexcept { return states_; }
 
  private:
   void sample(const segment& s);
@@ -51,7 +67,7 @@ class state_sampler {
   std::vector<double> levels_;
   double window_ = 0.0, mass_ = 0.0, stiffness_ = 0.0;
   std::size_t next_ = 0;
-  std::vector<observed_state> states_;
+  observed_states states_;
 };
 
 }  // namespace stickslip

@@ -115,7 +115,7 @@ struct realization_samples {
   double observed_window = 0.0;
   // The states at the observe times (sweep_spec::observe_times,
   // state_sampler.hpp), one per time; nullptr without observe times.
-  const std::vector<observed_state>* observed_states = nullptr;
+  const stickslip::observed_states* observed_states = nullptr;
 };
 
 struct convergence_point {
@@ -366,6 +366,9 @@ class realization_observer : public observer_base {
   [[nodiscard]] bool observes_times() const noexcept { return sampler_.active(); }
   [[nodiscard]] const state_sampler& sampler() const noexcept { return sampler_; }
   void sample_segment(const segment& s) { sampler_.on_segment(s); }
+  // The lane engine's path: it fills the states at the observe times itself
+  // (state_sampler::states_to_fill, mark_sampled).
+  [[nodiscard]] state_sampler& sampler_to_fill() noexcept { return sampler_; }
   [[nodiscard]] realization_record& record() noexcept { return rec_; }
   // Without every observe time sampled (an engine that missed a segment),
   // observed_states is nullptr, and point_statistics::add refuses it.

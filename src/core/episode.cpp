@@ -2,15 +2,19 @@
 
 #include <cmath>
 
-#include "stickslip/detail/event_physics.hpp"
+#include "stickslip/event_physics.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/model/damped_slip.hpp"
 
 namespace stickslip {
 
 // The closed forms of the engines themselves: a stick moves at v
 // (stick_position), an undamped slip rotates about its centre
-// (rotated_position, rotated_velocity of detail/event_physics.hpp), a damped
-// one decays as model/damped_slip.hpp advances it.
+// (rotated_position, rotated_velocity of event_physics.hpp) with the
+// engines' own sine and cosine (fast_math.hpp), a damped one decays as
+// model/damped_slip.hpp advances it. So the lane engine, which samples the
+// observe times with the vector forms of the same kernels
+// (evaluate_observe_times in fast_lanes.cpp), gets the same bits.
 phase_point evaluate(const segment& s, double t) noexcept {
   namespace physics = detail::physics;
   const double dt = t - s.start;
@@ -19,7 +23,7 @@ phase_point evaluate(const segment& s, double t) noexcept {
   const double y = s.position - s.center;
   if (s.decay_rate == 0.0) {
     const physics::slip_orbit<double> o{s.center, y, s.omega * y, 0.0};
-    const double c = std::cos(s.omega * dt), sn = std::sin(s.omega * dt);
+    const double c = detail::fm::cos(s.omega * dt), sn = detail::fm::sin(s.omega * dt);
     return {physics::rotated_position(o, s.velocity, s.omega, c, sn),
             physics::rotated_velocity(o, s.velocity, c, sn)};
   }

@@ -5,7 +5,7 @@
 // AVX-512, 2 with SSE4, 1 with the SCALAR baseline). This file is compiled once per Highway
 // target (foreach_target.h re-includes it) and the entry points at its end
 // dispatch at run time to the target of the CPU, the same target the scalar
-// kernels of detail/fast_math.hpp use.
+// kernels of fast_math.hpp use.
 //
 // Each round, for every lane (= one realization in flight):
 //   1. scalar: start a realization in an idle lane;
@@ -14,7 +14,7 @@
 //      return) or atan2 (general root), and the sin and cos of the phase
 //      w * (min(t_switch, t_a) - t) when some slip ends at a switch or at t_a,
 //      with the same kernels (detail/fast_math_simd.hpp) that the scalar
-//      integrator calls one lane at a time through detail/fast_math.hpp;
+//      integrator calls one lane at a time through fast_math.hpp;
 //   3. vector: finish both outcomes exactly as `simulate` does, count the
 //      events, and leave one bit per lane for each piece of bookkeeping
 //      (close an episode, draw the next switch, finish the realization);
@@ -23,7 +23,7 @@
 // is a vector step as well: count the event, check the max_events bound.
 // The closed-form steps of an event (stick end, slip orbit, rotation, root
 // position and angle arguments, mirror return) are the templates of
-// detail/event_physics.hpp that `simulate` (include/stickslip/integrator.hpp)
+// event_physics.hpp that `simulate` (include/stickslip/integrator.hpp)
 // calls with doubles, here called with vectors; the scalar paths share
 // simulate's decisions (physics::mode_at_start, physics::resolve_contact) and
 // root-angle helpers. What the vector step repeats in mask form (the contact
@@ -79,9 +79,9 @@
 
 #include "stickslip/belt_switches.hpp"
 #include "stickslip/burn_in.hpp"
-#include "stickslip/detail/event_physics.hpp"
+#include "stickslip/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
-#include "stickslip/detail/fast_math.hpp"
+#include "stickslip/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
@@ -116,11 +116,11 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct bound_exceeded {};
 
-// The closed-form steps of detail/event_physics.hpp, instantiated for this
+// The closed-form steps of event_physics.hpp, instantiated for this
 // target's vectors (see event_physics_steps.inl); the scalar decisions stay
 // physics:: (stickslip::detail::physics).
 namespace vphysics {
-#include "stickslip/detail/event_physics_steps.inl"
+#include "stickslip/event_physics_steps.inl"
 }  // namespace vphysics
 
 // The log kernel of this target, inlined into the switch draws of the lanes:
@@ -267,11 +267,11 @@ class lane_engine {
   static constexpr bool with_pieces = observes_pieces<observer>;
   // episode::switches_before and event_counts::switch_time_sum (observer.hpp)
   static constexpr bool with_causal = wants_causal_score<observer>;
-  // An observer with a state sampler (realization_observer::sample_segment):
-  // with observe times, the segment of a round that holds a lane's next
-  // observe time is built and handed to it (sample_observe_times).
-  static constexpr bool samples_states =
-      requires(observer& o, const segment& sg) { o.sample_segment(sg); };
+  // An observer with a state sampler (realization_observer::
+  // sampler_to_fill): with observe times, the round that holds a lane's next
+  // observe time queues it (queue_observe_times), and the queue is evaluated
+  // in batches (evaluate_observe_times) into the sampler's states.
+  static constexpr bool samples_states = requires(observer& o) { o.sampler_to_fill(); };
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
@@ -301,6 +301,16 @@ class lane_engine {
     pool_.reserve(n);
     for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());
     done_.assign(n, 0);
+    if constexpr (samples_states)
+      if (observing_) {
+        // one point: every observer's sampler has the same mass, stiffness
+        // and levels (two: the lanes run two-level belts only)
+        const state_sampler& sm = pool_.front().sampler();
+        observed_mass_ = sm.mass(), observed_stiffness_ = sm.stiffness();
+        if (sm.levels().size() != 2)
+          throw error(exit_code::internal, "the lane engine samples two belt levels only");
+        observed_levels_[0] = sm.levels()[0], observed_levels_[1] = sm.levels()[1];
+      }
     for (int l = 0; l < lanes; ++l) {
       time_[l] = position_[l] = velocity_[l] = next_switch_time_[l] = 0.0;
       belt_velocity_[l] = slip_centre_sign_[l] = 1.0;
@@ -337,8 +347,11 @@ class lane_engine {
     realization_[l] = r;
     observer_[l] = &pool_[(r - first_) % pool_.size()];
     collect_.begin(*observer_[l], r, ic);
-    if constexpr (samples_states)
-      next_observe_time_[l] = observing_ ? observer_[l]->sampler().next_time() : inf;
+    if constexpr (samples_states) {
+      observe_cursor_[l] = 0;
+      next_observe_time_[l] = observing_ ? s_.observe_times.front() : inf;
+      if (observing_) observed_[l] = &observer_[l]->sampler_to_fill().states_to_fill();
+    }
     active_[l] = true;
     busy_[l] = 1.0;
     belt_switches_[l] = stick_onsets_[l] = stick_breaks_[l] = slip_reversals_[l] = 0.0;
@@ -373,6 +386,15 @@ class lane_engine {
   }
 
   void finish_realization(int l) {
+    if constexpr (samples_states)
+      if (observing_) {
+        // every time queued (the rounds tile [0, t_a]) and evaluated
+        // (side_effects): the sampler counts them, so the observer hands
+        // its states over (realization_observer::samples)
+        if (observe_cursor_[l] != s_.observe_times.size())
+          throw error(exit_code::internal, "the lane engine missed an observe time");
+        observer_[l]->sampler_to_fill().mark_sampled();
+      }
     observer_[l]->on_episode(episode{episode_kind_[l], episode_start_[l], ta_, episode_position_[l],
                                      episode_belt_velocity_[l], true, episode_switches_before_[l]});
     if constexpr (with_pieces)
@@ -517,6 +539,7 @@ class lane_engine {
     constexpr int K = groups;
 #define K_LOOP for (int k = 0; k < K; ++k)
     const vec A = Set(d, a_), W = Set(d, w_), VV = Set(d, V_), TA = Set(d, ta_);
+    const vec TA_UP = Set(d, std::nextafter(ta_, inf));
     const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
     const vec mA = hn::Neg(A);
     // Family: the slip centre sigma a_k (the paper: sigma a, the band's edge),
@@ -698,11 +721,12 @@ class lane_engine {
       // holds the lane's next observe time, or ends at t_a and t_a is one
       if constexpr (samples_states) {
         if (observing_) [[unlikely]] {
-          const vec end = Min(nt, TA), next = hn::Load(d, next_observe_time_ + j);
-          const mask holds = hn::And(
-              run[k], hn::Or(hn::Lt(next, end), hn::And(hn::Ge(end, TA), hn::Le(next, TA))));
+          // t_j < min(nt, t_a), or t_j <= t_a when the round reaches t_a:
+          // t_j < the round's end, with t_a's end moved to the next double
+          const vec end = IfThenElse(hn::Ge(nt, TA), TA_UP, nt);
+          const mask holds = hn::And(run[k], hn::Lt(hn::Load(d, next_observe_time_ + j), end));
           if (!hn::AllFalse(d, holds)) [[unlikely]]
-            sample_observe_times(d, j, holds, stk, t[k], end, x[k], z[k], v[k], o[k].c);
+            queue_observe_times(d, j, holds, stk, t[k], end, x[k], z[k], v[k], o[k].c);
         }
       }
 
@@ -804,26 +828,93 @@ class lane_engine {
     }
   }
 
-  // The segments of the lanes `at` (of the vector at j) that hold their next
-  // observe time, built as simulate() and simulate_model() build them (the
-  // state at the start of the round; a stick moves at v, a slip rotates
-  // about c = sigma a_k), handed to the lane's state sampler.
-  HWY_NOINLINE void sample_observe_times(dtag d, std::size_t j, hn::Mask<dtag> at,
-                                         hn::Mask<dtag> stick, vec t, vec t_end, vec x, vec z,
-                                         vec v, vec center) {
+  // The lanes `at` (of the vector at j) whose round [t, end) holds their
+  // next observe time (end: the round's end, t_a's moved to the next
+  // double, so that t_j < end): each time the round holds is queued with the
+  // round's start state, to be evaluated with the others in
+  // evaluate_observe_times. (Lane by lane: vcompresspd to memory, a vector
+  // at a time, was slower.)
+  HWY_NOINLINE void queue_observe_times(dtag d, std::size_t j, hn::Mask<dtag> at,
+                                        hn::Mask<dtag> stick, vec t, vec end, vec x, vec z,
+                                        vec v, vec center) {
     if constexpr (samples_states) {
       HWY_ALIGN double ts[N], te[N], xs[N], zs[N], vs[N], cs[N];
-      hn::Store(t, d, ts), hn::Store(t_end, d, te), hn::Store(x, d, xs), hn::Store(z, d, zs);
+      hn::Store(t, d, ts), hn::Store(end, d, te), hn::Store(x, d, xs), hn::Store(z, d, zs);
       hn::Store(v, d, vs), hn::Store(center, d, cs);
+      const double* times = s_.observe_times.data();
+      const std::size_t count = s_.observe_times.size();
       const auto stick_bits = lane_bits(d, stick);
       for (std::uint32_t m = lane_bits(d, at); m != 0; m &= m - 1) {
         const auto i = static_cast<std::size_t>(std::countr_zero(m));
-        const bool sticking = (stick_bits >> i) & 1u;
-        observer& o = *observer_[j + i];
-        o.sample_segment(sticking ? segment{mode::stick, ts[i], te[i], xs[i], vs[i], vs[i], 0.0, w_}
-                                  : segment{mode::slip, ts[i], te[i], xs[i], zs[i], vs[i], cs[i], w_});
-        next_observe_time_[j + i] = o.sampler().next_time();
+        const double sticking = (stick_bits >> i) & 1u ? 1.0 : 0.0;
+        std::size_t c = observe_cursor_[j + i];
+        double next = next_observe_time_[j + i];
+        do {
+          if (queued_ == observe_queue) evaluate_observe_times(d);
+          const std::size_t q = queued_++;
+          queued_start_[q] = ts[i], queued_time_[q] = next, queued_position_[q] = xs[i];
+          queued_velocity_[q] = zs[i], queued_belt_velocity_[q] = vs[i];
+          queued_centre_[q] = cs[i], queued_sticking_[q] = sticking;
+          queued_states_[q] = observed_[j + i], queued_index_[q] = static_cast<std::uint32_t>(c);
+          next = ++c < count ? times[c] : inf;
+        } while (next < te[i]);
+        observe_cursor_[j + i] = c;
+        next_observe_time_[j + i] = next;
       }
+    }
+  }
+
+  // The queued observe times: the state at t_j, as evaluate() (episode.cpp)
+  // gives it for the segment simulate() and simulate_model() would build for
+  // the round (a stick moves at v from x; a slip rotates (w (x - c), x')
+  // about the centre c = sigma a_k by w (t_j - t)), and the energy and level
+  // as state_sampler::record_next gives them, with the vector forms of the
+  // same formulas and kernels: the same bits, a vector of times at a time.
+  // Runs before any realization is handed over (side_effects).
+  void evaluate_observe_times(dtag d) {
+    if constexpr (samples_states) {
+      const vec W = Set(d, w_), zero = hn::Zero(d), one = Set(d, 1.0);
+      const vec half_m = Set(d, 0.5 * observed_mass_), half_k = Set(d, 0.5 * observed_stiffness_);
+      const vec L0 = Set(d, observed_levels_[0]), L1 = Set(d, observed_levels_[1]);
+      for (std::size_t q = 0; q < queued_; q += N) {
+        const vec t = hn::Load(d, queued_start_ + q), tj = hn::Load(d, queued_time_ + q);
+        const vec x = hn::Load(d, queued_position_ + q), z = hn::Load(d, queued_velocity_ + q);
+        const vec v = hn::Load(d, queued_belt_velocity_ + q);
+        const vec centre = hn::Load(d, queued_centre_ + q);
+        const auto sticking = hn::Eq(hn::Load(d, queued_sticking_ + q), one);
+        vec xj = vphysics::stick_position(x, v, t, tj), zj = v;
+        if (!hn::AllTrue(d, sticking)) {
+          vec u = Mul(W, Sub(tj, t));
+          if (!hn::AllFalse(d, hn::Gt(hn::Abs(u), Set(d, fm::max_direct_phase)))) {
+            HWY_ALIGN double ph[N];
+            hn::Store(u, d, ph);
+            for (std::size_t i = 0; i < N; ++i) ph[i] = fm::reduce_phase(ph[i]);
+            u = hn::Load(d, ph);
+          }
+          const vec sn = sk::sin(d, u), cs = sk::cos(d, u);
+          const vec y = Sub(x, centre);
+          const vphysics::slip_orbit<vec> orbit{centre, y, Mul(W, y), zero};
+          xj = IfThenElse(sticking, xj, vphysics::rotated_position(orbit, z, W, cs, sn));
+          zj = IfThenElse(sticking, zj, vphysics::rotated_velocity(orbit, z, cs, sn));
+        }
+        // record_next: m x'^2 / 2 + k x^2 / 2 as ((m / 2) x') x' + ((k / 2) x) x
+        const vec energy = hn::Add(Mul(Mul(half_m, zj), zj), Mul(Mul(half_k, xj), xj));
+        const vec level = IfThenElse(hn::Eq(v, L0), zero, IfThenElse(hn::Eq(v, L1), one,
+                                                                      Set(d, 2.0)));
+        hn::Store(xj, d, queued_position_ + q), hn::Store(zj, d, queued_velocity_ + q);
+        hn::Store(energy, d, queued_start_ + q), hn::Store(level, d, queued_centre_ + q);
+      }
+      for (std::size_t q = 0; q < queued_; ++q) {
+        observed_states& o = *queued_states_[q];
+        const std::size_t i = queued_index_[q];
+        o.position()[i] = queued_position_[q];
+        o.velocity()[i] = queued_velocity_[q];
+        o.belt_velocity()[i] = queued_belt_velocity_[q];
+        o.energy()[i] = queued_start_[q];
+        o.level()[i] = queued_centre_[q];
+        o.sticking()[i] = queued_sticking_[q];
+      }
+      queued_ = 0;
     }
   }
 
@@ -851,6 +942,8 @@ class lane_engine {
           static_cast<int>(step_event_[l]) == ev_slip_sw)
         contact_at_switch(l);
     }
+    if constexpr (samples_states)
+      if (fin != 0 && queued_ != 0) evaluate_observe_times(dtag());
     for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
@@ -926,6 +1019,23 @@ class lane_engine {
   mode episode_kind_[lanes] = {};
   observer* observer_[lanes] = {};
   HWY_ALIGN double next_observe_time_[lanes] = {};  // +inf: none left
+  // The queue of observe times (queue_observe_times): the round's start
+  // state, the time, and the slot to fill; the energy and the level of the
+  // observers' state samplers (one point: the same for all).
+  static constexpr std::size_t observe_queue = samples_states ? 32 * N : N;
+  static constexpr std::size_t queue_room = observe_queue;
+  std::size_t queued_ = 0;
+  HWY_ALIGN double queued_start_[queue_room] = {}, queued_time_[queue_room] = {};
+  HWY_ALIGN double queued_position_[queue_room] = {}, queued_velocity_[queue_room] = {};
+  HWY_ALIGN double queued_belt_velocity_[queue_room] = {}, queued_centre_[queue_room] = {};
+  HWY_ALIGN double queued_sticking_[queue_room] = {};
+  observed_states* queued_states_[queue_room] = {};
+  std::uint32_t queued_index_[queue_room] = {};
+  // Per lane: the states of its realization's observer, and the index of
+  // its next observe time (next_observe_time_ is that time).
+  observed_states* observed_[lanes] = {};
+  std::size_t observe_cursor_[lanes] = {};
+  double observed_mass_ = 0.0, observed_stiffness_ = 0.0, observed_levels_[2] = {};
   switch_source switch_times_[lanes] = {};
 };
 

@@ -5,25 +5,58 @@
 
 namespace stickslip {
 
-void time_statistics::add(std::span<const observed_state> states) {
+namespace {
+
+// Welford's update (mean_variance::add(x, inverse)) of every time's moments
+// by one realization's values: one pass down the arrays, which the compiler
+// vectorizes; each element's operations are those of mean_variance::add, so
+// the same bits.
+void add_row(double* __restrict mean, double* __restrict m2, const double* __restrict x,
+             std::size_t n, double inverse) noexcept {
+  for (std::size_t j = 0; j < n; ++j) {
+    const double d = x[j] - mean[j];
+    mean[j] += d * inverse;
+    m2[j] += d * (x[j] - mean[j]);
+  }
+}
+
+}  // namespace
+
+void time_statistics::add(const observed_states& s) {
   ++realizations_;
   // Every moment counts every realization (count() + 1 = realizations_ for
   // each): one division for all (mean_variance::add with the reciprocal).
   const double inverse = 1.0 / static_cast<double>(realizations_);
-  if (codes_.empty()) codes_.reserve(2 * at_.size() * buffered_realizations);
-  for (std::size_t j = 0; j < at_.size(); ++j) {
-    const observed_state& s = states[j];
-    time_point_statistics& a = at_[j];
-    a.sticking += s.sticking ? 1 : 0;
-    ++level_counts_[j * levels_ + s.level];
-    a.position.add(s.position, inverse);
-    a.velocity.add(s.velocity, inverse);
-    a.relative_velocity.add(s.velocity - s.belt_velocity, inverse);
-    a.energy.add(s.energy, inverse);
-    codes_.push_back(quantile_sketch::code(s.position));
-    codes_.push_back(quantile_sketch::code(s.velocity));
+  const std::size_t n = times_.size();
+  const double *sticking = s.sticking(), *level = s.level();
+  for (std::size_t j = 0; j < n; ++j) sticking_[j] += sticking[j] != 0.0 ? 1 : 0;
+  for (std::size_t j = 0; j < n; ++j)
+    ++level_counts_[j * levels_ + static_cast<std::size_t>(level[j])];
+  add_row(position_.mean.data(), position_.m2.data(), s.position(), n, inverse);
+  add_row(velocity_.mean.data(), velocity_.m2.data(), s.velocity(), n, inverse);
+  add_row(energy_.mean.data(), energy_.m2.data(), s.energy(), n, inverse);
+  {
+    double* __restrict mean = relative_velocity_.mean.data();
+    double* __restrict m2 = relative_velocity_.m2.data();
+    const double* __restrict xd = s.velocity();
+    const double* __restrict v = s.belt_velocity();
+    for (std::size_t j = 0; j < n; ++j) {
+      const double x = xd[j] - v[j];
+      const double d = x - mean[j];
+      mean[j] += d * inverse;
+      m2[j] += d * (x - mean[j]);
+    }
   }
-  if (codes_.size() >= 2 * at_.size() * buffered_realizations) settle();
+  at_stale_ = true;
+  if (codes_.empty()) codes_.reserve(2 * n * buffered_realizations);
+  const std::size_t first = codes_.size();
+  codes_.resize(first + 2 * n);
+  std::uint32_t* __restrict c = codes_.data() + first;
+  for (std::size_t j = 0; j < n; ++j) {
+    c[2 * j] = quantile_sketch::code(s.position()[j]);
+    c[2 * j + 1] = quantile_sketch::code(s.velocity()[j]);
+  }
+  if (codes_.size() >= 2 * n * buffered_realizations) settle();
 }
 
 // The buffered codes, realization by realization (each time's x then x'),
@@ -37,7 +70,22 @@ void time_statistics::add_codes(const std::vector<std::uint32_t>& codes) const {
     }
 }
 
+void time_statistics::refresh() const {
+  if (at_stale_) {
+    for (std::size_t j = 0; j < at_.size(); ++j) {
+      time_point_statistics& a = at_[j];
+      a.sticking = sticking_[j];
+      a.position = position_.at(j, realizations_);
+      a.velocity = velocity_.at(j, realizations_);
+      a.relative_velocity = relative_velocity_.at(j, realizations_);
+      a.energy = energy_.at(j, realizations_);
+    }
+    at_stale_ = false;
+  }
+}
+
 void time_statistics::settle() const {
+  refresh();
   if (codes_.empty()) return;
   add_codes(codes_);
   codes_ = {};
@@ -45,7 +93,8 @@ void time_statistics::settle() const {
 
 time_statistics& time_statistics::operator+=(const time_statistics& o) {
   settle();
-  add_codes(o.codes_);
+  add_codes(o.codes_);  // o's buffered codes, without settling o
+  o.refresh();
   realizations_ += o.realizations_;
   for (std::size_t j = 0; j < at_.size(); ++j) {
     time_point_statistics& a = at_[j];
@@ -57,6 +106,11 @@ time_statistics& time_statistics::operator+=(const time_statistics& o) {
     a.energy += b.energy;
     a.position_quantiles += b.position_quantiles;
     a.velocity_quantiles += b.velocity_quantiles;
+    sticking_[j] = a.sticking;
+    position_.set(j, a.position);
+    velocity_.set(j, a.velocity);
+    relative_velocity_.set(j, a.relative_velocity);
+    energy_.set(j, a.energy);
   }
   for (std::size_t i = 0; i < level_counts_.size(); ++i) level_counts_[i] += o.level_counts_[i];
   return *this;
@@ -64,7 +118,7 @@ time_statistics& time_statistics::operator+=(const time_statistics& o) {
 
 double time_statistics::stick_probability(std::size_t j) const noexcept {
   if (realizations_ == 0) return std::numeric_limits<double>::quiet_NaN();
-  return static_cast<double>(at_[j].sticking) / static_cast<double>(realizations_);
+  return static_cast<double>(sticking_[j]) / static_cast<double>(realizations_);
 }
 
 double time_statistics::stick_probability_std_error(std::size_t j) const noexcept {
@@ -82,6 +136,14 @@ void time_statistics::set_raw(std::uint64_t realizations, std::vector<time_point
   realizations_ = realizations;
   codes_.clear();
   at_ = std::move(at);
+  at_stale_ = false;
+  for (std::size_t j = 0; j < at_.size(); ++j) {
+    sticking_[j] = at_[j].sticking;
+    position_.set(j, at_[j].position);
+    velocity_.set(j, at_[j].velocity);
+    relative_velocity_.set(j, at_[j].relative_velocity);
+    energy_.set(j, at_[j].energy);
+  }
   level_counts_ = std::move(level_counts);
 }
 

@@ -10,7 +10,6 @@
 // mean_variance's merge (in block order, as every accumulator).
 #pragma once
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "stickslip/accumulators/mean_variance.hpp"
@@ -18,15 +17,36 @@
 
 namespace stickslip {
 
-// One realization's state at one observe time.
-struct observed_state {
-  double position = 0.0;       // x [m]
-  double velocity = 0.0;       // x' [m/s]
-  double belt_velocity = 0.0;  // v [m/s]
-  double energy = 0.0;         // m x'^2 / 2 + k x^2 / 2 [J]
-  std::uint32_t level = 0;     // index of the belt level (paper: 0 = +V, 1 = -V)
-  bool sticking = false;       // in a stick at t (x' = v held by friction)
-  friend bool operator==(const observed_state&, const observed_state&) = default;
+// One realization's states at the observe times, one array per field
+// (index j: the time t_j), so that time_statistics::add runs down whole
+// arrays; the six arrays share one allocation (an observer is made per
+// work unit and realization slot).
+class observed_states {
+ public:
+  observed_states() = default;
+  explicit observed_states(std::size_t times) : n_(times), values_(fields * times, 0.0) {}
+  [[nodiscard]] std::size_t size() const noexcept { return n_; }
+  // x [m], x' [m/s], the belt velocity v [m/s], the energy m x'^2/2 + k x^2/2
+  // [J], the index of the belt level (paper: 0 = +V, 1 = -V) and 1 while in
+  // a stick at t_j (x' = v held by friction), else 0, as doubles.
+  double* position() noexcept { return values_.data(); }
+  double* velocity() noexcept { return values_.data() + n_; }
+  double* belt_velocity() noexcept { return values_.data() + 2 * n_; }
+  double* energy() noexcept { return values_.data() + 3 * n_; }
+  double* level() noexcept { return values_.data() + 4 * n_; }
+  double* sticking() noexcept { return values_.data() + 5 * n_; }
+  const double* position() const noexcept { return values_.data(); }
+  const double* velocity() const noexcept { return values_.data() + n_; }
+  const double* belt_velocity() const noexcept { return values_.data() + 2 * n_; }
+  const double* energy() const noexcept { return values_.data() + 3 * n_; }
+  const double* level() const noexcept { return values_.data() + 4 * n_; }
+  const double* sticking() const noexcept { return values_.data() + 5 * n_; }
+  friend bool operator==(const observed_states&, const observed_states&) = default;
+
+ private:
+  static constexpr std::size_t fields = 6;
+  std::size_t n_ = 0;
+  std::vector<double> values_;
 };
 
 // The accumulators at one observe time.
@@ -42,13 +62,14 @@ class time_statistics {
   time_statistics() = default;  // not selected: no times
   // Preconditions (sweep validate()): times ascending, finite, >= 0; levels >= 1.
   time_statistics(std::vector<double> times, std::size_t levels)
-      : times_(std::move(times)), levels_(levels), at_(times_.size()),
-        level_counts_(times_.size() * levels, 0) {}
+      : times_(std::move(times)), levels_(levels), sticking_(times_.size(), 0),
+        position_(times_.size()), velocity_(times_.size()), relative_velocity_(times_.size()),
+        energy_(times_.size()), at_(times_.size()), level_counts_(times_.size() * levels, 0) {}
 
   [[nodiscard]] bool selected() const noexcept { return !times_.empty(); }
-  // One realization: states[j] at times()[j]. Precondition: one per time,
-  // level < levels().
-  void add(std::span<const observed_state> states);
+  // One realization: its state at each of times(). Precondition: one per
+  // time, level < levels().
+  void add(const observed_states& states);
   // Precondition: the same times and levels.
   time_statistics& operator+=(const time_statistics& o);
 
@@ -86,17 +107,36 @@ class time_statistics {
   }
 
  private:
-  // A block's quantile samples are kept as sketch codes (quantile_sketch::
-  // code) in one array, two per time per realization, and go into the
-  // sketches every buffered_realizations realizations, at a merge, or when
-  // read: one store per sample instead of a growing list per sketch.
+  // The sticking counts and the moments are accumulated in one array per
+  // quantity over the times (moment_rows: the mean and M2 of each time, all
+  // counting realizations_), which add() updates a whole row at a time;
+  // at_ gets them when read (settle()). A block's quantile samples are kept
+  // as sketch codes (quantile_sketch::code) in one array, two per time per
+  // realization, and go into the sketches every buffered_realizations
+  // realizations, at a merge, or when read: one store per sample instead of
+  // a growing list per sketch.
+  struct moment_rows {
+    std::vector<double> mean, m2;
+    explicit moment_rows(std::size_t n = 0) : mean(n, 0.0), m2(n, 0.0) {}
+    [[nodiscard]] mean_variance at(std::size_t j, std::uint64_t n) const {
+      return mean_variance::from_raw(n, n ? mean[j] : 0.0, m2[j]);
+    }
+    void set(std::size_t j, const mean_variance& m) {
+      mean[j] = m.count() ? m.mean() : 0.0;
+      m2[j] = m.sum_sq_dev();
+    }
+  };
   static constexpr std::size_t buffered_realizations = 64;
-  void settle() const;
+  void refresh() const;  // at_ gets the rows
+  void settle() const;   // and the sketches the buffered codes
   void add_codes(const std::vector<std::uint32_t>& codes) const;
   std::vector<double> times_;
   std::size_t levels_ = 0;
   std::uint64_t realizations_ = 0;
+  std::vector<std::uint64_t> sticking_;
+  moment_rows position_, velocity_, relative_velocity_, energy_;
   mutable std::vector<time_point_statistics> at_;
+  mutable bool at_stale_ = false;  // the rows changed since at_ got them
   std::vector<std::uint64_t> level_counts_;  // times x levels, row-major
   mutable std::vector<std::uint32_t> codes_;
 };
