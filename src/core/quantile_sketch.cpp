@@ -76,12 +76,27 @@ std::uint64_t quantile_sketch::count() const noexcept {
 }
 
 double quantile_sketch::quantile(double q) const {
-  const std::uint64_t n = count();
-  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
-  // k = max(1, ceil(q n)): the k-th smallest sample, counted from the most
-  // negative (the negative store from its largest |x| down).
-  auto k = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(n)));
-  k = std::clamp<std::uint64_t>(k, 1, n);
+  double out;
+  quantiles(&q, 1, &out);
+  return out;
+}
+
+void quantile_sketch::quantiles(const double* q, std::size_t n, double* out) const {
+  const std::uint64_t total = count();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (total == 0) {
+      out[i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    // k = max(1, ceil(q n)): the k-th smallest sample
+    const auto k = static_cast<std::uint64_t>(std::ceil(q[i] * static_cast<double>(total)));
+    out[i] = ranked(std::clamp<std::uint64_t>(k, 1, total));
+  }
+}
+
+// Counted from the most negative (the negative store from its largest |x|
+// down), then the zero bin, then the positive store.
+double quantile_sketch::ranked(std::uint64_t k) const noexcept {
   auto middle = [](std::uint32_t key) { return 0.5 * (lower(key) + upper(key)); };
   for (std::size_t i = negative_.counts.size(); i-- > 0;) {
     if (k <= negative_.counts[i]) return -middle(negative_.first + static_cast<std::uint32_t>(i));

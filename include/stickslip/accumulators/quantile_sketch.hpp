@@ -12,6 +12,7 @@
 #pragma once
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -60,6 +61,8 @@ class quantile_sketch {
   // sorted samples), to within relative_accuracy |x_(k)| (zero_threshold near
   // 0): the middle of its bin. NaN without samples. Precondition: 0 <= q <= 1.
   [[nodiscard]] double quantile(double q) const;
+  // quantile(q[i]) into out[i] for i < n, counting the samples once.
+  void quantiles(const double* q, std::size_t n, double* out) const;
 
   // The bin of x != 0 (|x| >= zero_threshold) and its ends [L, U).
   [[nodiscard]] static std::uint32_t key(double x) noexcept {
@@ -93,6 +96,8 @@ class quantile_sketch {
 
  private:
   static store trimmed(const store& s);
+  // The k-th smallest sample's bin middle, 1 <= k <= count().
+  [[nodiscard]] double ranked(std::uint64_t k) const noexcept;
   // Makes room in s for the keys [lo, hi].
   static void cover(store& s, std::uint32_t lo, std::uint32_t hi);
   // a += b, bin by bin.
