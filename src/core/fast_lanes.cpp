@@ -623,6 +623,7 @@ class lane_engine {
       any_rot |= !hn::AllFalse(d, hn::AndNot(stick[k], hn::AndNot(sl_root[k], run[k])));
     }
     std::uint32_t pop = 0, cl_stick = 0, cl_slip = 0, fin = 0;
+    std::uint32_t observe_lanes = 0, observe_sticking = 0;  // lanes holding an observe time
     // slip: the rotation to a switch or to t_a
     vec xr[K], zr[K];
     K_LOOP xr[k] = x[k], zr[k] = z[k];
@@ -723,10 +724,18 @@ class lane_engine {
         if (observing_) [[unlikely]] {
           // t_j < min(nt, t_a), or t_j <= t_a when the round reaches t_a:
           // t_j < the round's end, with t_a's end moved to the next double
+          // (The lanes that hold one are kept and queued after the loop: a
+          // call here made the loop save its vectors around it every round.)
           const vec end = IfThenElse(hn::Ge(nt, TA), TA_UP, nt);
           const mask holds = hn::And(run[k], hn::Lt(hn::Load(d, next_observe_time_ + j), end));
-          if (!hn::AllFalse(d, holds)) [[unlikely]]
-            queue_observe_times(d, j, holds, stk, t[k], end, x[k], z[k], v[k], o[k].c);
+          if (!hn::AllFalse(d, holds)) [[unlikely]] {
+            hn::Store(t[k], d, round_start_ + j), hn::Store(end, d, round_end_ + j);
+            hn::Store(x[k], d, round_position_ + j), hn::Store(z[k], d, round_velocity_ + j);
+            hn::Store(v[k], d, round_belt_velocity_ + j), hn::Store(o[k].c, d, round_centre_ + j);
+            const unsigned shift = static_cast<unsigned>(j);
+            observe_lanes |= lane_bits(d, holds) << shift;
+            observe_sticking |= lane_bits(d, stk) << shift;
+          }
         }
       }
 
@@ -799,6 +808,8 @@ class lane_engine {
       fin |= lane_bits(d, m_fin) << shift;
     }
     took_switch_ = pop, close_stick_ = cl_stick, close_slip_ = cl_slip, finished_ = fin;
+    if constexpr (samples_states)
+      if (observe_lanes != 0) queue_observe_times(d, observe_lanes, observe_sticking);
 #undef K_LOOP
   }
 
@@ -828,38 +839,34 @@ class lane_engine {
     }
   }
 
-  // The lanes `at` (of the vector at j) whose round [t, end) holds their
-  // next observe time (end: the round's end, t_a's moved to the next
-  // double, so that t_j < end): each time the round holds is queued with the
-  // round's start state, to be evaluated with the others in
-  // evaluate_observe_times. (Lane by lane: vcompresspd to memory, a vector
-  // at a time, was slower.)
-  HWY_NOINLINE void queue_observe_times(dtag d, std::size_t j, hn::Mask<dtag> at,
-                                        hn::Mask<dtag> stick, vec t, vec end, vec x, vec z,
-                                        vec v, vec center) {
+  // The lanes `at` (bits) whose round [t, end) holds their next observe time
+  // (end: the round's end, t_a's moved to the next double, so that
+  // t_j < end; the round's start state in round_*): each time the round
+  // holds is queued with the round's start state, to be evaluated with the
+  // others in evaluate_observe_times. (Lane by lane: vcompresspd to memory,
+  // a vector at a time, was slower.)
+  HWY_NOINLINE void queue_observe_times(dtag d, std::uint32_t at, std::uint32_t stick_bits) {
     if constexpr (samples_states) {
-      HWY_ALIGN double ts[N], te[N], xs[N], zs[N], vs[N], cs[N];
-      hn::Store(t, d, ts), hn::Store(end, d, te), hn::Store(x, d, xs), hn::Store(z, d, zs);
-      hn::Store(v, d, vs), hn::Store(center, d, cs);
       const double* times = s_.observe_times.data();
       const std::size_t count = s_.observe_times.size();
-      const auto stick_bits = lane_bits(d, stick);
-      for (std::uint32_t m = lane_bits(d, at); m != 0; m &= m - 1) {
-        const auto i = static_cast<std::size_t>(std::countr_zero(m));
-        const double sticking = (stick_bits >> i) & 1u ? 1.0 : 0.0;
-        std::size_t c = observe_cursor_[j + i];
-        double next = next_observe_time_[j + i];
+      for (std::uint32_t m = at; m != 0; m &= m - 1) {
+        const auto l = static_cast<std::size_t>(std::countr_zero(m));
+        const double sticking = (stick_bits >> l) & 1u ? 1.0 : 0.0;
+        const double end = round_end_[l];
+        std::size_t c = observe_cursor_[l];
+        double next = next_observe_time_[l];
         do {
           if (queued_ == observe_queue) evaluate_observe_times(d);
           const std::size_t q = queued_++;
-          queued_start_[q] = ts[i], queued_time_[q] = next, queued_position_[q] = xs[i];
-          queued_velocity_[q] = zs[i], queued_belt_velocity_[q] = vs[i];
-          queued_centre_[q] = cs[i], queued_sticking_[q] = sticking;
-          queued_states_[q] = observed_[j + i], queued_index_[q] = static_cast<std::uint32_t>(c);
+          queued_start_[q] = round_start_[l], queued_time_[q] = next;
+          queued_position_[q] = round_position_[l], queued_velocity_[q] = round_velocity_[l];
+          queued_belt_velocity_[q] = round_belt_velocity_[l];
+          queued_centre_[q] = round_centre_[l], queued_sticking_[q] = sticking;
+          queued_states_[q] = observed_[l], queued_index_[q] = static_cast<std::uint32_t>(c);
           next = ++c < count ? times[c] : inf;
-        } while (next < te[i]);
-        observe_cursor_[j + i] = c;
-        next_observe_time_[j + i] = next;
+        } while (next < end);
+        observe_cursor_[l] = c;
+        next_observe_time_[l] = next;
       }
     }
   }
@@ -1034,6 +1041,11 @@ class lane_engine {
   // Per lane: the states of its realization's observer, and the index of
   // its next observe time (next_observe_time_ is that time).
   observed_states* observed_[lanes] = {};
+  // The start state and end of the round of the lanes that hold an observe
+  // time (vector_step), for queue_observe_times.
+  HWY_ALIGN double round_start_[lanes] = {}, round_end_[lanes] = {};
+  HWY_ALIGN double round_position_[lanes] = {}, round_velocity_[lanes] = {};
+  HWY_ALIGN double round_belt_velocity_[lanes] = {}, round_centre_[lanes] = {};
   std::size_t observe_cursor_[lanes] = {};
   double observed_mass_ = 0.0, observed_stiffness_ = 0.0, observed_levels_[2] = {};
   switch_source switch_times_[lanes] = {};
