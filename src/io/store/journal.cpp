@@ -181,7 +181,9 @@ void append_record(std::string& buffer, const bytes& rec) {
 }  // namespace
 
 void journal_writer::add(const work_unit& u, const block_result& r) {
+  const auto t0 = std::chrono::steady_clock::now();
   append_record(buffer_, serialize(u, r));
+  serializing_ += std::chrono::steady_clock::now() - t0;
   buffered_covers_.emplace_back(u.point, u.block + 1);
   ++buffered_;
   ++buffered_units_;
@@ -191,14 +193,18 @@ void journal_writer::add(const work_unit& u, const block_result& r) {
 void journal_writer::add_prefix(std::size_t point, std::uint64_t blocks,
                                 const point_statistics& merged) {
   // Serialized from the merger's own statistics: no copy of them is kept.
+  const auto t0 = std::chrono::steady_clock::now();
   append_record(buffer_, serialize_merged_prefix(point, blocks, merged));
+  serializing_ += std::chrono::steady_clock::now() - t0;
   buffered_covers_.emplace_back(point, blocks);
   buffered_prefixes_.emplace_back(point, blocks);
   ++buffered_;
 }
 
 bool journal_writer::due() const noexcept {
-  return std::chrono::steady_clock::now() - last_flush_ >= interval_;
+  const auto since = std::chrono::steady_clock::now() - last_flush_;
+  if (interval_.count() <= 0.0) return true;
+  return since >= interval_ && since >= 20 * last_cost_;
 }
 
 // A segment can go when a later segment of this writer holds, for every
@@ -244,8 +250,10 @@ void journal_writer::flush() {
   buffered_prefixes_.clear();
   buffered_ = buffered_units_ = 0;
   ++segment_seq_;
-  last_flush_ = now;
   remove_superseded();
+  last_flush_ = std::chrono::steady_clock::now();
+  last_cost_ = serializing_ + (last_flush_ - now);
+  serializing_ = {};
 }
 
 }  // namespace stickslip::io
