@@ -231,6 +231,10 @@ TEST(netcdf_chunks, AChunkIsARunOfWholeTrailingDimensions) {
   EXPECT_EQ(chunk_shape({4, 3, 20}, 3), (v{1, 1, 3}));  // part of a row
   EXPECT_EQ(chunk_shape({4, 3, 20}, 20), (v{1, 1, 20}));
   EXPECT_EQ(chunk_shape({4, 3, 20}, 130), (v{2, 3, 20}));
+  // The default: a 6,400-point grid's histograms in one chunk, the
+  // 100,000-point grid's in 41 slabs of lambda.
+  EXPECT_EQ(chunk_shape({80, 80, 50}, io::detail::netcdf_chunk_values), (v{80, 80, 50}));
+  EXPECT_EQ(chunk_shape({400, 250, 50}, io::detail::netcdf_chunk_values), (v{41, 250, 50}));
 }
 
 // Every write covers whole chunks and the writes tile the grid in order:
