@@ -52,7 +52,7 @@ struct run_plan {
   // bins); the finished points of such a run keep only what the outputs
   // read (release_unselected: no unselected histograms). 0: the whole grid
   // at once. The outputs are the same bits either way.
-  std::size_t window_points = 2048;
+  std::size_t window_points = 1024;
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
   // fraction of this run's expected work done (work_meter: for an honest

@@ -19,7 +19,7 @@ namespace stickslip::run {
 // only what the outputs read (release_unselected); plus the raw records when
 // kept, and one point's statistics per block in flight (a batch per thread,
 // at most every unit). The writers add no copy (results.nc is written a
-// chunk of at most 1 MiB at a time, the text files a buffer at a time).
+// chunk of at most 4 MiB at a time, the text files a buffer at a time).
 [[nodiscard]] double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
                                             std::size_t window_points = 0) noexcept;
 
