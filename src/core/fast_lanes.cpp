@@ -48,10 +48,9 @@
 // level is a blend on v == v1. After a stick break with mu_s > mu_k the slip
 // starts at x' = v and runs the reversal arc. In both instances a slip that
 // starts at a reversal runs in the vector step (its atan2 shares the step's
-// Atan); until 2026-11 the paper's instance ran it scalar, one lane at a
-// time, which took a quarter of the time at mu = 0.5 (docs/performance.md).
-// The paper's instance (Family = false) otherwise compiles the code it had
-// before. tests/unit/test_fast_path_family.cpp holds
+// Atan; run one lane at a time it took a quarter of the time at mu = 0.5,
+// docs/performance.md). The paper's instance (Family = false) compiles none
+// of the family's branches. tests/unit/test_fast_path_family.cpp holds
 // the family instance to simulate_model, every episode and event field.
 //
 // The engine is a template over what it does with a finished realization
