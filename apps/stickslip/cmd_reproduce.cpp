@@ -308,7 +308,8 @@ void add_reproduce_command(CLI::App& app, const invocation& inv) {
                   "OUT/.runs; then finish with --resume (docs/scaling.md)")
       ->type_name("i/n");
   cmd->add_option("--checkpoint-interval", flags->checkpoint_interval,
-                  "seconds between journal segments (each is fsynced); 0 = after every unit")
+                  "minimum seconds between journal segments (each is fsynced; more while a "
+                  "checkpoint would cost over 5 %, up to 15 times this); 0 = after every unit")
       ->type_name("SECONDS")
       ->capture_default_str();
   cmd->add_flag("--overwrite", flags->overwrite,

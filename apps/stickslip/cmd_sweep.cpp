@@ -333,7 +333,8 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                   "outputs); combine shards with `stickslip merge`")
       ->type_name("i/n");
   cmd->add_option("--checkpoint-interval", o.checkpoint_interval,
-                  "seconds between journal segments (each is fsynced); 0 = after every unit "
+                  "minimum seconds between journal segments (each is fsynced; more while a "
+                  "checkpoint would cost over 5 %, up to 15 times this); 0 = after every unit "
                   "(default 2)")
       ->type_name("SECONDS");
   cmd->add_flag("--overwrite", o.overwrite,

@@ -92,10 +92,10 @@ class journal_writer {
   // A point's blocks [0, blocks) merged in order; never flushes by itself.
   void add_prefix(std::size_t point, std::uint64_t blocks, const point_statistics& merged);
   // Whether the checkpoint interval has passed since the last segment, and
-  // (a nonzero interval) 20 times what the last segment cost to serialize
-  // and write: checkpoints take at most ~5 % of a run however large its
-  // points' statistics (a paper grid with 101 observe times wrote 10 MB
-  // every 2 s).
+  // (a nonzero interval) 20 times what the last checkpoint itself cost (the
+  // merged prefixes it serialized, and the write), up to 15 intervals:
+  // prefix checkpoints take at most ~5 % of a run however large its points'
+  // statistics (a paper grid with 101 observe times wrote 10 MB every 2 s).
   [[nodiscard]] bool due() const noexcept;
   // Commits the buffered records as one segment, then removes this writer's
   // earlier segments whose every record a later one supersedes (a prefix of
@@ -126,8 +126,8 @@ class journal_writer {
   std::string run_id_;
   std::chrono::duration<double> interval_;
   std::chrono::steady_clock::time_point started_, last_flush_;
-  // Time spent serializing the records buffered since the last segment, and
-  // that plus writing it for the last segment.
+  // Time spent serializing merged prefixes since the last segment, and that
+  // plus writing it for the last segment.
   std::chrono::steady_clock::duration serializing_{}, last_cost_{};
   std::string buffer_;  // encoded records not yet committed
   std::size_t buffered_ = 0;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 
 #include "stickslip/io/atomic_file.hpp"
@@ -181,9 +182,9 @@ void append_record(std::string& buffer, const bytes& rec) {
 }  // namespace
 
 void journal_writer::add(const work_unit& u, const block_result& r) {
-  const auto t0 = std::chrono::steady_clock::now();
+  // (Not timed: a run that journals every unit serializes it whether or not
+  // a segment follows, so only the write is a checkpoint's own cost.)
   append_record(buffer_, serialize(u, r));
-  serializing_ += std::chrono::steady_clock::now() - t0;
   buffered_covers_.emplace_back(u.point, u.block + 1);
   ++buffered_;
   ++buffered_units_;
@@ -204,7 +205,10 @@ void journal_writer::add_prefix(std::size_t point, std::uint64_t blocks,
 bool journal_writer::due() const noexcept {
   const auto since = std::chrono::steady_clock::now() - last_flush_;
   if (interval_.count() <= 0.0) return true;
-  return since >= interval_ && since >= 20 * last_cost_;
+  // 20 times the last checkpoint's own cost, but never more than 15
+  // intervals (30 s by default) between segments.
+  const auto wait = std::min(std::chrono::duration<double>(20 * last_cost_), 15 * interval_);
+  return since >= interval_ && since >= wait;
 }
 
 // A segment can go when a later segment of this writer holds, for every
