@@ -94,17 +94,18 @@ void time_statistics::settle() const {
 
 time_statistics& time_statistics::operator+=(const time_statistics& o) {
   settle();
-  add_codes(o.codes_);  // o's buffered codes, without settling o
-  o.refresh();
-  realizations_ += o.realizations_;
+  // o is only read: its buffered codes, its rows (current even when its at_
+  // is not refreshed) and its sketches
+  add_codes(o.codes_);
+  const std::uint64_t n = o.realizations_;
   for (std::size_t j = 0; j < at_.size(); ++j) {
     time_point_statistics& a = at_[j];
     const time_point_statistics& b = o.at_[j];
-    a.sticking += b.sticking;
-    a.position += b.position;
-    a.velocity += b.velocity;
-    a.relative_velocity += b.relative_velocity;
-    a.energy += b.energy;
+    a.sticking += o.sticking_[j];
+    a.position += o.position_.at(j, n);
+    a.velocity += o.velocity_.at(j, n);
+    a.relative_velocity += o.relative_velocity_.at(j, n);
+    a.energy += o.energy_.at(j, n);
     a.position_quantiles += b.position_quantiles;
     a.velocity_quantiles += b.velocity_quantiles;
     sticking_[j] = a.sticking;
@@ -113,6 +114,7 @@ time_statistics& time_statistics::operator+=(const time_statistics& o) {
     relative_velocity_.set(j, a.relative_velocity);
     energy_.set(j, a.energy);
   }
+  realizations_ += n;
   for (std::size_t i = 0; i < level_counts_.size(); ++i) level_counts_[i] += o.level_counts_[i];
   return *this;
 }

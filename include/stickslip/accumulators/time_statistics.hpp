@@ -1,6 +1,6 @@
 // The ensemble at observe times (sweep --observe-times): for each time t_j,
 // over the realizations of a grid point, the state each one is in at t_j,
-// evaluated from the closed-form segment that holds t_j (observed_state,
+// evaluated from the closed-form segment that holds t_j (observed_states,
 // state_sampler.hpp):
 //   the number sticking (stick probability), the number at each belt level,
 //   mean and variance of x, x', the relative velocity x' - v and the
@@ -76,8 +76,10 @@ class time_statistics {
   [[nodiscard]] const std::vector<double>& times() const noexcept { return times_; }
   [[nodiscard]] std::size_t levels() const noexcept { return levels_; }
   [[nodiscard]] std::uint64_t realizations() const noexcept { return realizations_; }
-  // (Settles the buffered codes of the sketches first: const, but not to be
-  // called on one object from two threads at once.)
+  // (Refreshes the moments from the rows and settles the buffered codes of
+  // the sketches first: const, but not to be called on one object from two
+  // threads at once; nor is operator==. The sweep reads and serializes an
+  // accumulator only under its merge's lock, the writers on one thread.)
   [[nodiscard]] const time_point_statistics& at(std::size_t j) const {
     settle();
     return at_[j];
@@ -110,7 +112,8 @@ class time_statistics {
   // The sticking counts and the moments are accumulated in one array per
   // quantity over the times (moment_rows: the mean and M2 of each time, all
   // counting realizations_), which add() updates a whole row at a time;
-  // at_ gets them when read (settle()). A block's quantile samples are kept
+  // at_ gets them when read, and every buffered_realizations realizations
+  // (settle()). A block's quantile samples are kept
   // as sketch codes (quantile_sketch::code) in one array, two per time per
   // realization, and go into the sketches every buffered_realizations
   // realizations, at a merge, or when read: one store per sample instead of
