@@ -45,10 +45,6 @@ class state_sampler {
   void on_segment(const segment& s) {
     if (holds_next(s)) sample(s);
   }
-  // The state (x, x') at next_time(), evaluated by the caller as evaluate()
-  // would, in a segment at belt velocity v; the time is then sampled.
-  // Precondition: !complete().
-  void record_next(double position, double velocity, double belt_velocity, bool sticking) noexcept;
   // The lane engine's path: it fills the state of every time itself, in
   // batches, with record_next's values (fast_lanes.cpp), and then marks them
   // sampled. Precondition of mark_sampled: each of the times filled.
@@ -63,6 +59,9 @@ class state_sampler {
 
  private:
   void sample(const segment& s);
+  // The state (x, x') at next_time() (evaluate()), in a segment at belt
+  // velocity v, with its energy and level; the time is then sampled.
+  void record_next(double position, double velocity, double belt_velocity, bool sticking) noexcept;
   const std::vector<double>* times_ = nullptr;
   std::vector<double> levels_;
   double window_ = 0.0, mass_ = 0.0, stiffness_ = 0.0;

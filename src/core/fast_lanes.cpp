@@ -907,6 +907,8 @@ class lane_engine {
         const vec energy = hn::Add(Mul(Mul(half_m, zj), zj), Mul(Mul(half_k, xj), xj));
         const vec level = IfThenElse(hn::Eq(v, L0), zero, IfThenElse(hn::Eq(v, L1), one,
                                                                       Set(d, 2.0)));
+        // the evaluated state in place of the start state it came from (the
+        // start time and centre are not needed again)
         hn::Store(xj, d, queued_position_ + q), hn::Store(zj, d, queued_velocity_ + q);
         hn::Store(energy, d, queued_start_ + q), hn::Store(level, d, queued_centre_ + q);
       }
@@ -1029,14 +1031,13 @@ class lane_engine {
   // state, the time, and the slot to fill; the energy and the level of the
   // observers' state samplers (one point: the same for all).
   static constexpr std::size_t observe_queue = samples_states ? 32 * N : N;
-  static constexpr std::size_t queue_room = observe_queue;
   std::size_t queued_ = 0;
-  HWY_ALIGN double queued_start_[queue_room] = {}, queued_time_[queue_room] = {};
-  HWY_ALIGN double queued_position_[queue_room] = {}, queued_velocity_[queue_room] = {};
-  HWY_ALIGN double queued_belt_velocity_[queue_room] = {}, queued_centre_[queue_room] = {};
-  HWY_ALIGN double queued_sticking_[queue_room] = {};
-  observed_states* queued_states_[queue_room] = {};
-  std::uint32_t queued_index_[queue_room] = {};
+  HWY_ALIGN double queued_start_[observe_queue] = {}, queued_time_[observe_queue] = {};
+  HWY_ALIGN double queued_position_[observe_queue] = {}, queued_velocity_[observe_queue] = {};
+  HWY_ALIGN double queued_belt_velocity_[observe_queue] = {}, queued_centre_[observe_queue] = {};
+  HWY_ALIGN double queued_sticking_[observe_queue] = {};
+  observed_states* queued_states_[observe_queue] = {};
+  std::uint32_t queued_index_[observe_queue] = {};
   // Per lane: the states of its realization's observer, and the index of
   // its next observe time (next_observe_time_ is that time).
   observed_states* observed_[lanes] = {};
