@@ -397,6 +397,20 @@ class realization_observer : public observer_base {
   state_sampler sampler_;  // the observe times (none by default)
 };
 
+// A realization_observer that also takes every segment, for its states at
+// the observe times: what the reference engines (scalar paper, family, and
+// realizations with drawn parameters) run when there are observe times.
+struct state_sampling_observer : observer_base {
+  realization_observer& o;
+  explicit state_sampling_observer(realization_observer& obs) : o(obs) {}
+  void reset(std::uint64_t realization, double x0, double xdot0, int belt) {
+    o.reset(realization, x0, xdot0, belt);
+  }
+  void on_episode(const episode& e) { o.on_episode(e); }
+  void on_piece(const motion_piece& p) { o.on_piece(p); }
+  void on_segment(const segment& s) { o.sample_segment(s); }
+};
+
 // realization_observer without the family statistics
 // (sweep_spec::family_statistics off): no onset positions, and no pieces of
 // motion (observer_base's no-op, so the lane engine does not sum them). The

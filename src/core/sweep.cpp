@@ -129,46 +129,50 @@ double shortest_window(const sweep_spec& s) {
   return shortest;
 }
 
-// 0 <= T < t_a at every point (the smallest t_a of the grid), and no laws:
-// an uncertain realization draws its own observer (uncertainty/).
-void validate_burn_in(const sweep_spec& s) {
-  if (s.burn_in == 0.0) return;
-  const double shortest = shortest_window(s);
-  if (!(s.burn_in > 0.0) || !(s.burn_in < shortest))
-    throw invalid_parameter("burn_in", s.burn_in,
-                            fmt::format("0 <= burn_in < t_a = {} (the shortest window of the "
-                                        "sweep; 0 = no burn-in)",
-                                        shortest));
-  if (!s.uncertain.empty())
-    throw invalid_parameter("burn_in", s.burn_in,
-                            "0 with uncertain parameters (a burn-in is not supported with laws)");
+// The smallest window a realization can have: the smallest t_a of the grid,
+// or with a law on t_a the low end of its support (0 for gamma and
+// lognormal, which no positive burn-in or observe time fits).
+std::pair<double, std::string> smallest_window(const sweep_spec& s) {
+  for (const auto& u : s.uncertain)
+    if (u.symbol == "ta")
+      return {support(u.law).first,
+              fmt::format("the low end of the support of t_a's law {}", to_string(u.law))};
+  return {shortest_window(s), "the shortest window of the sweep"};
 }
 
-// Observe times: ascending, in [0, t_a] at every point, at most
-// max_observe_times; not with laws or a sensitivity study (their
-// realizations run through their own observers); fewer than 2^32
-// realizations (the quantile sketches count in 32 bits).
+// 0 <= T < t_a at every point and for every draw of a law on t_a.
+void validate_burn_in(const sweep_spec& s) {
+  if (s.burn_in == 0.0) return;
+  const auto [shortest, what] = smallest_window(s);
+  if (!(s.burn_in > 0.0) || !(s.burn_in < shortest))
+    throw invalid_parameter("burn_in", s.burn_in,
+                            fmt::format("0 <= burn_in < t_a = {} ({}; 0 = no burn-in)", shortest,
+                                        what));
+}
+
+// Observe times: ascending, in [0, t_a] at every point (and every draw of a
+// law on t_a), at most max_observe_times; not in a sensitivity study; fewer
+// than 2^32 realizations (the quantile sketches count in 32 bits).
 void validate_observe_times(const sweep_spec& s) {
   const auto& t = s.observe_times;
   if (t.empty()) return;
   if (t.size() > max_observe_times)
     throw invalid_parameter("observe_times", static_cast<double>(t.size()),
                             fmt::format("at most {} times", max_observe_times));
-  const double shortest = shortest_window(s);
+  const auto [shortest, what] = smallest_window(s);
   for (std::size_t j = 0; j < t.size(); ++j) {
     if (!(t[j] >= 0.0) || std::signbit(t[j]) || !(t[j] <= shortest))
       throw invalid_parameter("observe_times", t[j],
-                              fmt::format("0 <= t <= t_a = {} (the shortest window of the sweep)",
-                                          shortest));
+                              fmt::format("0 <= t <= t_a = {} ({})", shortest, what));
     if (j > 0 && !(t[j] > t[j - 1]))
       throw invalid_parameter("observe_times", t[j],
                               fmt::format("times in increasing order, each once (it follows {})",
                                           t[j - 1]));
   }
-  if (!s.uncertain.empty() || !s.sensitivity_statistic.empty())
+  if (!s.sensitivity_statistic.empty())
     throw invalid_value("observe_times", fmt::format("{} times", t.size()),
-                        "none with uncertain parameters or a sensitivity study (observe times "
-                        "are not supported with laws)");
+                        "none in a sensitivity study (its design rows keep one value per "
+                        "realization, not states over time)");
   if (s.realizations >= (std::uint64_t{1} << 32))
     throw invalid_parameter("realizations", static_cast<double>(s.realizations),
                             "< 2^32 = 4294967296 with observe times");
@@ -402,17 +406,6 @@ void drop_causal_score(realization_record& r) noexcept {
   r.stick_switch_moment = r.stick_time_moment = 0.0;
   r.events.switch_time_sum = 0.0;
 }
-
-// The observer the reference engines run with observe times: the
-// realization's observer, which also takes every closed-form segment into
-// its state sampler (state_sampler.hpp).
-struct state_sampling_observer : observer_base {
-  realization_observer& o;
-  explicit state_sampling_observer(realization_observer& obs) : o(obs) {}
-  void on_episode(const episode& e) { o.on_episode(e); }
-  void on_piece(const motion_piece& p) { o.on_piece(p); }
-  void on_segment(const segment& s) { o.sample_segment(s); }
-};
 }  // namespace
 
 // One realization at a time: simulate with poisson_switches, statistics

@@ -7,7 +7,8 @@
 # recorded in results.nc (attribute burn_in), summary.json
 # (parameters.burn_in), summary.csv (column burn_in) and the resolved
 # config; out-of-range values exit 2 naming burn_in, the value and the range,
-# and write nothing.
+# and write nothing. With laws (t_a drawn too) and observe times, the same
+# bits for threads, resume and MPI; T below the low end of t_a's law.
 #   sweep_burn_in.sh STICKSLIP [MPIRUN]
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/lib.sh"
@@ -68,6 +69,35 @@ if [[ -n $MPIRUN ]]; then
   same "mpirun -np 2" mpi
 fi
 
+# With laws (mu and t_a drawn per realization), a burn-in and observe times:
+# the same bits for 1 and 2 threads, a shard then --resume, and mpirun.
+L=(sweep --lambda 0.5,3.8 --mu 'uniform(4,6)' --ta 'uniform(20,30)' --realizations 120
+   --block-size 20 --seed 3 --burn-in 5 --observe-times lin:0:20:5 --records)
+same_laws() {  # same_laws WHAT DIR: DIR's outputs equal law1's
+  checks=$((checks + 1))
+  $compare law1 "$2" >/dev/null 2>"$WORK/compare.err" || fail "laws, $1 differs: $(cat "$WORK/compare.err")"
+}
+run_ok "${L[@]}" --threads 1 -o law1
+run_ok "${L[@]}" --threads 2 -o law2 && same_laws "--threads 2" law2
+"$BIN" "${L[@]}" --shard 1/2 -o lawres >/dev/null 2>&1 || fail "the laws' shard run"
+run_ok "${L[@]}" -o lawres --resume && same_laws "--resume" lawres
+if [[ -n $MPIRUN ]]; then
+  checks=$((checks + 1))
+  "$MPIRUN" --oversubscribe --mca btl self,vader --mca btl_vader_single_copy_mechanism none \
+    -np 2 "$BIN" "${L[@]}" --threads 1 -o lawmpi >/dev/null 2>"$WORK/mpi.err" ||
+    fail "laws, mpirun -np 2: $(cat "$WORK/mpi.err")"
+  same_laws "mpirun -np 2" lawmpi
+fi
+"$PY" - <<'PY' || fail "laws: burn_in and the observe times recorded"
+import netCDF4
+ds = netCDF4.Dataset("law1/results.nc")
+assert ds.burn_in == 5.0, ds.burn_in
+p = ds["stick_probability"][:]
+assert p.shape == (2, 5), p.shape
+assert (p[:, 0] == 0).all() and (p[:, 1:] > 0).all(), p
+PY
+checks=$((checks + 1))
+
 # --burn-in 0 is no burn-in: the same outputs, attributes and config.
 run_ok "${A[@]}" -o plain
 run_ok "${A[@]}" --burn-in 0 -o zero
@@ -114,8 +144,9 @@ expect_fail "invalid --burn-in: 'ten' (allowed: a finite number" \
   sweep --lambda 1 --realizations 10 --burn-in ten
 expect_fail "invalid --burn-in: 'inf' (allowed: a finite number" \
   sweep --lambda 1 --realizations 10 --burn-in inf
-expect_fail "invalid burn_in: 1 (allowed: 0 with uncertain parameters" \
-  sweep --lambda 1 --mu 'uniform(4,6)' --realizations 10 --burn-in 1
+# With laws every draw of t_a must exceed T: the low end of t_a's law.
+expect_fail "invalid burn_in: 20 (allowed: 0 <= burn_in < t_a = 20 (the low end of the support of t_a's law uniform(min=20,max=30)" \
+  sweep --lambda 1 --ta 'uniform(20,30)' --realizations 10 --burn-in 20
 printf '[model]\nta = 10\n[sweep]\nburn_in = 10\n' >bad1.toml
 expect_fail "invalid burn_in: 10 (allowed: 0 <= burn_in < t_a = 10" sweep --config bad1.toml
 printf '[sweep]\nburn_in = "ten"\n' >bad2.toml

@@ -170,7 +170,8 @@ bad "invalid --observe-times: '-1,2'|>= 0" --observe-times -1,2
 bad "invalid --observe-times: ''|at least one value" --observe-times ''
 bad "invalid --observe-times: 'lin:20:0'|4 fields" --observe-times lin:20:0
 bad "invalid observe_times: 10|increasing order" --observe-times lin:20:0:3
-bad "invalid observe_times|uncertain parameters" --mu 'uniform(4,6)' --observe-times 0,1
+expect_fail "invalid observe_times: 25|t_a = 20 (the low end of the support of t_a's law uniform(min=20,max=30))" \
+  sweep --lambda 1 --ta 'uniform(20,30)' --realizations 10 --observe-times 0,25
 printf '[model]\nta = 10\n[sweep]\nobserve_times = [0, 11]\n' >bad1.toml
 expect_fail "invalid observe_times: 11|t_a = 10" sweep --config bad1.toml
 printf '[sweep]\nobserve_times = "ten"\n' >bad2.toml

@@ -50,7 +50,7 @@ event_counts simulate_with_values(const sweep_spec& s, const model_parameters& d
                                   std::uint64_t key, std::uint64_t realization, Observer& obs);
 
 // The same, finished: a realization_observer made for `drawn` (with
-// s.family_statistics) holding realization r's record (events included) and
+// s.family_statistics, s.burn_in and s.observe_times) holding realization r's record (events included) and
 // samples. What a sensitivity design evaluates per row and input; what
 // `simulate --realization` replays.
 [[nodiscard]] realization_observer observe_with_values(const sweep_spec& s,

@@ -63,8 +63,11 @@ std::uint64_t uncertain_stream_key(const sweep_spec& s, std::size_t point) {
 
 realization_observer observe_with_values(const sweep_spec& s, const model_parameters& drawn,
                                          std::uint64_t key, std::uint64_t realization) {
-  realization_observer obs(drawn, s.family_statistics);
-  const event_counts counts = simulate_with_values(s, drawn, key, realization, obs);
+  realization_observer obs(drawn, s.family_statistics, s.burn_in, &s.observe_times);
+  state_sampling_observer with_states(obs);
+  const event_counts counts = obs.observes_times()
+                                  ? simulate_with_values(s, drawn, key, realization, with_states)
+                                  : simulate_with_values(s, drawn, key, realization, obs);
   obs.finish();
   obs.record().events = counts;
   return obs;
