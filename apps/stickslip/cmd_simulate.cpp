@@ -45,6 +45,8 @@ struct simulate_options {
   std::string trajectory_step, trajectory_file;
   bool overwrite = false;
   bool common_random_numbers = false;
+  std::string burn_in;
+  CLI::Option* burn_in_opt = nullptr;
   CLI::Option *x0_opt = nullptr, *xdot0_opt = nullptr, *belt_opt = nullptr;
   CLI::Option *times_opt = nullptr, *times_file_opt = nullptr, *trajectory_opt = nullptr;
   CLI::Option *events_file_opt = nullptr, *trajectory_file_opt = nullptr;
@@ -106,6 +108,8 @@ io::realization_report run_one(const CLI::App& cmd, const simulate_options& o) {
   req.max_events = resolve_max_events(o.model, req.max_events);
   req.realization = io::parse_unsigned("--realization", o.realization);
   req.common_random_numbers = o.common_random_numbers;
+  if (o.burn_in_opt->count() > 0)
+    req.burn_in = io::parse_number("--burn-in", o.burn_in);  // 0 <= T < t_a: replay()
   if (auto laws = given_laws(cmd, o.model); !laws.empty())
     return run_uncertain(o, std::move(req), std::move(laws));
   set_given_switches(o, req);
@@ -180,9 +184,11 @@ void run_simulate(const CLI::App& cmd, const simulate_options& o) {
   for (std::size_t i = 0; i < run.uncertain.size(); ++i)
     drawn += fmt::format("{}{} = {} (drawn from {})", i ? ", " : "", run.uncertain[i].symbol,
                          run.drawn[i], to_string(run.uncertain[i].law));
-  fmt::print(stderr, "seed {} realization {}: {}{}S_T = {}, S_L = {}, R = {:.6g} ({} events)\n",
+  const std::string over =
+      run.request.burn_in > 0.0 ? fmt::format(" over [{}, t_a]", run.request.burn_in) : "";
+  fmt::print(stderr, "seed {} realization {}: {}{}S_T = {}, S_L = {}, R = {:.6g}{} ({} events)\n",
              run.request.seed, run.request.realization, drawn, drawn.empty() ? "" : "; ",
-             s.sticks, s.slips, s.stick_fraction, s.events.total());
+             s.sticks, s.slips, s.stick_fraction, over, s.events.total());
 }
 
 }  // namespace
@@ -205,6 +211,12 @@ void add_simulate_command(CLI::App& app, const invocation&) {
   cmd->add_flag("--common-random-numbers", o.common_random_numbers,
                 "the streams of a sweep run with --common-random-numbers (the same for every "
                 "grid point) instead of this point's own");
+  o.burn_in_opt =
+      cmd->add_option("--burn-in", o.burn_in,
+                      "count only [T, t_a] in the realization's statistics (S_T, S_L, R, D_1), "
+                      "as a sweep with --burn-in T does; the episodes are the whole window "
+                      "(default 0)")
+          ->type_name("T");
   const char* replay = "Replay (fixed inputs instead of random draws)";
   o.x0_opt = cmd->add_option("--x0", o.x0, "initial position x0 [m] (default: drawn)")
                  ->type_name("X")

@@ -35,6 +35,10 @@ struct replay_request {
   // Replay realization r of a sweep run with common random numbers: the
   // streams of common_stream_key instead of point_key(parameters).
   bool common_random_numbers = false;
+  // Count only [T, t_a] in the record (sweep_spec::burn_in, burn_in.hpp):
+  // the record of realization r of a sweep run with --burn-in T. The
+  // episodes, events and segments are the whole realization either way.
+  double burn_in = 0.0;
 };
 
 struct realization_trace {

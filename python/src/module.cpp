@@ -214,11 +214,12 @@ py::dict replay_py(const py::dict& model, std::uint64_t seed, std::optional<std:
                    std::optional<double> x0, std::optional<double> xdot0,
                    std::optional<std::string> belt_start, std::optional<std::vector<double>> switch_times,
                    std::optional<std::vector<std::int64_t>> switch_levels, std::int64_t max_events,
-                   bool common_random_numbers) {
+                   bool common_random_numbers, double burn_in) {
   std::vector<uncertain_parameter> laws;
-  const replay_request asked = request_from(model, seed, realization, x0, xdot0, belt_start,
-                                            switch_times, switch_levels, max_events,
-                                            common_random_numbers, laws);
+  replay_request asked = request_from(model, seed, realization, x0, xdot0, belt_start,
+                                      switch_times, switch_levels, max_events,
+                                      common_random_numbers, laws);
+  asked.burn_in = burn_in;  // 0 <= T < t_a: replay() and replay_uncertain() check it
   io::realization_report report;
   {
     py::gil_scoped_release release;
@@ -692,7 +693,8 @@ PYBIND11_MODULE(_stickslip, m) {
           }));
   m.def("replay", &replay_py, py::arg("parameters"), py::arg("seed"), py::arg("realization"),
         py::arg("x0"), py::arg("xdot0"), py::arg("belt_start"), py::arg("switch_times"),
-        py::arg("switch_levels"), py::arg("max_events"), py::arg("common_random_numbers") = false);
+        py::arg("switch_levels"), py::arg("max_events"), py::arg("common_random_numbers") = false,
+        py::arg("burn_in") = 0.0);
   m.def("run_sweep", &run_sweep_py, py::arg("base"), py::arg("axes"), py::arg("realizations"),
         py::arg("seed"), py::arg("block_size"), py::arg("bins"), py::arg("records"),
         py::arg("engine"), py::arg("max_events"), py::arg("threads"), py::arg("output"),

@@ -85,7 +85,7 @@ class Realization:
 
 def simulate(*, seed=1, realization=None, x0=None, xdot0=None, belt_start=None, switch_times=None,
              switch_levels=None, belt_levels=None, belt_rates=None, belt_generator=None,
-             max_events=None, common_random_numbers=False, **model):
+             max_events=None, common_random_numbers=False, burn_in=0.0, **model):
     """One realization of the stick-slip oscillator, exactly as
     `stickslip simulate` computes it: realization `realization` of the sweep
     point with these parameters and `seed`, unless x0, xdot0, belt_start or
@@ -115,6 +115,10 @@ def simulate(*, seed=1, realization=None, x0=None, xdot0=None, belt_start=None, 
     max_events: bound on the events of the realization (default 1e8).
     common_random_numbers: replay realization `realization` of a sweep run
         with common_random_numbers=True (the streams every point shares).
+    burn_in: T [s], 0 <= T < t_a: .record counts only [T, t_a] (S_T, S_L,
+        R over t_a - T, the first stick from T), as a sweep with
+        burn_in=T records realization `realization`; the episodes are the
+        whole window either way (default 0).
 
     Returns a Realization. Raises stickslip.Error for bad input.
     """
@@ -122,7 +126,8 @@ def simulate(*, seed=1, realization=None, x0=None, xdot0=None, belt_start=None, 
                                   switch_levels, belt_levels, belt_rates, belt_generator,
                                   max_events, common_random_numbers)
     realization = optional(whole, "realization", realization)
-    raw = extension.replay(**arguments, realization=realization)
+    raw = extension.replay(**arguments, realization=realization,
+                           burn_in=number("burn_in", burn_in))
     return Realization(arguments["seed"], realization or 0, raw)
 
 

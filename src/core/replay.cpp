@@ -26,7 +26,7 @@ template <class Simulate>
 void trace_realization(const replay_request& r, const model_parameters& p, realization_trace& out,
                        Simulate simulate) {
   trace_observer trace{{}, out, r.keep_events, r.keep_segments};
-  realization_observer stats(p);
+  realization_observer stats(p, true, r.burn_in);
   stats.reset(r.realization, out.initial.position, out.initial.velocity,
               out.initial.belt_direction);
   observer_pair<trace_observer, realization_observer> both{trace, stats};
@@ -77,6 +77,7 @@ realization_trace replay(const replay_request& r) {
   spec.initial = r.initial;
   spec.max_events = r.max_events;
   spec.common_random_numbers = r.common_random_numbers;
+  spec.burn_in = r.burn_in;
   validate(spec);
   const std::size_t levels = spec.base.levels().size();
   if (r.belt_start) validate_belt_start(*r.belt_start, levels, false);

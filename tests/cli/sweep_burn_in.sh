@@ -98,6 +98,38 @@ assert (p[:, 0] == 0).all() and (p[:, 1:] > 0).all(), p
 PY
 checks=$((checks + 1))
 
+# simulate --realization R --burn-in T replays record R of the sweep: the
+# same S_T, S_L, R and D_1, bit for bit (the paper model and a law on mu).
+for case in "paper t1 --lambda 3.8 --mu 5" "law law1 --lambda 3.8 --mu uniform(4,6) --ta uniform(20,30)"; do
+  read -r what dir rest <<<"$case"
+  # shellcheck disable=SC2086
+  for r in 3 77; do
+    "$BIN" simulate $([[ $what == paper ]] && echo --preset paper-figures --ta 20) $rest --seed 3 \
+      --realization $r --burn-in $([[ $what == paper ]] && echo 7.5 || echo 5) --format json \
+      -o "sim_${what}_$r.json" 2>/dev/null || fail "simulate --burn-in ($what, realization $r)"
+  done
+done
+"$PY" - <<'PY' || fail "simulate --burn-in does not replay the sweep's records"
+import csv, json
+for what, d, point in (("paper", "t1", None), ("law", "law1", 1)):
+    rows = list(csv.DictReader(open(d + "/records.csv")))
+    for r in (3, 77):
+        sim = json.load(open(f"sim_{what}_{r}.json"))
+        assert sim["burn_in"] == (7.5 if what == "paper" else 5.0), sim["burn_in"]
+        want = [x for x in rows if int(x["realization"]) == r and float(x["lambda"]) == 3.8
+                and (point is None or int(x["point"]) == point)]
+        if what == "paper":
+            want = [x for x in want if float(x["mu"]) == 5.0]
+        assert len(want) == 1, (what, r, len(want))
+        st = sim["statistics"]
+        for k in ("sticks", "slips"):
+            assert int(want[0][k]) == st[k], (what, r, k, want[0][k], st[k])
+        for k in ("stick_fraction", "first_stick_start", "first_stick_duration"):
+            a, b = float(want[0][k]), st[k]
+            assert (a != a and b is None) or a == b, (what, r, k, a, b)
+PY
+checks=$((checks + 1))
+
 # --burn-in 0 is no burn-in: the same outputs, attributes and config.
 run_ok "${A[@]}" -o plain
 run_ok "${A[@]}" --burn-in 0 -o zero

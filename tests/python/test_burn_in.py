@@ -59,3 +59,26 @@ def test_out_of_range_is_the_cli_message(cli, tmp_path):
     assert p.returncode == 2 == e.value.exit_code
     assert str(e.value) in p.stderr
     assert not (tmp_path / "py").exists() and not (tmp_path / "cli").exists()
+
+
+@pytest.mark.parametrize("law", [None, "uniform(4,6)"])
+def test_simulate_replays_the_sweeps_record_with_the_burn_in(tmp_path, law):
+    """simulate(realization=r, burn_in=T).record is row r of the sweep's
+    records.csv with burn_in=T, bit for bit; without burn_in it differs."""
+    import csv
+    mu = law or 5.0
+    stickslip.sweep(lam=3.8, mu=mu, k=40.0, ta=20.0, realizations=40, seed=4, records=True,
+                    burn_in=7.5, output=tmp_path / "out")
+    rows = list(csv.DictReader(open(tmp_path / "out" / "records.csv")))
+    for r in (0, 17, 39):
+        sim = stickslip.simulate(lam=3.8, mu=mu, k=40.0, ta=20.0, seed=4, realization=r,
+                                 burn_in=7.5).record
+        row = rows[r]
+        assert int(row["realization"]) == r
+        assert (sim["S_T"], sim["S_L"]) == (int(row["sticks"]), int(row["slips"]))
+        assert sim["R"] == float(row["stick_fraction"])
+        whole = stickslip.simulate(lam=3.8, mu=mu, k=40.0, ta=20.0, seed=4, realization=r).record
+        assert whole["R"] != sim["R"]
+    with pytest.raises(stickslip.Error) as e:
+        stickslip.simulate(lam=3.8, mu=mu, ta=20.0, realization=0, burn_in=20.0)
+    assert str(e.value).startswith("invalid burn_in: 20 (allowed: 0 <= burn_in < t_a = 20")

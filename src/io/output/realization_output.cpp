@@ -130,6 +130,7 @@ std::string realization_json(const realization_report& r, bool with_events) {
   j.end_object();
   j.member("seed", r.request.seed);
   j.member("realization", r.request.realization);
+  if (r.request.burn_in > 0.0) j.member("burn_in", r.request.burn_in);
   if (!r.uncertain.empty()) emit_draws(j, r);
   emit_initial_conditions(j, r);
   // "poisson" for the paper's telegraph belt, "markov" for any other belt.

@@ -56,12 +56,13 @@ realization_report replay_uncertain(const replay_request& request,
   s.initial = request.initial;
   s.max_events = request.max_events;
   s.common_random_numbers = request.common_random_numbers;
+  s.burn_in = request.burn_in;
   validate(s);  // validate_laws among the sweep's checks
 
   const drawn_realization d = draw_realization(s, 0, request.realization);
   realization_report report{request, {}, s.uncertain, d.values};
   report.request.parameters = d.parameters;
-  traced_realization obs{realization_observer(d.parameters, s.family_statistics), report.trace,
+  traced_realization obs{realization_observer(d.parameters, s.family_statistics, s.burn_in), report.trace,
                          request.keep_events, request.keep_segments};
   const event_counts counts =
       simulate_with_values(s, d.parameters, uncertain_stream_key(s, 0), request.realization, obs);
