@@ -83,15 +83,44 @@ double quantile_sketch::quantile(double q) const {
 
 void quantile_sketch::quantiles(const double* q, std::size_t n, double* out) const {
   const std::uint64_t total = count();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (total == 0) {
-      out[i] = std::numeric_limits<double>::quiet_NaN();
-      continue;
-    }
-    // k = max(1, ceil(q n)): the k-th smallest sample
-    const auto k = static_cast<std::uint64_t>(std::ceil(q[i] * static_cast<double>(total)));
-    out[i] = ranked(std::clamp<std::uint64_t>(k, 1, total));
+  if (total == 0) {
+    std::fill(out, out + n, std::numeric_limits<double>::quiet_NaN());
+    return;
   }
+  // k = max(1, ceil(q n)): the k-th smallest sample. Ascending ranks (the
+  // usual levels 5 .. 95 %) are found in one walk over the bins.
+  std::uint64_t previous = 0;
+  bool ascending = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = std::clamp<std::uint64_t>(
+        static_cast<std::uint64_t>(std::ceil(q[i] * static_cast<double>(total))), 1, total);
+    ascending = ascending && k >= previous;
+    previous = k;
+  }
+  if (!ascending) {
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = ranked(std::clamp<std::uint64_t>(
+          static_cast<std::uint64_t>(std::ceil(q[i] * static_cast<double>(total))), 1, total));
+    return;
+  }
+  auto middle = [](std::uint32_t key) { return 0.5 * (lower(key) + upper(key)); };
+  std::size_t i = 0;
+  std::uint64_t below = 0;  // samples in the bins walked so far
+  auto rank = [&](std::size_t m) {
+    return std::clamp<std::uint64_t>(
+        static_cast<std::uint64_t>(std::ceil(q[m] * static_cast<double>(total))), 1, total);
+  };
+  // Each bin answers every rank it holds: below < k <= below + count.
+  auto bin = [&](std::uint64_t c, double value) {
+    below += c;
+    while (i < n && rank(i) <= below) out[i++] = value;
+  };
+  for (std::size_t b = negative_.counts.size(); b-- > 0 && i < n;)
+    if (negative_.counts[b]) bin(negative_.counts[b], -middle(negative_.first + static_cast<std::uint32_t>(b)));
+  if (zero_ && i < n) bin(zero_, 0.0);
+  for (std::size_t b = 0; b < positive_.counts.size() && i < n; ++b)
+    if (positive_.counts[b]) bin(positive_.counts[b], middle(positive_.first + static_cast<std::uint32_t>(b)));
+  for (; i < n; ++i) out[i] = ranked(rank(i));  // not reached: the bins hold every rank
 }
 
 // Counted from the most negative (the negative store from its largest |x|

@@ -426,6 +426,29 @@ TEST(QuantileSketch, QuantilesAreTheOrderStatisticsWithinHalfABin) {
   EXPECT_GT(tiny.quantile(1.0), 0.0);
 }
 
+// quantiles() answers ascending levels in one walk over the bins and other
+// orders rank by rank (ranked()): the same values, level by level.
+TEST(QuantileSketch, OneWalkGivesTheRankByRankQuantiles) {
+  std::mt19937_64 rng(2728);
+  std::normal_distribution<> g(0.3, 2.0);
+  std::uniform_real_distribution<> unit(0.0, 1.0);
+  std::vector<double> levels;
+  for (int i = 0; i <= 200; ++i) levels.push_back(i / 200.0);
+  for (std::size_t n : {1u, 2u, 3u, 7u, 1000u, 10001u}) {
+    quantile_sketch s;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double pick = unit(rng);
+      s.add(pick < 0.2 ? 0.0 : pick < 0.5 ? 1.0 : g(rng));
+    }
+    std::vector<double> walked(levels.size()), ranked(levels.size());
+    s.quantiles(levels.data(), levels.size(), walked.data());
+    const std::vector<double> reversed(levels.rbegin(), levels.rend());
+    s.quantiles(reversed.data(), reversed.size(), ranked.data());
+    for (std::size_t i = 0; i < levels.size(); ++i)
+      EXPECT_EQ(walked[i], ranked[levels.size() - 1 - i]) << "n " << n << " q " << levels[i];
+  }
+}
+
 TEST(QuantileSketch, MergeOrderDoesNotMatter) {
   std::mt19937_64 rng(2727);
   std::normal_distribution<> g(0.0, 1.0);
