@@ -13,8 +13,9 @@
    the test fails on any other, and on a listed one that is gone (delete
    its entry then), so the list only shrinks.
 3. No tracker issue numbers in code, tests, benchmarks, scripts or their
-   comments ("issue" and a number): code names the concept, and a reader of
-   the source has no tracker.
+   comments, nor in README.md and docs/ ("issue" and a number): code and
+   docs name the concept (or a commit, for a dated comparison), and a
+   reader of the source or the manual has no tracker.
 
 Usage: python3 layering.py SOURCE_DIR. Prints every violation and exits 1
 if there is one.
@@ -166,6 +167,9 @@ SCANNED = ("include", "src", "apps", "backends", "python/src", "python/stickslip
 
 def scanned_files(top):
     yield os.path.join(top, "CMakeLists.txt")
+    yield os.path.join(top, "README.md")
+    for d, _, names in os.walk(os.path.join(top, "docs")):
+        yield from (os.path.join(d, n) for n in sorted(names) if n.endswith(".md"))
     for sub in SCANNED:
         for d, _, names in os.walk(os.path.join(top, sub)):
             for n in sorted(names):
@@ -204,7 +208,7 @@ def main():
             print("known component cycle gone, delete its entry: " + ", ".join(key))
             bad += 1
     for h in issue_numbers(top):
-        print("issue number in code: " + h)
+        print("issue number in code or docs: " + h)
         bad += 1
     print(f"package.layering: {len(graph)} headers, {bad} violations")
     return 1 if bad else 0
