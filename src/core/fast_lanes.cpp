@@ -135,15 +135,15 @@ struct target_log_inplace {
 
 // Event codes of one round (what the vector step decided for a lane).
 enum : int {
-  ev_none = 0,    // lane idle this round
-  ev_stick_ta,    // stick runs to t_a: realization ends
-  ev_stick_sw,    // belt switch ends the stick (mirror slip follows)
-  ev_stick_brk,   // stick breaks at the band edge (grazing orbit follows)
-  ev_slip_ta,     // slip runs to t_a: realization ends
-  ev_slip_sw,     // belt switch during the slip
-  ev_slip_onset,  // x' = v inside the band: a stick starts
-  ev_slip_edge,   // x' = v exactly on the outward edge: grazing, no stick
-  ev_slip_rev,    // x' = v outside the band: slip reversal
+  ev_none = 0,       // lane idle this round
+  ev_stick_ta,       // stick runs to t_a: realization ends
+  ev_stick_switch,   // belt switch ends the stick (mirror slip follows)
+  ev_stick_break,    // stick breaks at the band edge (grazing orbit follows)
+  ev_slip_ta,        // slip runs to t_a: realization ends
+  ev_slip_switch,    // belt switch during the slip
+  ev_slip_onset,     // x' = v inside the band: a stick starts
+  ev_slip_edge,      // x' = v exactly on the outward edge: grazing, no stick
+  ev_slip_reversal,  // x' = v outside the band: slip reversal
 };
 
 // Collectors: what the engine does with the realizations it runs.
@@ -277,14 +277,14 @@ class lane_engine {
   // family: the point's family_point (Family), else nullptr.
   lane_engine(const sweep_spec& s, const model_parameters& p, const family_point* family,
               Collector& collect, std::uint64_t first, std::uint64_t last)
-      : s_(s), p_(p), fp_(family), collect_(collect), first_(first), last_(last),
+      : s_(s), p_(p), family_(family), collect_(collect), first_(first), last_(last),
         next_(first), flush_(first),
         a_(p.band_half_width()), ak_(a_), w_(p.natural_frequency()), V_(p.belt_speed),
         ta_(p.window), key_(stream_key(s, p)), burn_in_(p, with_pieces ? s.burn_in : 0.0),
         observing_(samples_states && !s.observe_times.empty()),
         max_steps_(static_cast<double>(s.max_events)) {
     if constexpr (Family) {
-      const oscillator_model& m = fp_->model;
+      const oscillator_model& m = family_->model;
       a_ = m.static_band_half_width();
       ak_ = m.kinetic_offset();
       w_ = m.natural_frequency();
@@ -293,8 +293,8 @@ class lane_engine {
       v2_ = m.belt.levels[1];
       V_ = 0.0;  // unused: |v| per lane
       equal_friction_ = m.static_friction == m.kinetic_friction;
-      mirror_belt_ = v2_ == -v1_;
-      key_ = fp_->key;
+      opposite_levels_ = v2_ == -v1_;
+      key_ = family_->key;
     }
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
@@ -333,10 +333,10 @@ class lane_engine {
     double v;
     if constexpr (Family) {
       // draw_model_initial_state and markov_level_switches, as simulate_block_family
-      const model_initial_state st = draw_model_initial_state(*fp_, s_.initial, s_.seed, r);
+      const model_initial_state st = draw_model_initial_state(*family_, s_.initial, s_.seed, r);
       ic = initial_conditions{st.position, st.velocity, recorded_belt_start(st.level, 2)};
-      switch_times_[l] = two_level_switch_times(fp_->chain.mean_wait(st.level),
-                                      fp_->chain.mean_wait(1 - st.level), s_.seed, key_, r);
+      switch_times_[l] = two_level_switch_times(family_->chain.mean_wait(st.level),
+                                      family_->chain.mean_wait(1 - st.level), s_.seed, key_, r);
       v = st.level == 0 ? v1_ : v2_;
     } else {
       ic = draw_initial_conditions(s_.initial, s_.seed, key_, r);
@@ -542,29 +542,34 @@ class lane_engine {
     const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
     const vec mA = hn::Neg(A);
     // Family: the slip centre sigma a_k (the paper: sigma a, the band's edge),
-    // the two levels, and what an outward-edge departure leaves (grazing with
-    // mu_s = mu_k, a slip after a reversal otherwise), whether a switch out
-    // of a stick leaves a mirror slip (v2 = -v1).
+    // the two levels, and what an outward-edge departure leaves (EDGE_GRAZES:
+    // the grazing orbit, with mu_s = mu_k; EDGE_SLIPS_AWAY: a slip after a
+    // reversal, otherwise), whether a switch out of a stick can leave a mirror
+    // slip (SWITCH_MIRRORS: opposite levels, v2 = -v1). 0/1 per lane.
     const vec AK = Family ? Set(d, ak_) : A;
     const vec V1 = Set(d, v1_), V2 = Set(d, v2_);
-    const vec GRZ = Family && !equal_friction_ ? zero : one;
-    const vec ARV = Family && !equal_friction_ ? one : zero;
-    const vec MIR = Family && !mirror_belt_ ? zero : one;
+    const vec EDGE_GRAZES = Family && !equal_friction_ ? zero : one;
+    const vec EDGE_SLIPS_AWAY = Family && !equal_friction_ ? one : zero;
+    const vec SWITCH_MIRRORS = Family && !opposite_levels_ ? zero : one;
     const vec NEAR = Set(d, 0x1p-49), TINY = Set(d, 0x1p-900);
-    vec t[K], x[K], z[K], v[K], tsw[K], sig[K], s[K], t_edge[K], sq[K];
+    vec t[K], x[K], z[K], v[K], t_switch[K], sig[K], s[K], t_edge[K], sq[K];
     vphysics::slip_orbit<vec> o[K];
-    mask stick[K], graz[K], mirr[K], run[K], st_ta[K], st_sw[K], has_root[K], arv[K];
+    // the lane's mode (sticking_, grazing_, mirror_, after_reversal_), whether
+    // it runs this round, how its stick would end (at t_a or at a switch), and
+    // whether its slip has a root
+    mask sticking[K], grazing[K], mirror[K], run[K], stick_to_ta[K], stick_to_switch[K],
+        has_root[K], after_reversal[K];
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
       t[k] = hn::Load(d, time_ + j), x[k] = hn::Load(d, position_ + j),
       z[k] = hn::Load(d, velocity_ + j);
-      v[k] = hn::Load(d, belt_velocity_ + j), tsw[k] = hn::Load(d, next_switch_time_ + j),
+      v[k] = hn::Load(d, belt_velocity_ + j), t_switch[k] = hn::Load(d, next_switch_time_ + j),
       sig[k] = hn::Load(d, slip_centre_sign_ + j);
-      stick[k] = hn::Gt(hn::Load(d, sticking_ + j), half);
-      graz[k] = hn::Gt(hn::Load(d, grazing_ + j), half);
-      mirr[k] = hn::Gt(hn::Load(d, mirror_ + j), half);
+      sticking[k] = hn::Gt(hn::Load(d, sticking_ + j), half);
+      grazing[k] = hn::Gt(hn::Load(d, grazing_ + j), half);
+      mirror[k] = hn::Gt(hn::Load(d, mirror_ + j), half);
       run[k] = hn::Gt(hn::Load(d, steps_this_round_ + j), half);
-      arv[k] = hn::Gt(hn::Load(d, after_reversal_ + j), half);
+      after_reversal[k] = hn::Gt(hn::Load(d, after_reversal_ + j), half);
     }
     K_LOOP {
       s[k] = IfThenElse(hn::Gt(v[k], zero), one, m_one);
@@ -572,11 +577,11 @@ class lane_engine {
       t_edge[k] = vphysics::stick_edge_time(t[k], A, s[k], x[k], Family ? hn::Abs(v[k]) : VV);
       if constexpr (Family)  // a stick at a level 0 lasts until the next switch
         t_edge[k] = IfThenElse(hn::Eq(v[k], zero), Set(d, inf), t_edge[k]);
-      st_ta[k] = hn::Ge(Min(t_edge[k], tsw[k]), TA);
-      st_sw[k] = hn::AndNot(st_ta[k], hn::Le(tsw[k], t_edge[k]));
+      stick_to_ta[k] = hn::Ge(Min(t_edge[k], t_switch[k]), TA);
+      stick_to_switch[k] = hn::AndNot(stick_to_ta[k], hn::Le(t_switch[k], t_edge[k]));
       // slip
       o[k] = vphysics::orbit_of(x[k], z[k], v[k], sig[k], AK, W);
-      has_root[k] = hn::AndNot(hn::Or(stick[k], graz[k]), hn::Gt(o[k].disc, zero));
+      has_root[k] = hn::AndNot(hn::Or(sticking[k], grazing[k]), hn::Gt(o[k].disc, zero));
       sq[k] = hn::Sqrt(hn::IfThenElseZero(has_root[k], o[k].disc));
     }
     vec r[K], ay[K], ax[K], at[K];
@@ -586,50 +591,53 @@ class lane_engine {
       ay[k] = q.y;
       ax[k] = q.x;
       {  // reversal_arc_angle: alpha = atan2(|w y|, v)
-        ay[k] = IfThenElse(arv[k], hn::Abs(o[k].wy), ay[k]);
-        ax[k] = IfThenElse(arv[k], v[k], ax[k]);
+        ay[k] = IfThenElse(after_reversal[k], hn::Abs(o[k].wy), ay[k]);
+        ax[k] = IfThenElse(after_reversal[k], v[k], ax[k]);
       }
       // one division for both kinds of root: |wy| / |z| (mirror return) or
       // atan2_ratio's min(|ay|, |ax|) / max(|ay|, |ax|)
       vec num, den;
       sk::atan2_ratio_operands(ay[k], ax[k], num, den);
-      const vec ratio = Div(IfThenElse(mirr[k], hn::Abs(o[k].wy), num),
-                            IfThenElse(mirr[k], hn::Abs(z[k]), den));
+      const vec ratio = Div(IfThenElse(mirror[k], hn::Abs(o[k].wy), num),
+                            IfThenElse(mirror[k], hn::Abs(z[k]), den));
       at[k] = IfThenElse(has_root[k], ratio, zero);
     }
     K_LOOP at[k] = sk::atan(d, at[k]);
     vec t_root[K];
-    mask sl_ta[K], sl_sw[K], sl_root[K];
-    bool any_rot = false;
+    mask slip_to_ta[K], slip_to_switch[K], slip_to_root[K];
+    bool any_rotation = false;
     K_LOOP {
       const vec raw = sk::atan2_finish(d, at[k], ay[k], ax[k]);
       const mask neg_ok =
           hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(o[k].wy, r[k]), zero)),
                   hn::Gt(raw, Set(d, -0.5 * std::numbers::pi)));
-      const vec dt_gen = IfThenElse(hn::Ge(raw, zero), raw,
+      const vec dtheta_general = IfThenElse(hn::Ge(raw, zero), raw,
                                     IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
-      const vec dt_mir = vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
-      vec dtheta = IfThenElse(mirr[k], dt_mir, dt_gen);
+      const vec dtheta_mirror =
+          vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
+      vec dtheta = IfThenElse(mirror[k], dtheta_mirror, dtheta_general);
       {  // reversal_arc_from_alpha
         const vec two_raw = Mul(Set(d, 2.0), raw);
-        const vec dt_rev = IfThenElse(hn::Gt(sig[k], zero), Sub(Set(d, two_pi), two_raw), two_raw);
-        dtheta = IfThenElse(arv[k], dt_rev, dtheta);
+        const vec dtheta_reversal =
+            IfThenElse(hn::Gt(sig[k], zero), Sub(Set(d, two_pi), two_raw), two_raw);
+        dtheta = IfThenElse(after_reversal[k], dtheta_reversal, dtheta);
       }
       t_root[k] = IfThenElse(has_root[k], vphysics::time_after_phase(t[k], dtheta, W), Set(d, inf));
-      sl_ta[k] = hn::Ge(Min(t_root[k], tsw[k]), TA);
-      sl_sw[k] = hn::AndNot(sl_ta[k], hn::Le(tsw[k], t_root[k]));
-      sl_root[k] = hn::Not(hn::Or(sl_ta[k], sl_sw[k]));
-      any_rot |= !hn::AllFalse(d, hn::AndNot(stick[k], hn::AndNot(sl_root[k], run[k])));
+      slip_to_ta[k] = hn::Ge(Min(t_root[k], t_switch[k]), TA);
+      slip_to_switch[k] = hn::AndNot(slip_to_ta[k], hn::Le(t_switch[k], t_root[k]));
+      slip_to_root[k] = hn::Not(hn::Or(slip_to_ta[k], slip_to_switch[k]));
+      any_rotation |=
+          !hn::AllFalse(d, hn::AndNot(sticking[k], hn::AndNot(slip_to_root[k], run[k])));
     }
-    std::uint32_t pop = 0, cl_stick = 0, cl_slip = 0, fin = 0;
+    std::uint32_t took_switch = 0, close_stick = 0, close_slip = 0, finished = 0;
     std::uint32_t observe_lanes = 0, observe_sticking = 0;  // lanes holding an observe time
     // slip: the rotation to a switch or to t_a
-    vec xr[K], zr[K];
-    K_LOOP xr[k] = x[k], zr[k] = z[k];
-    if (any_rot) {
+    vec x_rotated[K], z_rotated[K];
+    K_LOOP x_rotated[k] = x[k], z_rotated[k] = z[k];
+    if (any_rotation) {
       vec u[K], sn[K], cs[K];
       K_LOOP {
-        u[k] = Mul(W, Sub(Min(tsw[k], TA), t[k]));
+        u[k] = Mul(W, Sub(Min(t_switch[k], TA), t[k]));
         if (!hn::AllFalse(d, hn::Gt(hn::Abs(u[k]), Set(d, fm::max_direct_phase)))) {
           HWY_ALIGN double ph[hn::MaxLanes(dtag())];
           hn::Store(u[k], d, ph);
@@ -640,81 +648,108 @@ class lane_engine {
       K_LOOP sn[k] = sk::sin(d, u[k]);
       K_LOOP cs[k] = sk::cos(d, u[k]);
       K_LOOP {
-        xr[k] = vphysics::rotated_position(o[k], z[k], W, cs[k], sn[k]);
-        zr[k] = vphysics::rotated_velocity(o[k], z[k], cs[k], sn[k]);
+        x_rotated[k] = vphysics::rotated_position(o[k], z[k], W, cs[k], sn[k]);
+        z_rotated[k] = vphysics::rotated_velocity(o[k], z[k], cs[k], sn[k]);
       }
     }
     K_LOOP {
       const std::size_t j = static_cast<std::size_t>(k) * N;
       // slip: the root, and its resolution
-      const vec x_root = IfThenElse(mirr[k], x[k], vphysics::root_position(o[k], sig[k], sq[k], W));
-      const mask in_m = hn::MaskFromVec(IfThenElse(hn::Gt(sig[k], zero),
+      const vec x_root =
+          IfThenElse(mirror[k], x[k], vphysics::root_position(o[k], sig[k], sq[k], W));
+      const mask inside = hn::MaskFromVec(IfThenElse(hn::Gt(sig[k], zero),
                                                    hn::VecFromMask(d, hn::Ge(x_root, mA)),
                                                    hn::VecFromMask(d, hn::Le(x_root, A))));
-      const vec x_cl = Min(Max(x_root, mA), A);
+      const vec x_clamped = Min(Max(x_root, mA), A);
       // physics::resolve_contact: on the outward edge, or so near it that the
       // stick's break time rounds to the contact time (no stick: a grazing
       // touch). The division runs only when some lane is that near: a lane
       // whose gap exceeds |v| t 2^-49 breaks strictly after t (and a t below
       // 2^-900, where that bound underflows, always checks).
-      const vec gap = Sub(A, Mul(s[k], x_cl));
+      const vec gap = Sub(A, Mul(s[k], x_clamped));
       const vec speed = Family ? hn::Abs(v[k]) : VV;
       mask on_edge = hn::Le(gap, zero);
       const mask near = hn::And(
-          hn::AndNot(stick[k], sl_root[k]), hn::Or(hn::Le(gap, Mul(speed, Mul(t_root[k], NEAR))), hn::Lt(t_root[k], TINY)));
+          hn::AndNot(sticking[k], slip_to_root[k]),
+          hn::Or(hn::Le(gap, Mul(speed, Mul(t_root[k], NEAR))), hn::Lt(t_root[k], TINY)));
       if (!hn::AllFalse(d, hn::AndNot(on_edge, near)))
         on_edge = hn::Or(on_edge, hn::And(near, hn::Le(vphysics::stick_edge_time(
-                                                           t_root[k], A, s[k], x_cl, speed),
+                                                           t_root[k], A, s[k], x_clamped, speed),
                                                        t_root[k])));
       if constexpr (Family) on_edge = hn::AndNot(hn::Eq(v[k], zero), on_edge);  // none at 0
-      const mask onset = hn::AndNot(on_edge, in_m);
-      const mask edge = hn::And(on_edge, in_m);
-      const mask ssw = sl_sw[k], sroot = sl_root[k];
+      const mask onset = hn::AndNot(on_edge, inside);
+      const mask edge = hn::And(on_edge, inside);
+      const mask slip_switch = slip_to_switch[k], slip_root = slip_to_root[k];
 
       // new state, slip lanes
-      const vec vn = Family ? IfThenElse(hn::Eq(v[k], V1), V2, V1) : hn::Neg(v[k]);
-      vec nx = IfThenElse(sroot, IfThenElse(in_m, IfThenElse(edge, Mul(s[k], A), x_cl), x_root), xr[k]);
-      vec nz = IfThenElse(sroot, v[k], zr[k]);
-      vec nt = IfThenElse(sroot, t_root[k], IfThenElse(ssw, tsw[k], TA));
-      vec nv = IfThenElse(ssw, vn, v[k]);
+      const vec v_after_switch = Family ? IfThenElse(hn::Eq(v[k], V1), V2, V1) : hn::Neg(v[k]);
+      vec nx = IfThenElse(slip_root,
+                          IfThenElse(inside, IfThenElse(edge, Mul(s[k], A), x_clamped), x_root),
+                          x_rotated[k]);
+      vec nz = IfThenElse(slip_root, v[k], z_rotated[k]);
+      vec nt = IfThenElse(slip_root, t_root[k], IfThenElse(slip_switch, t_switch[k], TA));
+      vec nv = IfThenElse(slip_switch, v_after_switch, v[k]);
       vec nsig = IfThenElse(
-          ssw, IfThenElse(hn::Gt(vn, zr[k]), one, m_one),
-          IfThenElse(sroot, IfThenElse(in_m, IfThenElse(edge, s[k], sig[k]), hn::Neg(sig[k])),
+          slip_switch, IfThenElse(hn::Gt(v_after_switch, z_rotated[k]), one, m_one),
+          IfThenElse(slip_root, IfThenElse(inside, IfThenElse(edge, s[k], sig[k]), hn::Neg(sig[k])),
                      sig[k]));
-      vec nstk = IfThenElse(hn::And(sroot, onset), one, zero);
-      vec ngrz = IfThenElse(ssw, zero,
-                            IfThenElse(hn::And(sroot, edge), GRZ, IfThenElse(graz[k], one, zero)));
-      vec nmir = IfThenElse(hn::Or(ssw, sroot), zero, IfThenElse(mirr[k], one, zero));
-      vec narv = IfThenElse(hn::AndNot(in_m, sroot), one, zero);
-      if constexpr (Family) narv = IfThenElse(hn::And(sroot, edge), ARV, narv);
-      vec code = IfThenElse(sl_ta[k], Set(d, ev_slip_ta),
-                 IfThenElse(ssw, Set(d, ev_slip_sw),
+      vec next_sticking = IfThenElse(hn::And(slip_root, onset), one, zero);
+      vec next_grazing =
+          IfThenElse(slip_switch, zero,
+                     IfThenElse(hn::And(slip_root, edge), EDGE_GRAZES,
+                                IfThenElse(grazing[k], one, zero)));
+      vec next_mirror =
+          IfThenElse(hn::Or(slip_switch, slip_root), zero, IfThenElse(mirror[k], one, zero));
+      vec next_after_reversal = IfThenElse(hn::AndNot(inside, slip_root), one, zero);
+      if constexpr (Family)
+        next_after_reversal =
+            IfThenElse(hn::And(slip_root, edge), EDGE_SLIPS_AWAY, next_after_reversal);
+      vec code = IfThenElse(slip_to_ta[k], Set(d, ev_slip_ta),
+                 IfThenElse(slip_switch, Set(d, ev_slip_switch),
                  IfThenElse(onset, Set(d, ev_slip_onset),
-                 IfThenElse(edge, Set(d, ev_slip_edge), Set(d, ev_slip_rev)))));
+                 IfThenElse(edge, Set(d, ev_slip_edge), Set(d, ev_slip_reversal)))));
 
       // stick lanes
-      const mask stk = stick[k], sta = st_ta[k], ssw2 = st_sw[k];
-      const mask st_brk = hn::Not(hn::Or(sta, ssw2));
-      const vec x_sw = Min(Max(vphysics::stick_position(x[k], v[k], t[k], tsw[k]), mA), A);
-      nx = IfThenElse(stk, IfThenElse(ssw2, x_sw, IfThenElse(st_brk, Mul(s[k], A), x[k])), nx);
-      nz = IfThenElse(stk, IfThenElse(sta, z[k], v[k]), nz);
-      nt = IfThenElse(stk, IfThenElse(ssw2, tsw[k], IfThenElse(st_brk, t_edge[k], TA)), nt);
-      nv = IfThenElse(stk, IfThenElse(ssw2, vn, v[k]), nv);
+      const mask in_stick = sticking[k], stick_ta = stick_to_ta[k],
+                 stick_switch = stick_to_switch[k];
+      const mask stick_break = hn::Not(hn::Or(stick_ta, stick_switch));
+      const vec x_at_switch =
+          Min(Max(vphysics::stick_position(x[k], v[k], t[k], t_switch[k]), mA), A);
+      nx = IfThenElse(in_stick,
+                      IfThenElse(stick_switch, x_at_switch,
+                                 IfThenElse(stick_break, Mul(s[k], A), x[k])),
+                      nx);
+      nz = IfThenElse(in_stick, IfThenElse(stick_ta, z[k], v[k]), nz);
+      nt = IfThenElse(in_stick,
+                      IfThenElse(stick_switch, t_switch[k], IfThenElse(stick_break, t_edge[k], TA)),
+                      nt);
+      nv = IfThenElse(in_stick, IfThenElse(stick_switch, v_after_switch, v[k]), nv);
       // after a switch: sigma = sgn(v_new - old v) (the paper: -s)
-      const vec sig_sw = Family ? IfThenElse(hn::Gt(vn, v[k]), one, m_one) : hn::Neg(s[k]);
-      nsig = IfThenElse(stk, IfThenElse(ssw2, sig_sw, IfThenElse(st_brk, s[k], sig[k])), nsig);
-      nstk = IfThenElse(stk, IfThenElse(sta, one, zero), nstk);
-      ngrz = IfThenElse(stk, IfThenElse(st_brk, GRZ, zero), ngrz);
+      const vec sigma_after_switch =
+          Family ? IfThenElse(hn::Gt(v_after_switch, v[k]), one, m_one) : hn::Neg(s[k]);
+      nsig = IfThenElse(in_stick,
+                        IfThenElse(stick_switch, sigma_after_switch,
+                                   IfThenElse(stick_break, s[k], sig[k])),
+                        nsig);
+      next_sticking = IfThenElse(in_stick, IfThenElse(stick_ta, one, zero), next_sticking);
+      next_grazing = IfThenElse(in_stick, IfThenElse(stick_break, EDGE_GRAZES, zero), next_grazing);
       // a mirror return only from the inner side of the new slip's centre
       // (simulate_model): sigma (x - sigma a_k) < 0; from the outer side
       // (a_k < |x| <= a_s, mu_s > mu_k) the general root, half a period on
-      vec mir_sw = MIR;
+      vec mirror_after_switch = SWITCH_MIRRORS;
       if constexpr (Family)
-        mir_sw = hn::IfThenElseZero(hn::Lt(Mul(sig_sw, Sub(x_sw, Mul(sig_sw, AK))), zero), MIR);
-      nmir = IfThenElse(stk, IfThenElse(ssw2, mir_sw, zero), nmir);
-      narv = IfThenElse(stk, Family ? IfThenElse(st_brk, ARV, zero) : zero, narv);
-      code = IfThenElse(stk, IfThenElse(sta, Set(d, ev_stick_ta),
-                                        IfThenElse(ssw2, Set(d, ev_stick_sw), Set(d, ev_stick_brk))),
+        mirror_after_switch = hn::IfThenElseZero(
+            hn::Lt(Mul(sigma_after_switch, Sub(x_at_switch, Mul(sigma_after_switch, AK))), zero),
+            SWITCH_MIRRORS);
+      next_mirror =
+          IfThenElse(in_stick, IfThenElse(stick_switch, mirror_after_switch, zero), next_mirror);
+      next_after_reversal =
+          IfThenElse(in_stick, Family ? IfThenElse(stick_break, EDGE_SLIPS_AWAY, zero) : zero,
+                     next_after_reversal);
+      code = IfThenElse(in_stick,
+                        IfThenElse(stick_ta, Set(d, ev_stick_ta),
+                                   IfThenElse(stick_switch, Set(d, ev_stick_switch),
+                                              Set(d, ev_stick_break))),
                         code);
 
       // observe times (state_sampler.hpp): the round's segment [t, min(nt, t_a))
@@ -733,7 +768,7 @@ class lane_engine {
             hn::Store(v[k], d, round_belt_velocity_ + j), hn::Store(o[k].c, d, round_centre_ + j);
             const unsigned shift = static_cast<unsigned>(j);
             observe_lanes |= lane_bits(d, holds) << shift;
-            observe_sticking |= lane_bits(d, stk) << shift;
+            observe_sticking |= lane_bits(d, in_stick) << shift;
           }
         }
       }
@@ -743,12 +778,12 @@ class lane_engine {
       // rotated x): time at the level, and a slip's |v dt - dx|
       if constexpr (with_pieces) {
         const vec dt = Sub(nt, t[k]);
-        const vec x_end = IfThenElse(sroot, x_root, xr[k]);
+        const vec x_end = IfThenElse(slip_root, x_root, x_rotated[k]);
         const vec travel = hn::Abs(Sub(Mul(v[k], dt), Sub(x_end, x[k])));
         // time at the first level: v = v1 (the paper's first level is +V;
         // a family belt's levels may have any signs, e.g. 0.5 and 1)
         const mask up = Family ? hn::Eq(v[k], V1) : hn::Gt(v[k], zero);
-        mask rn0 = run[k];
+        mask counts_piece = run[k];
         // A burn-in T (burn_in.hpp): whole pieces only from T on; a piece in
         // progress at T adds its part after T below (burn_in_cut, as the
         // observer does for the scalar engines).
@@ -756,57 +791,62 @@ class lane_engine {
         bool cut_at_burn_in = false;
         if (burn_in_.active()) [[unlikely]] {
           const vec T = Set(d, burn_in_.time());
-          at_burn_in = hn::And(rn0, hn::And(hn::Lt(t[k], T), hn::Gt(nt, T)));
+          at_burn_in = hn::And(counts_piece, hn::And(hn::Lt(t[k], T), hn::Gt(nt, T)));
           cut_at_burn_in = !hn::AllFalse(d, at_burn_in);
-          rn0 = hn::And(rn0, hn::Ge(t[k], T));
+          counts_piece = hn::And(counts_piece, hn::Ge(t[k], T));
         }
         hn::Store(
-            Add(hn::Load(d, time_at_first_level_ + j), hn::IfThenElseZero(hn::And(rn0, up), dt)), d,
+            Add(hn::Load(d, time_at_first_level_ + j), hn::IfThenElseZero(hn::And(counts_piece, up), dt)), d,
             time_at_first_level_ + j);
         hn::Store(Add(hn::Load(d, time_at_second_level_ + j),
-                      hn::IfThenElseZero(hn::AndNot(up, rn0), dt)),
+                      hn::IfThenElseZero(hn::AndNot(up, counts_piece), dt)),
                   d, time_at_second_level_ + j);
         hn::Store(Add(hn::Load(d, relative_travel_ + j),
-                      hn::IfThenElseZero(hn::AndNot(stk, rn0), travel)),
+                      hn::IfThenElseZero(hn::AndNot(in_stick, counts_piece), travel)),
                   d, relative_travel_ + j);
         if (cut_at_burn_in) [[unlikely]]
-          add_piece_after_burn_in(d, j, at_burn_in, stk, up, t[k], nt, x[k], x_end, z[k], v[k], sig[k]);
+          add_piece_after_burn_in(d, j, at_burn_in, in_stick, up, t[k], nt, x[k], x_end, z[k], v[k], sig[k]);
       }
 
       // idle lanes keep their state
-      const mask rn = run[k];
-      hn::Store(IfThenElse(rn, nt, t[k]), d, time_ + j);
-      hn::Store(IfThenElse(rn, nx, x[k]), d, position_ + j);
-      hn::Store(IfThenElse(rn, nz, z[k]), d, velocity_ + j);
-      hn::Store(IfThenElse(rn, nv, v[k]), d, belt_velocity_ + j);
-      hn::Store(IfThenElse(rn, nsig, sig[k]), d, slip_centre_sign_ + j);
-      hn::Store(IfThenElse(rn, nstk, hn::Load(d, sticking_ + j)), d, sticking_ + j);
-      hn::Store(IfThenElse(rn, ngrz, hn::Load(d, grazing_ + j)), d, grazing_ + j);
-      hn::Store(IfThenElse(rn, nmir, hn::Load(d, mirror_ + j)), d, mirror_ + j);
-      hn::Store(IfThenElse(rn, narv, hn::Load(d, after_reversal_ + j)), d, after_reversal_ + j);
-      hn::Store(IfThenElse(rn, code, zero), d, step_event_ + j);
+      const mask runs = run[k];
+      hn::Store(IfThenElse(runs, nt, t[k]), d, time_ + j);
+      hn::Store(IfThenElse(runs, nx, x[k]), d, position_ + j);
+      hn::Store(IfThenElse(runs, nz, z[k]), d, velocity_ + j);
+      hn::Store(IfThenElse(runs, nv, v[k]), d, belt_velocity_ + j);
+      hn::Store(IfThenElse(runs, nsig, sig[k]), d, slip_centre_sign_ + j);
+      hn::Store(IfThenElse(runs, next_sticking, hn::Load(d, sticking_ + j)), d, sticking_ + j);
+      hn::Store(IfThenElse(runs, next_grazing, hn::Load(d, grazing_ + j)), d, grazing_ + j);
+      hn::Store(IfThenElse(runs, next_mirror, hn::Load(d, mirror_ + j)), d, mirror_ + j);
+      hn::Store(IfThenElse(runs, next_after_reversal, hn::Load(d, after_reversal_ + j)), d,
+                after_reversal_ + j);
+      hn::Store(IfThenElse(runs, code, zero), d, step_event_ + j);
       // the bookkeeping after the round: event counts, and lane bits
-      const vec cd = IfThenElse(rn, code, zero);
-      const mask m_ssw = hn::Eq(cd, Set(d, ev_stick_sw)), m_lsw = hn::Eq(cd, Set(d, ev_slip_sw));
-      const mask m_brk = hn::Eq(cd, Set(d, ev_stick_brk)), m_on = hn::Eq(cd, Set(d, ev_slip_onset));
-      const mask m_pop = hn::Or(m_ssw, m_lsw);
-      const mask m_fin = hn::Or(hn::Eq(cd, Set(d, ev_stick_ta)), hn::Eq(cd, Set(d, ev_slip_ta)));
-      hn::Store(Add(hn::Load(d, belt_switches_ + j), hn::IfThenElseZero(m_pop, one)), d,
+      const vec round_event = IfThenElse(runs, code, zero);
+      const mask is_stick_switch = hn::Eq(round_event, Set(d, ev_stick_switch));
+      const mask is_slip_switch = hn::Eq(round_event, Set(d, ev_slip_switch));
+      const mask is_stick_break = hn::Eq(round_event, Set(d, ev_stick_break));
+      const mask is_stick_onset = hn::Eq(round_event, Set(d, ev_slip_onset));
+      const mask is_switch = hn::Or(is_stick_switch, is_slip_switch);
+      const mask ends_at_ta =
+          hn::Or(hn::Eq(round_event, Set(d, ev_stick_ta)), hn::Eq(round_event, Set(d, ev_slip_ta)));
+      hn::Store(Add(hn::Load(d, belt_switches_ + j), hn::IfThenElseZero(is_switch, one)), d,
                 belt_switches_ + j);
-      hn::Store(Add(hn::Load(d, stick_breaks_ + j), hn::IfThenElseZero(m_brk, one)), d,
+      hn::Store(Add(hn::Load(d, stick_breaks_ + j), hn::IfThenElseZero(is_stick_break, one)), d,
                 stick_breaks_ + j);
-      hn::Store(Add(hn::Load(d, stick_onsets_ + j), hn::IfThenElseZero(m_on, one)), d,
+      hn::Store(Add(hn::Load(d, stick_onsets_ + j), hn::IfThenElseZero(is_stick_onset, one)), d,
                 stick_onsets_ + j);
       hn::Store(Add(hn::Load(d, slip_reversals_ + j),
-                    hn::IfThenElseZero(hn::Eq(cd, Set(d, ev_slip_rev)), one)),
+                    hn::IfThenElseZero(hn::Eq(round_event, Set(d, ev_slip_reversal)), one)),
                 d, slip_reversals_ + j);
       const unsigned shift = static_cast<unsigned>(j);
-      pop |= lane_bits(d, m_pop) << shift;
-      cl_stick |= lane_bits(d, hn::Or(m_ssw, m_brk)) << shift;
-      cl_slip |= lane_bits(d, m_on) << shift;
-      fin |= lane_bits(d, m_fin) << shift;
+      took_switch |= lane_bits(d, is_switch) << shift;
+      close_stick |= lane_bits(d, hn::Or(is_stick_switch, is_stick_break)) << shift;
+      close_slip |= lane_bits(d, is_stick_onset) << shift;
+      finished |= lane_bits(d, ends_at_ta) << shift;
     }
-    took_switch_ = pop, close_stick_ = cl_stick, close_slip_ = cl_slip, finished_ = fin;
+    took_switch_ = took_switch, close_stick_ = close_stick, close_slip_ = close_slip;
+    finished_ = finished;
     if constexpr (samples_states)
       if (observe_lanes != 0) queue_observe_times(d, observe_lanes, observe_sticking);
 #undef K_LOOP
@@ -930,8 +970,8 @@ class lane_engine {
   // Lanes are grouped by what they have to do (bit masks), so that the
   // branches go per group, not per lane through an unpredictable 9-way jump.
   HWY_NOINLINE void side_effects() {  // apart: small enough to inline on_episode
-    const std::uint32_t pop = took_switch_, close_stick = close_stick_, close_slip = close_slip_,
-                        fin = finished_;
+    const std::uint32_t took_switch = took_switch_, close_stick = close_stick_,
+                        close_slip = close_slip_, finished = finished_;
     if constexpr (with_events) emit_round_events();
     for (unsigned m = close_stick; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
@@ -941,30 +981,31 @@ class lane_engine {
       const int l = std::countr_zero(m);
       close_episode(l, time_[l], mode::stick);
     }
-    for (unsigned m = pop; m != 0; m &= m - 1) {
+    for (unsigned m = took_switch; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
       if constexpr (with_causal)
         switch_time_sum_[l] += time_[l];  // the switch just taken, at time_ (simulate()'s order)
       next_switch_time_[l] = next_switch(l);
       if (velocity_[l] == belt_velocity_[l] && sticking_[l] == 0.0 &&
-          static_cast<int>(step_event_[l]) == ev_slip_sw)
+          static_cast<int>(step_event_[l]) == ev_slip_switch)
         contact_at_switch(l);
     }
     if constexpr (samples_states)
-      if (fin != 0 && queued_ != 0) evaluate_observe_times(dtag());
-    for (unsigned m = fin; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
+      if (finished != 0 && queued_ != 0) evaluate_observe_times(dtag());
+    for (unsigned m = finished; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
   // The events of the vector step, in simulate()'s order within each lane
-  // (a contact at a switch emits its stick onset later, in the pop loop).
+  // (a contact at a switch emits its stick onset later, in side_effects' loop
+  // over the lanes that took a switch).
   void emit_round_events() {
     for (int l = 0; l < lanes; ++l) {
       switch (static_cast<int>(step_event_[l])) {
-        case ev_stick_sw:
-        case ev_slip_sw: emit(l, event_kind::belt_switch); break;
-        case ev_stick_brk: emit(l, event_kind::stick_break); break;
+        case ev_stick_switch:
+        case ev_slip_switch: emit(l, event_kind::belt_switch); break;
+        case ev_stick_break: emit(l, event_kind::stick_break); break;
         case ev_slip_onset: emit(l, event_kind::stick_onset); break;
-        case ev_slip_rev: emit(l, event_kind::slip_reversal); break;
+        case ev_slip_reversal: emit(l, event_kind::slip_reversal); break;
         default: break;  // idle, t_a, or a grazing touch of the outward edge
       }
     }
@@ -982,12 +1023,13 @@ class lane_engine {
 
   const sweep_spec& s_;
   const model_parameters& p_;
-  const family_point* fp_;
+  const family_point* family_;
   Collector& collect_;
   std::uint64_t first_, last_, next_, flush_;
   double a_, ak_, w_, V_, ta_;  // a_: the stick band (a_s); ak_: the slip centre (a_k)
   double v1_ = 1.0, v2_ = -1.0;  // Family: the two levels
-  bool equal_friction_ = true, mirror_belt_ = true;
+  bool equal_friction_ = true;
+  bool opposite_levels_ = true;  // v2 = -v1: a switch out of a stick can leave a mirror slip
   std::uint64_t key_;
   burn_in_cut burn_in_;  // sweep_spec::burn_in (only with pieces)
   bool observing_;       // observe times, and an observer that samples them
