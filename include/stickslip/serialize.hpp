@@ -32,7 +32,7 @@ namespace stickslip {
 // Bumped whenever the layout of anything below changes (CHANGELOG.md notes
 // the recent bumps). Readers refuse other versions: a journal from another
 // version is recomputed, never misread.
-inline constexpr std::uint32_t serial_format_version = 10;
+inline constexpr std::uint32_t serial_format_version = 11;
 
 // FNV-1a over statistics_schema_id() and the parameter names, in order.
 [[nodiscard]] std::uint64_t layout_id() noexcept;

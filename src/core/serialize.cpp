@@ -484,10 +484,16 @@ point_statistics get_statistics(reader& r) {
     moments.resize(r.count(l.name, 24));
     for (auto& m : moments) m = get_mean_variance(r);
   }
-  // A joint histogram has the binnings of its two quantities' histograms.
+  // A joint histogram has the binnings of its two quantities' histograms;
+  // 0 cells: not allocated (statistics without the family's).
   for (const auto& j : joint_histograms()) {
-    histogram2d h(s.*quantity_table[j.x].density, s.*quantity_table[j.y].density);
     const auto n = r.u64(j.name);
+    if (n == 0) {
+      if (r.u64(j.name) != 0) throw corrupt(fmt::format("{}: cells listed without any", j.name));
+      s.*j.counts = histogram2d{};
+      continue;
+    }
+    histogram2d h(s.*quantity_table[j.x].density, s.*quantity_table[j.y].density);
     if (n != h.cells().size())
       throw corrupt(fmt::format("{}: {} cells, its binnings have {}", j.name, n, h.cells().size()));
     std::vector<std::uint64_t> cells(n, 0);
@@ -783,6 +789,11 @@ std::optional<std::string> shape_difference(const point_statistics& got,
     if ((got.*l.moments).size() != (fresh.*l.moments).size())
       return fmt::format("{} values of {}, the point has {} belt levels", (got.*l.moments).size(),
                          l.name, (fresh.*l.moments).size());
+  // Held only with the family statistics (point_statistics' constructor).
+  for (const auto& j : joint_histograms())
+    if ((got.*j.counts).cells().size() != (fresh.*j.counts).cells().size())
+      return fmt::format("{}: {} cells, the point has {}", j.name, (got.*j.counts).cells().size(),
+                         (fresh.*j.counts).cells().size());
   return std::nullopt;
 }
 }  // namespace
@@ -825,7 +836,8 @@ void check_prefix_shape(const sweep_spec& s, const merged_prefix& p) {
   const std::uint64_t expected = std::min(s.realizations, p.blocks * s.block_size);
   if (p.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", p.stats.realizations, expected));
-  point_statistics fresh(histogram_parameters(s, p.point), s.histograms, s.family_statistics);
+  point_statistics fresh(histogram_parameters(s, p.point), s.histograms, s.family_statistics,
+                         s.initial.belt_start == 0, s.means_only);
   select_statistics(fresh, s);
   if (auto why = shape_difference(p.stats, fresh)) throw bad(*why);
   if (p.stats.family_statistics != fresh.family_statistics)
@@ -846,7 +858,8 @@ void check_block_shape(const sweep_spec& s, const work_unit& u, const block_resu
   const std::uint64_t expected = std::min(s.realizations, first + s.block_size) - first;
   if (b.stats.realizations != expected)
     throw bad(fmt::format("{} realizations, expected {}", b.stats.realizations, expected));
-  point_statistics fresh(histogram_parameters(s, u.point), s.histograms);
+  point_statistics fresh(histogram_parameters(s, u.point), s.histograms, s.family_statistics,
+                         s.initial.belt_start == 0, s.means_only);
   select_statistics(fresh, s);
   if (auto why = shape_difference(b.stats, fresh)) throw bad(*why);
   if (!b.stats.convergence.empty()) throw bad("a block carries no convergence trace");

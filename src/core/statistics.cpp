@@ -31,9 +31,14 @@ point_statistics::point_statistics(const model_parameters& p, const histogram_sp
       this->*q.density =
           histogram(histogram_lower(q.range, p, h), histogram_upper(q.range, p, h), h.bins);
   for (const auto& l : level_quantities()) (this->*l.moments).assign(p.levels().size(), {});
-  for (const auto& j : joint_histograms())
-    this->*j.counts = histogram2d(this->*quantity_table[j.x].density,
-                                  this->*quantity_table[j.y].density);
+  // The joint histograms pair each stick with its onset position, which only
+  // the family statistics collect: without them they would stay zero, so
+  // they are not allocated ((bins + 2)^2 cells each, 21 KB at 50 bins, in
+  // every unit and point).
+  if (family && !means_only)
+    for (const auto& j : joint_histograms())
+      this->*j.counts = histogram2d(this->*quantity_table[j.x].density,
+                                    this->*quantity_table[j.y].density);
 }
 
 void point_statistics::select_survival(const survival_spec& g) {
@@ -252,6 +257,7 @@ void point_statistics::add(const realization_samples& in, double window) {
                                     : std::span<const double>(in.onsets);
   };
   for (const auto& j : joint_histograms()) {
+    if ((this->*j.counts).cells().empty()) continue;  // not allocated: no family statistics
     const auto xs = samples_of(j.x_sampled), ys = samples_of(j.y_sampled);
     const std::size_t n = std::min(xs.size(), ys.size());
     for (std::size_t i = 0; i < n; ++i) (this->*j.counts).add(xs[i], ys[i]);
@@ -276,7 +282,14 @@ point_statistics& point_statistics::operator+=(const point_statistics& o) {
   for (const auto& l : level_quantities())
     for (std::size_t i = 0; i < (this->*l.moments).size(); ++i)
       (this->*l.moments)[i] += (o.*l.moments)[i];
-  for (const auto& j : joint_histograms()) this->*j.counts += o.*j.counts;
+  for (const auto& j : joint_histograms()) {
+    auto& mine = this->*j.counts;
+    const auto& theirs = o.*j.counts;
+    if (mine.cells().empty())
+      mine = theirs;  // a default-constructed merger, or neither holds one
+    else if (!theirs.cells().empty())
+      mine += theirs;
+  }
   for (const auto& l : survival_laws()) this->*l.counts += o.*l.counts;
   if (!observed.selected())
     observed = o.observed;  // a default-constructed merger

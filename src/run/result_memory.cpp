@@ -44,10 +44,14 @@ double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
     all_densities += 1;
     if (selects(spec.statistics, q)) kept_densities += 1;
   }
-  const double all_joints = static_cast<double>(joint_histograms().size());
+  // Joint histograms only with the family statistics (point_statistics).
+  const double all_joints = spec.family_statistics && !spec.means_only
+                                ? static_cast<double>(joint_histograms().size())
+                                : 0.0;
   const double kept_joints = selects_joint_histograms(spec.statistics) && !spec.means_only ? all_joints : 0.0;
-  // While merged, every accumulator (point_statistics allocates them all);
-  // once finished, what the outputs read (release_unselected).
+  // While merged, every accumulator (point_statistics allocates them all but
+  // the joint histograms without the family statistics); once finished,
+  // what the outputs read (release_unselected).
   const double merging = static_cast<double>(sizeof(point_statistics)) +
                          statistics_heap(spec, all_densities, all_joints, trace);
   const double finished = static_cast<double>(sizeof(point_result)) +

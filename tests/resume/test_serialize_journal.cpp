@@ -9,6 +9,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/serialize.hpp"
+#include "stickslip/statistics_groups.hpp"
 
 using namespace stickslip;
 namespace fs = std::filesystem;
@@ -123,6 +124,50 @@ TEST(Serialize, FamilyStatisticsRoundTripByValue) {
   EXPECT_TRUE(merged == refilled);
   EXPECT_EQ(merged.stick_duration_onset.total(),
             merged.stick_duration.count());  // one (D, X) per stick
+}
+
+// The joint (D, X) histograms exist only with the family statistics: the
+// paper's selection allocates none (0 cells, encoded as such), which round
+// trips, merges (also into a default-constructed accumulator), and is a
+// shape check away from a unit that has one.
+TEST(Serialize, JointHistogramsOnlyWithTheFamilyStatistics) {
+  sweep_spec paper = small_spec(false);
+  paper.statistics = parse_statistics_selection("statistics", "paper");
+  apply_statistics_selection(paper);
+  ASSERT_FALSE(paper.family_statistics);
+  sweep_spec family = small_spec(false);
+  family.statistics = parse_statistics_selection("statistics", "paper,family");
+  apply_statistics_selection(family);
+  ASSERT_TRUE(family.family_statistics);
+  const work_unit u{1, 0};
+  const auto p = simulate_block(paper, u);
+  const auto f = simulate_block(family, u);
+  EXPECT_TRUE(p.stats.stick_duration_onset.cells().empty());
+  EXPECT_EQ(f.stats.stick_duration_onset.cells().size(), 10u * 10u);  // (8 bins + 2)^2
+  EXPECT_EQ(f.stats.stick_duration_onset.total(), f.stats.stick_duration.count());
+  for (const auto* b : {&p, &f}) {
+    const auto [u2, b2] = deserialize_unit_result(serialize(u, *b));
+    EXPECT_TRUE(b2.stats == b->stats);
+  }
+  EXPECT_NO_THROW(check_block_shape(paper, u, p));
+  EXPECT_NO_THROW(check_block_shape(family, u, f));
+  // A unit with the other shape is foreign: refused by name.
+  try {
+    check_block_shape(family, u, p);
+    ADD_FAILURE() << "a unit without the joint histogram passed as the family's";
+  } catch (const error& e) {
+    EXPECT_NE(std::string(e.what()).find("stick_duration_onset: 0 cells, the point has 100"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(check_block_shape(paper, u, f), error);
+  // Merges: empty + empty stays empty; a default accumulator takes the cells.
+  auto two = p.stats;
+  two += simulate_block(paper, {1, 1}).stats;
+  EXPECT_TRUE(two.stick_duration_onset.cells().empty());
+  point_statistics fresh;
+  fresh += f.stats;
+  EXPECT_EQ(fresh.stick_duration_onset.cells(), f.stats.stick_duration_onset.cells());
 }
 
 TEST(Serialize, ConvergenceTraceAndEmptyAccumulatorsSurvive) {
