@@ -3,9 +3,9 @@
 // slopes, the records of its neighbours on an axis), each a value with a
 // standard error and the 95 % interval value +- z95 x standard error. The
 // writers only map its rows: results.nc (and so Python's Dataset, which is
-// results.nc read back) and summary.json iterate the table below, so they
-// carry the same estimates; a new derived estimate is one row here (and its
-// accumulator, if it needs one). No I/O.
+// results.nc read back), summary.json and summary.csv iterate the table
+// below, so they carry the same estimates; a new derived estimate is one row
+// here (and its accumulator, if it needs one). No I/O.
 //
 // Each row is one kind of estimate, per quantity of the statistics schema
 // (statistics_schema.hpp) that has it and, by the row's index, per belt rate
@@ -126,9 +126,15 @@ struct estimate_info {
 };
 
 [[nodiscard]] std::span<const estimate_info> estimate_kinds() noexcept;
+// The source of every point of rs, in point order; `slopes` is
+// precision::crn_slopes(rs) (one list per point, or empty without CRN).
+[[nodiscard]] std::vector<estimate_source> estimate_sources(
+    const result_set& rs, const std::vector<std::vector<crn_slope>>& slopes);
 // The row named `name` (throws std::out_of_range for none).
 [[nodiscard]] const estimate_info& estimate_kind(std::string_view name);
 
+// Whether the selection enables some row (the group of each row).
+[[nodiscard]] bool selects_estimates(const statistics_selection& s) noexcept;
 // Whether `row` is written for quantity q under the selection s: the row's
 // group and q are selected, and q has the row.
 [[nodiscard]] bool selects(const statistics_selection& s, const estimate_info& row,
@@ -142,10 +148,13 @@ struct estimate_info {
 [[nodiscard]] std::string estimate_index_name(const estimate_info& row, const sweep_spec& spec,
                                               std::size_t i);
 
+// The name of the estimate of a quantity at index name `index`, the
+// quantity named as the output names it (results.nc: its name,
+// "stick_fraction_dmean_dr1"; summary.csv: its summary name, "R_dmean_dr1").
+[[nodiscard]] std::string estimate_variable(const estimate_info& row, std::string_view quantity,
+                                            std::string_view index);
 // Texts of the estimate of q at index name `index`. `side` is 0 for the
 // value, -1 and +1 for the ends of the interval.
-[[nodiscard]] std::string estimate_variable(const estimate_info& row, const quantity_info& q,
-                                            std::string_view index);
 [[nodiscard]] std::string estimate_long_name(const estimate_info& row, const quantity_info& q,
                                              std::string_view index, int side);
 [[nodiscard]] std::string estimate_description(const estimate_info& row, const quantity_info& q,

@@ -145,11 +145,27 @@ std::string fill(const char* pattern, const quantity_info& q, std::string_view i
 
 std::span<const estimate_info> estimate_kinds() noexcept { return estimate_table; }
 
+std::vector<estimate_source> estimate_sources(const result_set& rs,
+                                              const std::vector<std::vector<crn_slope>>& slopes) {
+  std::vector<estimate_source> out;
+  out.reserve(rs.points.size());
+  for (std::size_t i = 0; i < rs.points.size(); ++i)
+    out.push_back({rs.spec, rs.points[i],
+                   i < slopes.size() ? std::span<const crn_slope>(slopes[i])
+                                     : std::span<const crn_slope>{}});
+  return out;
+}
+
 const estimate_info& estimate_kind(std::string_view name) {
   for (const auto& row : estimate_table)
     if (name == row.name) return row;
   throw std::out_of_range("estimate_kind: no row of the estimate table is named " +
                           std::string(name));
+}
+
+bool selects_estimates(const statistics_selection& s) noexcept {
+  return std::any_of(estimate_table.begin(), estimate_table.end(),
+                     [&](const estimate_info& row) { return s.*row.group; });
 }
 
 bool selects(const statistics_selection& s, const estimate_info& row,
@@ -186,9 +202,9 @@ std::string estimate_index_name(const estimate_info& row, const sweep_spec& spec
   return "";
 }
 
-std::string estimate_variable(const estimate_info& row, const quantity_info& q,
+std::string estimate_variable(const estimate_info& row, std::string_view quantity,
                               std::string_view index) {
-  return fill(row.variable, q, index);
+  return fmt::format(fmt::runtime(row.variable), fmt::arg("q", quantity), fmt::arg("i", index));
 }
 
 std::string estimate_long_name(const estimate_info& row, const quantity_info& q,

@@ -40,11 +40,12 @@ TEST(EstimateTable, LongNamesFitAPlotLabel) {
 // The names results.nc has always given the estimates, written out by hand.
 TEST(EstimateTable, KeepsTheNamesOfResultsNc) {
   const auto& R = quantity_table[quantity_row("stick_fraction")];
-  EXPECT_EQ(estimate_variable(estimate_kind("dmean_dlambda"), R, ""), "stick_fraction_dmean_dlambda");
-  EXPECT_EQ(estimate_variable(estimate_kind("control_variate"), R, ""), "stick_fraction_cv");
+  EXPECT_EQ(estimate_variable(estimate_kind("dmean_dlambda"), R.name, ""), "stick_fraction_dmean_dlambda");
+  EXPECT_EQ(estimate_variable(estimate_kind("control_variate"), R.name, ""), "stick_fraction_cv");
   EXPECT_EQ(std::string(estimate_kind("control_variate").value_suffix), "_mean");
-  EXPECT_EQ(estimate_variable(estimate_kind("dmean_drates"), R, "r2"), "stick_fraction_dmean_dr2");
-  EXPECT_EQ(estimate_variable(estimate_kind("crn_slopes"), R, "mu"), "stick_fraction_dmean_dmu_crn");
+  EXPECT_EQ(estimate_variable(estimate_kind("dmean_drates"), R.name, "r2"), "stick_fraction_dmean_dr2");
+  EXPECT_EQ(estimate_variable(estimate_kind("crn_slopes"), R.name, "mu"), "stick_fraction_dmean_dmu_crn");
+  EXPECT_EQ(estimate_variable(estimate_kind("crn_slopes"), R.summary_name, "mu"), "R_dmean_dmu_crn");
   EXPECT_EQ(estimate_units(estimate_kind("dmean_dlambda"), R, ""), "s");
   EXPECT_EQ(estimate_units(estimate_kind("crn_slopes"), R, "mu"), "1");
   EXPECT_EQ(estimate_long_name(estimate_kind("dmean_drates"), R, "r1", -1), "slope low R r1");
