@@ -241,7 +241,8 @@ std::string extra_long_name(const estimate_info& row, const quantity_info& q,
   switch (row.extra) {
     case estimate_extra::none: break;
     case estimate_extra::variance_reduction: return fmt::format("CV gain {}", q.symbol);
-    case estimate_extra::pairs: return fmt::format("pairs {}{}", q.symbol, fill(row.tail, q, index));
+    case estimate_extra::pairs:
+      return fmt::format("pairs {}{}", q.symbol, fill(row.tail, q, index));
   }
   return "";
 }

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -306,15 +307,19 @@ void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
 double estimate_end(const std::optional<estimate_value>& e, int side) {
   if (!e) return nan;
   const auto& v = e->value;
-  return side == 0 ? v.value : side < 0 ? v.value - v.ci95_half_width() : v.value + v.ci95_half_width();
+  if (side == 0) return v.value;
+  return side < 0 ? v.value - v.ci95_half_width() : v.value + v.ci95_half_width();
 }
 
+// The variables of an estimate: the value (named with the row's
+// value_suffix) and the two ends of its interval.
 struct estimate_column {
   const char* suffix;
   int side;
 };
-// The value's suffix is the row's (value_suffix); the interval's follow it.
-constexpr estimate_column interval_columns[] = {{"_ci95_low", -1}, {"_ci95_high", 1}};
+std::array<estimate_column, 3> estimate_columns(const estimate_info& row) {
+  return {{{row.value_suffix, 0}, {"_ci95_low", -1}, {"_ci95_high", 1}}};
+}
 
 // The estimates of quantity q at index i of `row` over the grid: the value,
 // its interval and the row's extra; nothing when no point has the estimate.
@@ -331,9 +336,7 @@ void write_estimate(nc::NcFile& f, const layout_info& l, const result_set& rs,
   const std::string index = estimate_index_name(row, rs.spec, i);
   const std::string name = estimate_variable(row, q.name, index);
   const std::string units = estimate_units(row, q, index);
-  std::vector<estimate_column> columns{{row.value_suffix, 0}};
-  columns.insert(columns.end(), std::begin(interval_columns), std::end(interval_columns));
-  for (const auto& c : columns) {
+  for (const auto& c : estimate_columns(row)) {
     auto v = add_double(f, name + c.suffix, l.grid, units,
                         estimate_long_name(row, q, index, c.side),
                         estimate_description(row, q, index, c.side));
@@ -372,14 +375,13 @@ void write_entry_estimates(nc::NcFile& f, const layout_info& l, const result_set
   const std::string index = estimate_index_name(row, rs.spec, 0);
   const std::string name = estimate_variable(row, q.name, index);
   const std::string units = estimate_units(row, q, index);
-  std::vector<estimate_column> columns{{row.value_suffix, 0}};
-  columns.insert(columns.end(), std::begin(interval_columns), std::end(interval_columns));
-  for (const auto& c : columns) {
+  for (const auto& c : estimate_columns(row)) {
     auto v = add_double(f, name + c.suffix, dims, units, estimate_long_name(row, q, index, c.side),
                         estimate_description(row, q, index, c.side));
     put_rows<double>(v, rs, n * n, [&](const point_result& p, std::vector<double>& values) {
       const auto& s = sources[static_cast<std::size_t>(&p - rs.points.data())];
-      for (std::size_t ij = 0; ij < n * n; ++ij) values[ij] = estimate_end(row.at(s, q, ij), c.side);
+      for (std::size_t ij = 0; ij < n * n; ++ij)
+        values[ij] = estimate_end(row.at(s, q, ij), c.side);
     });
   }
 }
@@ -411,7 +413,8 @@ void write_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs) 
         if (level_to) write_entry_estimates(f, l, rs, sources, row, q, *level_to);
         continue;
       }
-      for (const auto i : estimate_indices(row, rs.spec)) write_estimate(f, l, rs, sources, row, q, i);
+      for (const auto i : estimate_indices(row, rs.spec))
+        write_estimate(f, l, rs, sources, row, q, i);
     }
   }
 }
