@@ -7,8 +7,11 @@
 // new per-realization value also needs its field in realization_record and
 // the observer line that computes it. The order of the rows is the order of
 // the serialized accumulators and of the output columns.
+// The estimates derived from these accumulators (likelihood-ratio
+// derivatives, control variates, CRN slopes) are the rows of estimates.hpp.
 // Outside the table, each written by hand: the causal score of R
-// (point_statistics::stick_fraction_causal_score), the observe-time
+// (point_statistics::stick_fraction_causal_score; its estimate is a row of
+// estimates.hpp), the observe-time
 // statistics (point_statistics::observed, accumulators/time_statistics.hpp)
 // and the convergence trace.
 //

@@ -25,6 +25,7 @@
 #include "stickslip/run/result_memory.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/estimates.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/uncertain_replay.hpp"
 #include "stickslip/io/journal.hpp"
@@ -732,5 +733,26 @@ PYBIND11_MODULE(_stickslip, m) {
   m.def("looks_like_law", [](const std::string& text) { return looks_like_law(text); },
         py::arg("text"));
   m.attr("default_max_events") = stickslip::default_max_events;
+  // The estimate table (estimates.hpp): the sweep's Dataset is results.nc,
+  // which maps its rows; this lists them for the tests and the docs.
+  m.def("estimate_kinds", [] {
+    py::list rows;
+    for (const auto& row : estimate_kinds()) {
+      py::dict d;
+      d["name"] = row.name;
+      d["variable"] = row.variable;
+      d["value_suffix"] = row.value_suffix;
+      d["value_member"] = row.value_member;
+      static constexpr const char* index_names[] = {"none", "belt_rate", "generator_entry", "axis"};
+      d["index"] = index_names[static_cast<int>(row.index)];
+      d["extra"] = extra_name(row.extra);
+      py::list has;  // (results.nc name, summary.json name) of the quantities that have it
+      for (const auto& q : quantities())
+        if (row.has(q)) has.append(py::make_tuple(q.name, q.summary_name));
+      d["quantities"] = has;
+      rows.append(d);
+    }
+    return rows;
+  });
   stickslip::register_sobol(m);
 }

@@ -17,19 +17,15 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/accumulators/score_moments.hpp"
+#include "stickslip/estimates.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::precision {
 
-struct crn_slope {
-  std::size_t axis = 0;                  // index into spec.axes
-  const quantity_info* quantity = nullptr;
-  std::size_t from = 0, to = 0;          // the two points differenced
-  estimate slope;                        // d mean / d axis
-  std::uint64_t pairs = 0;               // realizations paired
-};
+// One slope (its struct is the estimate table's input, estimates.hpp,
+// whose crn_slopes row maps it into every output).
+using stickslip::crn_slope;
 
 // Whether crn_slopes has something to compute: common random numbers,
 // records kept, and an axis with at least two values.

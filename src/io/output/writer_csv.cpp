@@ -4,18 +4,89 @@
 // of D_1 without any stick, a std of one sample) is "nan".
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "stickslip/error.hpp"
+#include "stickslip/estimates.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/precision/crn_slopes.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
 namespace detail {
 
+namespace {
+
+// A statistic's four columns: mean, std and the ends of the 95% interval
+// of the mean (mean_estimate, as in every output).
+void print_statistic(text_sink& out, const mean_variance& mv) {
+  const auto e = mean_estimate(mv);
+  const double half = e.ci95_half_width();
+  out.print(",{},{},{},{}", e.value, mv.std_dev(), e.value - half, e.value + half);
+}
+
+// A derived estimate's columns: quantity q's estimate of `row` at index i.
+struct estimate_column {
+  const estimate_info* row;
+  const quantity_info* q;
+  std::size_t index;
+  std::string name;  // "R_dmean_dlambda", "R_cv", "R_dmean_dgenerator_1_2"
+};
+
+// The estimate table's columns (estimates.hpp), as results.nc's variables
+// but named by the summary name (R_dmean_dlambda, R_cv_mean,
+// R_dmean_dlambda_crn_pairs) and a generator's entries one by one
+// (R_dmean_dgenerator_<i>_<j>, levels from 1): each only when some point has
+// it.
+std::vector<estimate_column> estimate_columns(const result_set& rs,
+                                              const std::vector<estimate_source>& sources) {
+  std::vector<estimate_column> out;
+  const std::size_t levels = rs.spec.base.levels().size();
+  for (const auto& row : estimate_kinds())
+    for (const auto& q : quantities()) {
+      if (!selects(rs.spec.statistics, row, q)) continue;
+      for (const auto i : estimate_indices(row, rs.spec)) {
+        if (std::none_of(sources.begin(), sources.end(),
+                         [&](const auto& s) { return row.at(s, q, i).has_value(); }))
+          continue;
+        auto name = estimate_variable(row, q.summary_name, estimate_index_name(row, rs.spec, i));
+        if (row.index == estimate_index::generator_entry)
+          name += fmt::format("_{}_{}", i / levels + 1, i % levels + 1);
+        out.push_back({&row, &q, i, std::move(name)});
+      }
+    }
+  return out;
+}
+
+void print_estimate_header(text_sink& out, const estimate_column& c) {
+  out.print(",{0}{1},{0}_ci95_low,{0}_ci95_high", c.name, c.row->value_suffix);
+  if (c.row->extra != estimate_extra::none) out.print(",{}_{}", c.name, extra_name(c.row->extra));
+}
+
+// The value and the ends of its interval ("nan" where the point has no such
+// estimate), then the extra (pairs 0 there).
+void print_estimate(text_sink& out, const estimate_column& c, const estimate_source& src) {
+  const auto v = c.row->at(src, *c.q, c.index);
+  const estimate e = v ? v->value : estimate{};
+  out.print(",{},{},{}", e.value, e.value - e.ci95_half_width(), e.value + e.ci95_half_width());
+  switch (c.row->extra) {
+    case estimate_extra::none: break;
+    case estimate_extra::variance_reduction:
+      out.print(",{}", v ? v->variance_reduction : std::nan(""));
+      break;
+    case estimate_extra::pairs: out.print(",{}", v ? v->pairs : 0); break;
+  }
+}
+
+}  // namespace
+
 // Columns: the point's parameters, realizations, then for every quantity of
 // the schema its mean, std and 95% CI, then the sample counts of the
-// quantities not sampled once per realization, then every counter.
+// quantities not sampled once per realization, then every counter, the
+// level quantities per level, and the derived estimates.
 void fill_summary_csv(text_sink& out, const result_set& rs) {
   check_shape(rs);
   const auto symbols = point_parameter_symbols(rs);
@@ -38,28 +109,30 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   for (const auto& q : level_quantities())
     for (std::size_t i = 1; i <= levels && selects(sel, q); ++i)
       out.print(",{0}_{1}_mean,{0}_{1}_std,{0}_{1}_ci95_low,{0}_{1}_ci95_high", q.summary_name, i);
+  std::vector<std::vector<crn_slope>> slopes;  // read from the records only for the estimates
+  if (selects_estimates(sel)) slopes = precision::crn_slopes(rs);
+  const auto sources = estimate_sources(rs, slopes);
+  const auto estimates = estimate_columns(rs, sources);
+  for (const auto& c : estimates) print_estimate_header(out, c);
   out.put('\n');
-  for (const auto& p : rs.points) {
+  for (const auto& src : sources) {
+    const auto& p = src.point;
     const auto& s = p.stats;
     for (const auto& sym : symbols) out.print("{},", parameter_value(p.parameters, sym));
     out.print("{}", s.realizations);
     if (burn_in) out.print(",{}", rs.spec.burn_in);
     for (const auto& q : quantities()) {
       if (!selects(sel, q)) continue;
-      const auto& mv = s.*q.moments;
-      const double half = mv.ci95_half_width();
-      out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
+      print_statistic(out, s.*q.moments);
     }
     for (const auto& q : quantities())
       if (pooled(q) && selects(sel, q)) out.print(",{}", (s.*q.moments).count());
     for (const auto& c : counters()) out.print(",{}", c.value(s));
     for (const auto& q : level_quantities()) {
       if (!selects(sel, q)) continue;
-      for (const auto& mv : s.*q.moments) {
-        const double half = mv.ci95_half_width();
-        out.print(",{},{},{},{}", mv.mean(), mv.std_dev(), mv.mean() - half, mv.mean() + half);
-      }
+      for (const auto& mv : s.*q.moments) print_statistic(out, mv);
     }
+    for (const auto& c : estimates) print_estimate(out, c, src);
     out.put('\n');
   }
 }

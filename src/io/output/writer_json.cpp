@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "json_emitter.hpp"
+#include "stickslip/estimates.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/survival_estimate.hpp"
@@ -27,19 +28,6 @@ namespace stickslip::io {
 namespace detail {
 namespace {
 
-void emit_statistic(json_emitter& j, const mean_variance& mv) {
-  const double half = mv.ci95_half_width();
-  j.begin_object();
-  j.member("mean", mv.mean());
-  j.member("std", mv.std_dev());
-  j.key("ci95");
-  j.begin_array();
-  j.value(mv.mean() - half);
-  j.value(mv.mean() + half);
-  j.end_array();
-  j.end_object();
-}
-
 void emit_interval(json_emitter& j, const estimate& e) {
   j.key("ci95");
   j.begin_array();
@@ -48,132 +36,106 @@ void emit_interval(json_emitter& j, const estimate& e) {
   j.end_array();
 }
 
-// "value", "std_error", "ci95" of an estimate, inside the caller's object.
-void emit_estimate_members(json_emitter& j, const estimate& e) {
-  j.member("value", e.value);
-  j.member("std_error", e.std_error);
-  emit_interval(j, e);
-}
-
-// "dmean_dlambda": the likelihood-ratio derivative of each mean over lambda,
-// "dmean_dlambda_causal": R's causal score derivative (causal_score_moments),
-// the same slope with far less variance, and "control_variate": each mean
-// with the belt switch count as control (accumulators/score_moments.hpp).
-// Only with Poisson switching: without it there is no lambda.
-void emit_lambda_estimates(json_emitter& j, const point_result& p, const statistics_selection& sel) {
-  const auto& s = p.stats;
-  j.key("dmean_dlambda");
+void emit_statistic(json_emitter& j, const mean_variance& mv) {
   j.begin_object();
-  for (const auto& q : quantities()) {
-    if (!q.score || !selects(sel, q)) continue;
-    j.key(q.summary_name);
-    j.begin_object();
-    emit_estimate_members(j, score_derivative(s.*q.score, s.*q.moments, p.parameters.switch_rate));
-    j.end_object();
-  }
-  j.end_object();
-  if (selects(sel, quantity_table[quantity_row("stick_fraction")])) {  // R's only
-    j.key("dmean_dlambda_causal");
-    j.begin_object();
-    j.key("R");
-    j.begin_object();
-    emit_estimate_members(j, causal_score_derivative(s.stick_fraction_causal_score));
-    j.end_object();
-    j.end_object();
-  }
-  j.key("control_variate");
-  j.begin_object();
-  for (const auto& q : quantities()) {
-    if (!q.score || !selects(sel, q)) continue;
-    const auto c = control_variate_mean(s.*q.score, s.*q.moments);
-    j.key(q.summary_name);
-    j.begin_object();
-    j.member("mean", c.mean.value);
-    j.member("std_error", c.mean.std_error);
-    emit_interval(j, c.mean);
-    j.member("variance_reduction", c.variance_reduction);
-    j.end_object();
-  }
+  j.member("mean", mv.mean());
+  j.member("std", mv.std_dev());
+  emit_interval(j, mean_estimate(mv));
   j.end_object();
 }
 
-// "dmean_drates": the same derivative over the rates r1, r2 of a two-level
-// belt given its own rates, and "dmean_dgenerator": over each positive
-// off-diagonal entry q_ij of a belt given by its generator (levels numbered
-// from 1, as in --belt-start); each only at such points.
-void emit_belt_estimates(json_emitter& j, const point_result& p, const statistics_selection& sel) {
-  const auto& s = p.stats;
-  if (s.belt_rates[0] > 0.0) {
-    j.key("dmean_drates");
-    j.begin_object();
-    for (const auto& q : quantities()) {
-      if (!q.rate_score || !selects(sel, q)) continue;
-      j.key(q.summary_name);
-      j.begin_object();
-      for (std::size_t r = 0; r < 2; ++r) {
-        const auto d = belt_rate_derivative(s, q, r);
-        j.key(r == 0 ? "r1" : "r2");
+// One estimate inside the caller's object: its value (the row's
+// value_member: "value", or "mean" for a control-variate mean),
+// "std_error", "ci95" and the row's extra member.
+void emit_estimate(json_emitter& j, const estimate_info& row, const estimate_value& v) {
+  j.member(row.value_member, v.value.value);
+  j.member("std_error", v.value.std_error);
+  emit_interval(j, v.value);
+  switch (row.extra) {
+    case estimate_extra::none: break;
+    case estimate_extra::variance_reduction:
+      j.member(extra_name(row.extra), v.variance_reduction);
+      break;
+    case estimate_extra::pairs: j.member(extra_name(row.extra), v.pairs); break;
+  }
+}
+
+// The estimates of one quantity by the row's index: one object (no index),
+// an object per belt rate ({"r1": {...}, "r2": {...}}) or a list of
+// generator entries, levels numbered from 1 as in --belt-start ([{"from":
+// 1, "to": 2, ...}, ...]); only those that exist at the point.
+void emit_quantity_estimates(json_emitter& j, const estimate_info& row, const estimate_source& src,
+                             const quantity_info& q) {
+  const auto indices = estimate_indices(row, src.spec);
+  switch (row.index) {
+    case estimate_index::axis: break;  // by axis first (emit_estimates)
+    case estimate_index::none:
+      if (const auto v = row.at(src, q, indices.front())) {
+        j.key(q.summary_name);
         j.begin_object();
-        emit_estimate_members(j, d);
+        emit_estimate(j, row, *v);
         j.end_object();
       }
+      break;
+    case estimate_index::belt_rate:
+      j.key(q.summary_name);
+      j.begin_object();
+      for (const auto i : indices)
+        if (const auto v = row.at(src, q, i)) {
+          j.key(estimate_index_name(row, src.spec, i));
+          j.begin_object();
+          emit_estimate(j, row, *v);
+          j.end_object();
+        }
       j.end_object();
-    }
-    j.end_object();
-  }
-  if (!s.generator.empty()) {
-    const std::size_t n = s.level_fraction.size();
-    j.key("dmean_dgenerator");
-    j.begin_object();
-    for (const auto& q : quantities()) {
-      if (!q.generator_score || !selects(sel, q)) continue;
+      break;
+    case estimate_index::generator_entry: {
+      const std::size_t n = src.spec.base.levels().size();
       j.key(q.summary_name);
       j.begin_array();
-      for (std::size_t from = 0; from < n; ++from)
-        for (std::size_t to = 0; to < n; ++to) {
-          if (from == to || !(s.generator[from * n + to] > 0.0)) continue;
+      for (const auto ij : indices)
+        if (const auto v = row.at(src, q, ij)) {
           j.begin_object();
-          j.member("from", static_cast<std::uint64_t>(from + 1));
-          j.member("to", static_cast<std::uint64_t>(to + 1));
-          emit_estimate_members(j, belt_generator_derivative(s, q, from, to));
+          j.member("from", static_cast<std::uint64_t>(ij / n + 1));
+          j.member("to", static_cast<std::uint64_t>(ij % n + 1));
+          emit_estimate(j, row, *v);
           j.end_object();
         }
       j.end_array();
+      break;
     }
-    j.end_object();
   }
 }
 
-// The derivative estimates, each only where it applies.
-// Only with the derivatives selected (statistics_groups.hpp), for the
-// selected quantities.
-void emit_score_estimates(json_emitter& j, const point_result& p, const statistics_selection& sel) {
-  if (!selects_derivatives(sel)) return;
-  if (has_poisson_switching(p.parameters)) emit_lambda_estimates(j, p, sel);
-  emit_belt_estimates(j, p, sel);
-}
-
-// "crn_slopes": per axis, the common-random-number slope of each
-// per-realization mean (precision/crn_slopes.hpp) and the realizations paired.
-void emit_crn_slopes(json_emitter& j, const sweep_spec& spec,
-                     const std::vector<precision::crn_slope>& slopes) {
-  j.key("crn_slopes");
-  j.begin_object();
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
-    if (spec.axes[k].values.size() < 2) continue;
-    j.key(spec.axes[k].name);
+// The estimate table (estimates.hpp): per row that applies at the point and
+// whose group is selected, its key holding the estimates of the selected
+// quantities that have it; the CRN slopes by axis first ({"lambda": {"R":
+// {...}}}).
+void emit_estimates(json_emitter& j, const estimate_source& src, const statistics_selection& sel) {
+  for (const auto& row : estimate_kinds()) {
+    if (!(sel.*row.group) || !row.applies(src)) continue;
+    j.key(row.name);
     j.begin_object();
-    for (const auto& c : slopes) {
-      if (c.axis != k || !selects(spec.statistics, *c.quantity)) continue;
-      j.key(c.quantity->summary_name);
-      j.begin_object();
-      emit_estimate_members(j, c.slope);
-      j.member("pairs", c.pairs);
-      j.end_object();
+    if (row.index == estimate_index::axis) {
+      for (const auto k : estimate_indices(row, src.spec)) {
+        j.key(estimate_index_name(row, src.spec, k));
+        j.begin_object();
+        for (const auto& q : quantities())
+          if (selects(sel, row, q))
+            if (const auto v = row.at(src, q, k)) {
+              j.key(q.summary_name);
+              j.begin_object();
+              emit_estimate(j, row, *v);
+              j.end_object();
+            }
+        j.end_object();
+      }
+    } else {
+      for (const auto& q : quantities())
+        if (selects(sel, row, q)) emit_quantity_estimates(j, row, src, q);
     }
     j.end_object();
   }
-  j.end_object();
 }
 
 // The survival group: results.nc's variables of each law at the edges of
@@ -236,9 +198,10 @@ void emit_observed(json_emitter& j, const time_statistics& s) {
 // the counters that belong to no group, the sample counts of the quantities
 // not sampled once per realization ("samples"), then each group of counters
 // ("events") as an object, the derivative estimates and the joint histograms.
-void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::string>& symbols,
-                const point_result& p, const std::vector<precision::crn_slope>* slopes,
-                const output_options& options) {
+void emit_point(json_emitter& j, const std::vector<std::string>& symbols,
+                const estimate_source& src, const output_options& options) {
+  const auto& spec = src.spec;
+  const auto& p = src.point;
   const auto& s = p.stats;
   j.begin_object();
   for (const auto& sym : symbols)
@@ -277,8 +240,7 @@ void emit_point(json_emitter& j, const sweep_spec& spec, const std::vector<std::
       if (c.group && group == c.group) j.member(c.summary_name, c.value(s));
     j.end_object();
   }
-  emit_score_estimates(j, p, sel);
-  if (slopes && selects_derivatives(sel)) emit_crn_slopes(j, spec, *slopes);
+  emit_estimates(j, src, sel);
   if (spec.statistics.survival) emit_survival(j, s);
   if (!spec.observe_times.empty()) emit_observed(j, s.observed);
   // Joint histograms, when asked: counts[i][k] of x bin i and y bin k (in
@@ -303,8 +265,7 @@ void emit_points(json_emitter& j, const result_set& rs, const output_options& op
   j.begin_array(layout::multi_line);
   const auto slopes = precision::crn_slopes(rs);  // empty without CRN and records
   const auto symbols = point_parameter_symbols(rs);
-  for (std::size_t i = 0; i < rs.points.size(); ++i)
-    emit_point(j, rs.spec, symbols, rs.points[i], slopes.empty() ? nullptr : &slopes[i], options);
+  for (const auto& src : estimate_sources(rs, slopes)) emit_point(j, symbols, src, options);
   j.end_array();
 }
 

@@ -5,7 +5,8 @@
 // trace entries).
 // Point i of the result set sits at rs.points[i].index on the grid dims,
 // which is row-major order of the dims (first axis outermost).
-// The statistics come from the schema (statistics_schema.hpp). long_name
+// The statistics come from the schema (statistics_schema.hpp), the derived
+// estimates from the estimate table (estimates.hpp). long_name
 // values stay within the 30 characters xarray puts on one line of a plot
 // label (with " [units]"); the full definition is in `description`.
 #include <netcdf>
@@ -13,14 +14,18 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
+#include <span>
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/survival_estimate.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
+#include "stickslip/estimates.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
 #include "observed_variables.hpp"
 #include "writers_detail.hpp"
@@ -251,6 +256,13 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
   put_grid<double>(d, rs, [](const point_result& p) { return p.parameters.max_stick_duration(); });
 }
 
+// The lower (side -1) or upper (+1) end of the 95% interval of a mean
+// (mean_estimate: mean -+ 1.96 std / sqrt(count)).
+double interval_end(const mean_variance& m, int side) {
+  const auto e = mean_estimate(m);
+  return side < 0 ? e.value - e.ci95_half_width() : e.value + e.ci95_half_width();
+}
+
 void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   for (const auto& q : quantities()) {
     if (!selects(rs.spec.statistics, q)) continue;
@@ -267,16 +279,12 @@ void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs)
                          "lower end of the 95% confidence interval of the mean of " + sym +
                              ": mean - 1.959963984540054 std / sqrt(count) (normal "
                              "approximation)");
-    put_grid<double>(lo, rs, [&](const point_result& p) {
-      return mv(p).mean() - mv(p).ci95_half_width();
-    });
+    put_grid<double>(lo, rs, [&](const point_result& p) { return interval_end(mv(p), -1); });
     auto hi = add_double(f, n + "_ci95_high", l.grid, q.units, "upper 95% CI of " + sym,
                          "upper end of the 95% confidence interval of the mean of " + sym +
                              ": mean + 1.959963984540054 std / sqrt(count) (normal "
                              "approximation)");
-    put_grid<double>(hi, rs, [&](const point_result& p) {
-      return mv(p).mean() + mv(p).ci95_half_width();
-    });
+    put_grid<double>(hi, rs, [&](const point_result& p) { return interval_end(mv(p), 1); });
     auto count = add_count(f, n + "_count", l.grid, "samples of " + sym,
                            std::string("number of ") + q.counted);
     put_grid<long long>(count, rs, [&](const point_result& p) { return mv(p).count(); });
@@ -294,148 +302,120 @@ void write_counts(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   }
 }
 
-// Per quantity with score moments (R, S_T/t_a, S_L/t_a): the likelihood-ratio
-// derivative of its mean over lambda and the control-variate mean with the
-// belt switch count as control (accumulators/score_moments.hpp,
-// docs/precision.md), each with its 95% CI.
-// Each family of variables only when it applies at some point of the grid:
-// the lambda derivative and the control variate with Poisson switching, the
-// r1/r2 derivatives on a two-level belt given its own rates.
-void write_score_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  if (!selects_derivatives(rs.spec.statistics)) return;
-  bool poisson = false, rates = false;
-  for (const auto& p : rs.points) {
-    poisson = poisson || has_poisson_switching(p.parameters);
-    rates = rates || p.stats.belt_rates[0] > 0.0;
-  }
-  for (const auto& q : quantities()) {
-    if (!q.score || !selects(rs.spec.statistics, q)) continue;
-    const std::string n = q.name, sym = q.symbol;
-    const std::string units = std::string(q.units) == "1" ? "s" : std::string(q.units) == "1/s"
-                                                                  ? "1"
-                                                                  : std::string(q.units) + " s";
-    const auto deriv = [&](const point_result& p) {
-      if (!has_poisson_switching(p.parameters)) return estimate{};
-      return score_derivative(p.stats.*q.score, p.stats.*q.moments, p.parameters.switch_rate);
-    };
-    const auto cv = [&](const point_result& p) {
-      if (!has_poisson_switching(p.parameters)) return controlled_mean{};
-      return control_variate_mean(p.stats.*q.score, p.stats.*q.moments);
-    };
-    const std::string lr = "likelihood-ratio (score) estimate of d E[" + sym +
-                           "]/d lambda: mean of (X - mean X)(N/lambda - t_a), N the belt "
-                           "switches of the realization in [0, t_a]";
-    if (poisson) {
-      auto d = add_double(f, n + "_dmean_dlambda", l.grid, units, "slope " + sym,
-                          "d mean/d lambda: " + lr);
-      put_grid<double>(d, rs, [&](const point_result& p) { return deriv(p).value; });
-      auto dlo = add_double(f, n + "_dmean_dlambda_ci95_low", l.grid, units,
-                            "slope low " + sym,
-                            "value - 1.96 x its delta-method standard error; " + lr);
-      put_grid<double>(dlo, rs, [&](const point_result& p) {
-        return deriv(p).value - deriv(p).ci95_half_width();
-      });
-      auto dhi = add_double(f, n + "_dmean_dlambda_ci95_high", l.grid, units,
-                            "slope high " + sym,
-                            "value + 1.96 x its delta-method standard error; " + lr);
-      put_grid<double>(dhi, rs, [&](const point_result& p) {
-        return deriv(p).value + deriv(p).ci95_half_width();
-      });
-      const std::string cvd = "control-variate mean of " + sym +
-                              ": mean X - beta (mean N - lambda t_a), beta = Cov(X, N)/Var(N) "
-                              "(N the belt switches, known mean lambda t_a)";
-      auto m = add_double(f, n + "_cv_mean", l.grid, q.units, "CV mean " + sym, cvd);
-      put_grid<double>(m, rs, [&](const point_result& p) { return cv(p).mean.value; });
-      auto mlo = add_double(f, n + "_cv_ci95_low", l.grid, q.units,
-                            "CV mean low " + sym,
-                            "mean - 1.96 x the residual standard error; " + cvd);
-      put_grid<double>(mlo, rs, [&](const point_result& p) {
-        return cv(p).mean.value - cv(p).mean.ci95_half_width();
-      });
-      auto mhi = add_double(f, n + "_cv_ci95_high", l.grid, q.units,
-                            "CV mean high " + sym,
-                            "mean + 1.96 x the residual standard error; " + cvd);
-      put_grid<double>(mhi, rs, [&](const point_result& p) {
-        return cv(p).mean.value + cv(p).mean.ci95_half_width();
-      });
-    }
-    for (std::size_t r = 0; rates && r < 2; ++r) {
-      const std::string rn = r == 0 ? "r1" : "r2";
-      const std::string lrr = "likelihood-ratio (score) estimate of d E[" + sym + "]/d " + rn +
-                              " for a two-level belt given its own rates: mean of (X - mean "
-                              "X) K/" + rn + ", K = N_j - " + rn + " T_j (+ the stationary "
-                              "start's term), N_j the jumps out of level j and T_j the time "
-                              "there; NaN at points without belt rates";
-      const auto rate_deriv = [&, r](const point_result& p) {
-        return belt_rate_derivative(p.stats, q, r);
-      };
-      const std::string& ru = units;  // per unit of rate, like lambda
-      auto v = add_double(f, n + "_dmean_d" + rn, l.grid, ru, "slope " + sym + " " + rn,
-                          "d mean/d " + rn + ": " + lrr);
-      put_grid<double>(v, rs, [&](const point_result& p) { return rate_deriv(p).value; });
-      auto lo = add_double(f, n + "_dmean_d" + rn + "_ci95_low", l.grid, ru,
-                           "slope low " + sym + " " + rn,
-                           "value - 1.96 x its delta-method standard error; " + lrr);
-      put_grid<double>(lo, rs, [&](const point_result& p) {
-        return rate_deriv(p).value - rate_deriv(p).ci95_half_width();
-      });
-      auto hi = add_double(f, n + "_dmean_d" + rn + "_ci95_high", l.grid, ru,
-                           "slope high " + sym + " " + rn,
-                           "value + 1.96 x its delta-method standard error; " + lrr);
-      put_grid<double>(hi, rs, [&](const point_result& p) {
-        return rate_deriv(p).value + rate_deriv(p).ci95_half_width();
-      });
-    }
-    if (!poisson) continue;
-    auto vr = add_double(f, n + "_cv_variance_reduction", l.grid, "1",
-                         "CV gain " + sym,
-                         "Var(X) / residual variance = 1/(1 - rho^2), rho = corr(X, N): how "
-                         "many times fewer realizations the control-variate mean needs");
-    put_grid<double>(vr, rs, [&](const point_result& p) { return cv(p).variance_reduction; });
-  }
+// The value (side 0) or an end of the interval (side -1, +1) of an
+// estimate; NaN where it does not exist.
+double estimate_end(const std::optional<estimate_value>& e, int side) {
+  if (!e) return nan;
+  const auto& v = e->value;
+  if (side == 0) return v.value;
+  return side < 0 ? v.value - v.ci95_half_width() : v.value + v.ci95_half_width();
 }
 
-// The units of d(quantity)/d(parameter): "1" over "1/s" is "s", the same
-// units cancel, else "(q) / (p)".
-std::string per_unit_of(const std::string& q, const std::string& p) {
-  if (q == p) return "1";
-  if (p == "1") return q;
-  if (q == "1" && p == "1/s") return "s";
-  return "(" + q + ") / (" + p + ")";
+// The variables of an estimate: the value (named with the row's
+// value_suffix) and the two ends of its interval.
+struct estimate_column {
+  const char* suffix;
+  int side;
+};
+std::array<estimate_column, 3> estimate_columns(const estimate_info& row) {
+  return {{{row.value_suffix, 0}, {"_ci95_low", -1}, {"_ci95_high", 1}}};
 }
 
-// With common random numbers and records: per axis and per-realization
-// quantity, the slope of the mean from the point's neighbours on the axis,
-// paired per realization (precision/crn_slopes.hpp), with its 95 % CI.
-void write_crn_slopes(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  if (!selects_derivatives(rs.spec.statistics)) return;
-  const auto slopes = precision::crn_slopes(rs);
-  if (slopes.empty()) return;
-  const auto at = [&](const point_result& p, std::size_t i) -> const precision::crn_slope& {
-    return slopes[static_cast<std::size_t>(&p - rs.points.data())][i];
+// The estimates of quantity q at index i of `row` over the grid: the value,
+// its interval and the row's extra; nothing when no point has the estimate.
+void write_estimate(nc::NcFile& f, const layout_info& l, const result_set& rs,
+                    std::span<const estimate_source> sources, const estimate_info& row,
+                    const quantity_info& q, std::size_t i) {
+  std::vector<std::optional<estimate_value>> at;
+  at.reserve(sources.size());
+  for (const auto& s : sources) at.push_back(row.at(s, q, i));
+  if (std::none_of(at.begin(), at.end(), [](const auto& e) { return e.has_value(); })) return;
+  const auto of = [&](const point_result& p) -> const std::optional<estimate_value>& {
+    return at[static_cast<std::size_t>(&p - rs.points.data())];
   };
-  for (std::size_t i = 0; i < slopes.front().size(); ++i) {
-    const auto& c = slopes.front()[i];
-    if (!selects(rs.spec.statistics, *c.quantity)) continue;
-    const std::string ax = rs.spec.axes[c.axis].name, sym = c.quantity->symbol;
-    const std::string n = std::string(c.quantity->name) + "_dmean_d" + ax + "_crn";
-    const std::string units = per_unit_of(c.quantity->units, info_for(ax).units);
-    const std::string how =
-        "common-random-number difference of the point's neighbours on the " + ax +
-        " axis, paired per realization: mean (X_r(b) - X_r(a)) / (" + ax + "_b - " + ax +
-        "_a); one-sided at the axis ends; the interval holds the sampling error only";
-    auto v = add_double(f, n, l.grid, units, "slope " + sym + " " + ax, "d mean/d " + ax + ": " + how);
-    put_grid<double>(v, rs, [&](const point_result& p) { return at(p, i).slope.value; });
-    auto lo = add_double(f, n + "_ci95_low", l.grid, units, "slope low " + sym + " " + ax,
-                         "value - 1.96 x its standard error; " + how);
-    put_grid<double>(lo, rs, [&](const point_result& p) {
-      return at(p, i).slope.value - at(p, i).slope.ci95_half_width();
+  const std::string index = estimate_index_name(row, rs.spec, i);
+  const std::string name = estimate_variable(row, q.name, index);
+  const std::string units = estimate_units(row, q, index);
+  for (const auto& c : estimate_columns(row)) {
+    auto v = add_double(f, name + c.suffix, l.grid, units,
+                        estimate_long_name(row, q, index, c.side),
+                        estimate_description(row, q, index, c.side));
+    put_grid<double>(v, rs, [&](const point_result& p) { return estimate_end(of(p), c.side); });
+  }
+  const std::string extra = name + "_" + extra_name(row.extra);
+  switch (row.extra) {
+    case estimate_extra::none: break;
+    case estimate_extra::variance_reduction: {
+      auto v = add_double(f, extra, l.grid, "1", extra_long_name(row, q, index),
+                          extra_description(row, q, index));
+      put_grid<double>(v, rs, [&](const point_result& p) {
+        return of(p) ? of(p)->variance_reduction : nan;
+      });
+      break;
+    }
+    case estimate_extra::pairs: {
+      auto v = add_count(f, extra, l.grid, extra_long_name(row, q, index),
+                         extra_description(row, q, index));
+      put_grid<long long>(v, rs, [&](const point_result& p) {
+        return of(p) ? static_cast<long long>(of(p)->pairs) : 0LL;
+      });
+      break;
+    }
+  }
+}
+
+// The estimates of quantity q over the generator's entries q_ij: one
+// variable over (grid, belt_level, belt_level_to), NaN for i = j and where
+// q_ij = 0.
+void write_entry_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs,
+                           std::span<const estimate_source> sources, const estimate_info& row,
+                           const quantity_info& q, const nc::NcDim& level_to) {
+  const std::size_t n = l.levels;
+  const auto dims = with(with(l.grid, l.level), level_to);
+  const std::string index = estimate_index_name(row, rs.spec, 0);
+  const std::string name = estimate_variable(row, q.name, index);
+  const std::string units = estimate_units(row, q, index);
+  for (const auto& c : estimate_columns(row)) {
+    auto v = add_double(f, name + c.suffix, dims, units, estimate_long_name(row, q, index, c.side),
+                        estimate_description(row, q, index, c.side));
+    put_rows<double>(v, rs, n * n, [&](const point_result& p, std::vector<double>& values) {
+      const auto& s = sources[static_cast<std::size_t>(&p - rs.points.data())];
+      for (std::size_t ij = 0; ij < n * n; ++ij)
+        values[ij] = estimate_end(row.at(s, q, ij), c.side);
     });
-    auto hi = add_double(f, n + "_ci95_high", l.grid, units, "slope high " + sym + " " + ax,
-                         "value + 1.96 x its standard error; " + how);
-    put_grid<double>(hi, rs, [&](const point_result& p) {
-      return at(p, i).slope.value + at(p, i).slope.ci95_half_width();
-    });
+  }
+}
+
+// The estimate table (estimates.hpp), row by row: for each selected quantity
+// that has the row and each index, <variable> with <variable>_ci95_low and
+// _ci95_high (and the row's extra), NaN at the points where the estimate
+// does not exist, written only when some point has it (no variable is NaN
+// everywhere). A generator's entries add the dimension belt_level_to.
+void write_estimates(nc::NcFile& f, const layout_info& l, const result_set& rs) {
+  const auto& sel = rs.spec.statistics;
+  if (!selects_estimates(sel)) return;
+  const auto slopes = precision::crn_slopes(rs);  // empty without CRN and records
+  const auto sources = estimate_sources(rs, slopes);
+  std::optional<nc::NcDim> level_to;
+  for (const auto& row : estimate_kinds()) {
+    if (!(sel.*row.group)) continue;
+    if (row.index == estimate_index::generator_entry && !level_to &&
+        std::any_of(sources.begin(), sources.end(), row.applies)) {
+      level_to = f.addDim("belt_level_to", l.levels);
+      auto number = f.addVar("belt_level_to", nc::ncInt, *level_to);
+      describe(number, "1", "belt level number (to)",
+               "number j = 1..n of the level a jump of the belt goes to");
+      number.putVar(level_numbers(l.levels).data());
+    }
+    for (const auto& q : quantities()) {
+      if (!selects(sel, row, q)) continue;
+      if (row.index == estimate_index::generator_entry) {
+        if (level_to) write_entry_estimates(f, l, rs, sources, row, q, *level_to);
+        continue;
+      }
+      for (const auto i : estimate_indices(row, rs.spec))
+        write_estimate(f, l, rs, sources, row, q, i);
+    }
   }
 }
 
@@ -522,49 +502,6 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
   }
 }
 
-// For a belt given by its generator Q (--belt-generator; not sweepable, so
-// one for all points): per quantity with generator scores,
-// <name>_dmean_dgenerator[_ci95_low|_high] over (grid, belt_level,
-// belt_level_to), the likelihood-ratio d mean/dq_ij from level i to level j;
-// NaN on the diagonal and where q_ij = 0.
-void write_generator_derivatives(nc::NcFile& f, const layout_info& l, const result_set& rs) {
-  if (rs.spec.base.belt_generator.empty() || !selects_derivatives(rs.spec.statistics)) return;
-  const std::size_t n = l.levels;
-  const auto to = f.addDim("belt_level_to", n);
-  auto to_index = f.addVar("belt_level_to", nc::ncInt, to);
-  describe(to_index, "1", "belt level number (to)",
-           "number j = 1..n of the level a jump of the belt goes to");
-  to_index.putVar(level_numbers(n).data());
-  const auto dims = with(with(l.grid, l.level), to);
-  for (const auto& q : quantities()) {
-    if (!q.generator_score || !selects(rs.spec.statistics, q)) continue;
-    const std::string n_ = std::string(q.name) + "_dmean_dgenerator", sym = q.symbol;
-    const std::string units = per_unit_of(q.units, "1/s");
-    const std::string how =
-        "likelihood-ratio (score) estimate of d E[" + sym + "]/d q_ij, q_ij the belt's rate of "
-        "jumping from level i (belt_level) to level j (belt_level_to): mean of (X - mean X) "
-        "K_ij/q_ij, K_ij = N_ij - q_ij T_i (+ the stationary start's term), N_ij the jumps "
-        "from i to j and T_i the time at level i; NaN for i = j and where q_ij = 0";
-    const auto fill = [&](int side) {
-      return [&, side](const point_result& p, std::vector<double>& row) {
-        for (std::size_t i = 0; i < n; ++i)
-          for (std::size_t j = 0; j < n; ++j) {
-            const auto d = belt_generator_derivative(p.stats, q, i, j);
-            row[i * n + j] = d.value + side * d.ci95_half_width();
-          }
-      };
-    };
-    auto v = add_double(f, n_, dims, units, "slope " + sym + " q_ij", "d mean/d q_ij: " + how);
-    put_rows<double>(v, rs, n * n, fill(0));
-    auto lo = add_double(f, n_ + "_ci95_low", dims, units, "slope low " + sym + " q_ij",
-                         "value - 1.96 x its delta-method standard error; " + how);
-    put_rows<double>(lo, rs, n * n, fill(-1));
-    auto hi = add_double(f, n_ + "_ci95_high", dims, units, "slope high " + sym + " q_ij",
-                         "value + 1.96 x its delta-method standard error; " + how);
-    put_rows<double>(hi, rs, n * n, fill(1));
-  }
-}
-
 // Per level quantity P (schema level_table): P_mean, P_std, P_ci95_low,
 // P_ci95_high, P_count over (grid, belt_level), and the level values
 // belt_level_velocity over (grid, belt_level).
@@ -596,11 +533,11 @@ void write_level_statistics(nc::NcFile& f, const layout_info& l, const result_se
         {"_ci95_low", "lower 95% CI of " + sym,
          "lower end of the 95% confidence interval of the mean of " + sym +
              ": mean - 1.959963984540054 std / sqrt(count) (normal approximation)",
-         [](const mean_variance& m) { return m.mean() - m.ci95_half_width(); }},
+         [](const mean_variance& m) { return interval_end(m, -1); }},
         {"_ci95_high", "upper 95% CI of " + sym,
          "upper end of the 95% confidence interval of the mean of " + sym +
              ": mean + 1.959963984540054 std / sqrt(count) (normal approximation)",
-         [](const mean_variance& m) { return m.mean() + m.ci95_half_width(); }},
+         [](const mean_variance& m) { return interval_end(m, 1); }},
     };
     for (const auto& c : columns) {
       auto v = add_double(f, n + c.suffix, dims, q.units, c.long_name, c.description);
@@ -862,9 +799,7 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_parameters(f, l, rs);
   write_statistics(f, l, rs);
   write_counts(f, l, rs);
-  write_score_estimates(f, l, rs);
-  write_crn_slopes(f, l, rs);
-  write_generator_derivatives(f, l, rs);
+  write_estimates(f, l, rs);
   write_histograms(f, l, rs);
   write_level_statistics(f, l, rs);
   write_joint_histograms(f, l, rs);

@@ -1,7 +1,8 @@
 // What the writers share: the names of parameters and axes, the shape check,
 // and the writers' "write the temporary, do not rename yet" halves that
 // write_all composes. The statistics they write, with names, units and
-// descriptions, come from one table in the core (statistics_schema.hpp), so
+// descriptions, come from one table in the core (statistics_schema.hpp), and
+// the estimates derived from them from another (estimates.hpp), so
 // results.nc, summary.json and summary.csv name things the same way.
 #pragma once
 #include <functional>
