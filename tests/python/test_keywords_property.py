@@ -349,14 +349,19 @@ def test_sweep_is_the_cli(cli_path, tmp_path_factory, kw):
 def test_bins_beyond_memory_are_refused_like_the_cli(cli_path, tmp_path):
     """Found by test_sweep_is_the_cli with bins drawn up to 100000: the joint
     (D, X) histogram's bins^2 counts were not in the memory estimate, and
-    one point with bins=100000 asked for 80 GB (std::bad_alloc, exit 70)."""
+    one point with bins=100000 asked for 80 GB (std::bad_alloc, exit 70).
+    The joint histogram exists only with the family statistics: the default
+    selection (paper) holds none and runs; `family` is refused."""
     p = run_cli(cli_path, ["sweep", "--bins=100000", "--realizations=1", "--ta=1", "--threads=1",
-                           "-o", tmp_path / "cli"])
+                           "--statistics=family", "-o", tmp_path / "cli"])
     with pytest.raises(stickslip.Error) as e:
-        stickslip.sweep(bins=100000, realizations=1, ta=1, threads=1, output=tmp_path / "py")
+        stickslip.sweep(bins=100000, realizations=1, ta=1, threads=1, statistics="family",
+                        output=tmp_path / "py")
     assert (e.value.exit_code, str(e.value)) == (p.returncode, cli_message(p))
     assert p.returncode == 2 and "estimated memory" in str(e.value)
     assert not (tmp_path / "py").exists() and not (tmp_path / "cli").exists()
+    ds = stickslip.sweep(bins=100000, realizations=1, ta=1, threads=1)
+    assert ds.sizes["bin"] == 100000 and "stick_duration_onset_counts" not in ds
 
 
 # ------------------------------------------------------------------ what the CLI cannot be given
