@@ -7,7 +7,7 @@
 //     t_j, one that ends there is not); a zero-length segment holds no time;
 //   - t_j = t_a belongs to the last segment (end = t_a): the state at t_a.
 // The reference engines pass every segment (state_sampling_observer in
-// sweep.cpp); the lane engine queues each observe time in the round that
+// statistics.hpp); the lane engine queues each observe time in the round that
 // holds it and fills the states in batches with the vector forms of
 // evaluate()'s closed forms and kernels and of record_next's energy and
 // level (fast_lanes.cpp): both give the same bits.

@@ -1,5 +1,7 @@
 #include "stickslip/replay.hpp"
 
+#include <fmt/format.h>
+
 #include "stickslip/belt_switches.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/sweep.hpp"
@@ -77,8 +79,14 @@ realization_trace replay(const replay_request& r) {
   spec.initial = r.initial;
   spec.max_events = r.max_events;
   spec.common_random_numbers = r.common_random_numbers;
-  spec.burn_in = r.burn_in;
   validate(spec);
+  // After the model's checks (t_a > 0); its own message, since the sweep's
+  // names a grid.
+  if (r.burn_in != 0.0 && (!(r.burn_in > 0.0) || !(r.burn_in < r.parameters.window)))
+    throw invalid_parameter("burn_in", r.burn_in,
+                            fmt::format("0 <= burn_in < t_a = {} (the realization's window; 0 = "
+                                        "no burn-in)",
+                                        r.parameters.window));
   const std::size_t levels = spec.base.levels().size();
   if (r.belt_start) validate_belt_start(*r.belt_start, levels, false);
   if (r.switch_levels && (!r.switch_times || r.switch_levels->size() != r.switch_times->size()))

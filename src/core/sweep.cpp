@@ -144,6 +144,12 @@ std::pair<double, std::string> smallest_window(const sweep_spec& s) {
 void validate_burn_in(const sweep_spec& s) {
   if (s.burn_in == 0.0) return;
   const auto [shortest, what] = smallest_window(s);
+  if (shortest == 0.0 && s.burn_in > 0.0)
+    throw invalid_parameter("burn_in", s.burn_in,
+                            fmt::format("0: {} is 0, so a draw can be shorter than any burn-in "
+                                        "(use a law on t_a with min > T: uniform, truncnormal, "
+                                        "beta, loguniform)",
+                                        what));
   if (!(s.burn_in > 0.0) || !(s.burn_in < shortest))
     throw invalid_parameter("burn_in", s.burn_in,
                             fmt::format("0 <= burn_in < t_a = {} ({}; 0 = no burn-in)", shortest,

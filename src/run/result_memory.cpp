@@ -72,13 +72,19 @@ void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t w
   const double bytes = estimated_result_bytes(spec, threads, window_points);
   const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-  if (ram > 0 && bytes > 0.8 * ram)
+  if (ram > 0 && bytes > 0.8 * ram) {
+    // What shrinks it: the joint histograms (bins^2 cells) exist only with
+    // the family statistics.
+    std::string levers = "fewer grid points";
+    if (!spec.observe_times.empty()) levers += ", fewer observe times";
+    levers += spec.family_statistics && !spec.means_only
+                  ? ", fewer bins, or a --statistics without family, derivatives and all"
+                  : " or fewer bins";
     throw error(exit_code::invalid_input,
                 fmt::format("invalid grid size: the results would need about {:.3g} GiB (estimated "
-                            "memory; allowed: <= 80% of this machine's {:.3g} GiB): "
-                            "use fewer grid points, bins{}",
-                            bytes / (1u << 30), ram / (1u << 30),
-                            spec.observe_times.empty() ? "" : " or observe times"));
+                            "memory; allowed: <= 80% of this machine's {:.3g} GiB): use {}",
+                            bytes / (1u << 30), ram / (1u << 30), levers));
+  }
 }
 
 void release_unselected(point_statistics& stats, const sweep_spec& spec) {

@@ -72,6 +72,11 @@ void validate_sensitivity(const sweep_spec& s) {
   if (!s.target_statistic.empty())
     throw error(exit_code::invalid_input, 
         "sensitivity: --target-ci does not apply; use --target-halfwidth H for the indices");
+  // A design row's statistic is taken over the whole window (the rates
+  // divide by t_a), so a burn-in would mix windows.
+  if (s.burn_in != 0.0)
+    throw invalid_parameter("burn_in", s.burn_in,
+                            "0 in a sensitivity study (its statistics are over [0, t_a])");
   const std::uint64_t cap = max_realizations / runs_per_row(s);
   if (s.realizations > cap)
     throw invalid_parameter("--samples", static_cast<double>(s.realizations),

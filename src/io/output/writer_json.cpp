@@ -114,6 +114,12 @@ void emit_quantity_estimates(json_emitter& j, const estimate_info& row, const es
 void emit_estimates(json_emitter& j, const estimate_source& src, const statistics_selection& sel) {
   for (const auto& row : estimate_kinds()) {
     if (!(sel.*row.group) || !row.applies(src)) continue;
+    // A row of one statistic only (R's causal slope) has no key without it,
+    // as before the table; the others keep theirs, empty if need be.
+    std::size_t having = 0, selected = 0;
+    for (const auto& q : quantities())
+      if (row.has(q)) ++having, selected += selects(sel, row, q) ? 1 : 0;
+    if (having == 1 && selected == 0) continue;
     j.key(row.name);
     j.begin_object();
     if (row.index == estimate_index::axis) {
