@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "stickslip/error.hpp"
@@ -191,6 +192,16 @@ TEST(LawsOverTime, ObservedStatesEqualTheEpisodesAtTheDrawnParameters) {
     }
 }
 
+// validate(s) refuses s with a message holding `phrase`.
+void expect_refused(const sweep_spec& s, const std::string& phrase, const char* what) {
+  try {
+    validate(s);
+    ADD_FAILURE() << what << " was accepted";
+  } catch (const error& e) {
+    EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+  }
+}
+
 TEST(LawsOverTime, ALawOnTheWindowBoundsTheBurnInAndTheTimes) {
   sweep_spec s = laws_spec();
   s.burn_in = 30.0;  // the low end of uniform(30, 60)
@@ -204,27 +215,14 @@ TEST(LawsOverTime, ALawOnTheWindowBoundsTheBurnInAndTheTimes) {
   s.burn_in = 0.0;
   s.observe_times = {1.0};
   s.uncertain[1] = law("ta", "gamma(mean=40,cv=0.1)");  // support from 0
-  try {
-    validate(s);
-    ADD_FAILURE() << "an observe time beyond a gamma law's low end was accepted";
-  } catch (const error& e) {
-    EXPECT_NE(std::string(e.what()).find("the low end of the support of t_a's law"),
-              std::string::npos)
-        << e.what();
-  }
+  expect_refused(s, "the low end of the support of t_a's law",
+                 "an observe time beyond a gamma law's low end");
   s.observe_times = {0.0};
   EXPECT_NO_THROW(validate(s));
   // A law on t_a whose support starts at 0 takes no burn-in, by name.
   s.observe_times.clear();
   s.burn_in = 1.0;
-  try {
-    validate(s);
-    ADD_FAILURE() << "a burn-in with a gamma law on t_a was accepted";
-  } catch (const error& e) {
-    EXPECT_NE(std::string(e.what()).find("a draw can be shorter than any burn-in"),
-              std::string::npos)
-        << e.what();
-  }
+  expect_refused(s, "a draw can be shorter than any burn-in", "a burn-in with a gamma law on t_a");
 }
 
 // A sensitivity study's statistics are over [0, t_a]: no burn-in, no
@@ -237,13 +235,7 @@ TEST(LawsOverTime, ASensitivityStudyTakesNoBurnInNorObserveTimes) {
   s.realizations = 64;
   EXPECT_NO_THROW(validate(s));
   s.burn_in = 5.0;
-  try {
-    validate(s);
-    ADD_FAILURE() << "a sensitivity study with a burn-in was accepted";
-  } catch (const error& e) {
-    EXPECT_NE(std::string(e.what()).find("0 in a sensitivity study"), std::string::npos)
-        << e.what();
-  }
+  expect_refused(s, "0 in a sensitivity study", "a sensitivity study with a burn-in");
   s.burn_in = 0.0;
   s.observe_times = {1.0};
   EXPECT_THROW(validate(s), error);
