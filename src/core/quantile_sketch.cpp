@@ -87,30 +87,22 @@ void quantile_sketch::quantiles(const double* q, std::size_t n, double* out) con
     std::fill(out, out + n, std::numeric_limits<double>::quiet_NaN());
     return;
   }
-  // k = max(1, ceil(q n)): the k-th smallest sample. Ascending ranks (the
-  // usual levels 5 .. 95 %) are found in one walk over the bins.
-  std::uint64_t previous = 0;
-  bool ascending = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto k = std::clamp<std::uint64_t>(
-        static_cast<std::uint64_t>(std::ceil(q[i] * static_cast<double>(total))), 1, total);
-    ascending = ascending && k >= previous;
-    previous = k;
-  }
-  if (!ascending) {
-    for (std::size_t i = 0; i < n; ++i)
-      out[i] = ranked(std::clamp<std::uint64_t>(
-          static_cast<std::uint64_t>(std::ceil(q[i] * static_cast<double>(total))), 1, total));
-    return;
-  }
-  auto middle = [](std::uint32_t key) { return 0.5 * (lower(key) + upper(key)); };
-  std::size_t i = 0;
-  std::uint64_t below = 0;  // samples in the bins walked so far
+  // k = max(1, ceil(q n)): the k-th smallest sample.
   auto rank = [&](std::size_t m) {
     return std::clamp<std::uint64_t>(
         static_cast<std::uint64_t>(std::ceil(q[m] * static_cast<double>(total))), 1, total);
   };
-  // Each bin answers every rank it holds: below < k <= below + count.
+  bool ascending = true;
+  for (std::size_t i = 1; i < n; ++i) ascending = ascending && rank(i) >= rank(i - 1);
+  if (!ascending) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = ranked(rank(i));
+    return;
+  }
+  // Ascending ranks (the usual levels 5 .. 95 %) in one walk over the bins:
+  // each bin answers every rank it holds, below < k <= below + count.
+  auto middle = [](std::uint32_t key) { return 0.5 * (lower(key) + upper(key)); };
+  std::size_t i = 0;
+  std::uint64_t below = 0;  // samples in the bins walked so far
   auto bin = [&](std::uint64_t c, double value) {
     below += c;
     while (i < n && rank(i) <= below) out[i++] = value;
