@@ -61,8 +61,10 @@ void time_statistics::add(const observed_states& s) {
 }
 
 // The buffered codes, realization by realization (each time's x then x'),
-// into the sketches: the same counts as adding each sample at once.
-void time_statistics::add_codes(const std::vector<std::uint32_t>& codes) const {
+// into the sketches: the same counts as adding each sample at once. (Time by
+// time instead, one sketch at a time over strided codes, took 3 times as
+// long.)
+void time_statistics::add_codes(const code_buffer& codes) const {
   const std::size_t n = at_.size();
   for (std::size_t i = 0; i < codes.size(); i += 2 * n)
     for (std::size_t j = 0; j < n; ++j) {
@@ -89,7 +91,7 @@ void time_statistics::settle() const {
   refresh();
   if (codes_.empty()) return;
   add_codes(codes_);
-  codes_ = {};
+  codes_.clear();  // its room kept: O(times), and no page faults on the next block
 }
 
 time_statistics& time_statistics::operator+=(const time_statistics& o) {

@@ -10,6 +10,9 @@
 // mean_variance's merge (in block order, as every accumulator).
 #pragma once
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "stickslip/accumulators/mean_variance.hpp"
@@ -130,9 +133,31 @@ class time_statistics {
     }
   };
   static constexpr std::size_t buffered_realizations = 64;
+  // An allocator that leaves new elements uninitialized: add() resizes the
+  // buffer by a realization's codes and then writes every one of them, so
+  // zero-filling them first was a memset of every sample.
+  template <class T>
+  struct uninitialized : std::allocator<T> {
+    template <class U>
+    struct rebind {
+      using other = uninitialized<U>;
+    };
+    uninitialized() = default;
+    template <class U>
+    uninitialized(const uninitialized<U>&) noexcept {}  // NOLINT: allocator rebind
+    template <class U>
+    void construct(U* p) noexcept {
+      ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... A>
+    void construct(U* p, A&&... a) {
+      ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+    }
+  };
+  using code_buffer = std::vector<std::uint32_t, uninitialized<std::uint32_t>>;
   void refresh() const;  // at_ gets the rows
   void settle() const;   // and the sketches the buffered codes
-  void add_codes(const std::vector<std::uint32_t>& codes) const;
+  void add_codes(const code_buffer& codes) const;
   std::vector<double> times_;
   std::size_t levels_ = 0;
   std::uint64_t realizations_ = 0;
@@ -141,7 +166,7 @@ class time_statistics {
   mutable std::vector<time_point_statistics> at_;
   mutable bool at_stale_ = false;  // the rows changed since at_ got them
   std::vector<std::uint64_t> level_counts_;  // times x levels, row-major
-  mutable std::vector<std::uint32_t> codes_;
+  mutable code_buffer codes_;
 };
 
 // The quantile levels written for x and x' (5, 25, 50, 75, 95 %).
