@@ -24,7 +24,7 @@ void validate(const initial_condition_law& law) {
   if (law.velocity_min > law.velocity_max)
     throw invalid_parameter("xdot0 range minimum", law.velocity_min,
                             fmt::format("<= maximum {}", law.velocity_max));
-  // The level count is checked with the model (sweep.cpp): +1 / -1 on two
+  // The level count is checked with the model (sweep/validate_sweep.cpp): +1 / -1 on two
   // levels, 1..n on n levels.
   if (law.belt_start < -1)
     throw invalid_parameter("belt-start", law.belt_start,

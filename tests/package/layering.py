@@ -75,8 +75,8 @@ KNOWN_COMPONENT_CYCLES = {
     ("include/stickslip/sweep.hpp", "include/stickslip/uncertainty/sensitivity_design.hpp",
      "include/stickslip/uncertainty/uncertain_block.hpp",
      "include/stickslip/uncertainty/uncertain_realization.hpp"):
-        "sweep.cpp sends a spec with laws to uncertain_block, which takes the "
-        "sweep_spec: the engine choice is to move out of sweep.cpp",
+        "sweep.cpp reads the laws (with_medians for a point's parameters, the "
+        "sensitivity stop rule), whose headers take the sweep_spec",
 }
 
 

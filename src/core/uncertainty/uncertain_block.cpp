@@ -10,7 +10,7 @@
 namespace stickslip {
 namespace {
 
-// As the reference engines do (sweep.cpp): where the statistics keep no
+// As the reference engines do (sweep/block_engines.cpp): where the statistics keep no
 // causal score, the records drop theirs, so that they are the same bits.
 void drop_causal_score(realization_record& r) noexcept {
   r.stick_switch_moment = r.stick_time_moment = 0.0;

@@ -72,7 +72,7 @@ void check_domain(const uncertain_parameter& u) {
 }
 
 // Symbols whose law would be overwritten or would override a value given
-// otherwise (the same rules as a grid axis, sweep.cpp check_has_effect).
+// otherwise (the same rules as a grid axis, sweep/validate_sweep.cpp check_has_effect).
 void check_has_effect(const model_parameters& base, const uncertain_parameter& u) {
   const char* why = nullptr;
   if (u.symbol == "V" && !base.belt_levels.empty()) why = "the belt levels are given";

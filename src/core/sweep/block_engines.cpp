@@ -1,0 +1,130 @@
+// The engines a work unit runs on, chosen per point: the lane engine, the
+// paper model's reference integrator, the family's scalar engine, and the
+// scalar engines of points with laws and of sensitivity designs.
+#include "stickslip/sweep.hpp"
+
+#include <algorithm>
+
+#include "stickslip/detail/fast_block.hpp"
+#include "stickslip/model/model_realization.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
+#include "stickslip/uncertainty/uncertain_block.hpp"
+
+namespace stickslip {
+
+// The paper's model: the lane engine or simulate() (the reference). The
+// family: the lane engine for the models it runs (detail::runs_in_lanes:
+// undamped two-level belts), simulate_model otherwise
+// and for sweep_engine::reference.
+block_result simulate_block(const sweep_spec& s, const work_unit& u) {
+  if (is_sensitivity(s)) return simulate_block_sensitivity(s, u);
+  if (!s.uncertain.empty()) return simulate_block_uncertain(s, u);
+  const auto p = point_parameters(s, u.point);
+  if (!p.is_paper_model()) {
+    if (s.engine == sweep_engine::fast && detail::runs_in_lanes(p))
+      return detail::simulate_block_lanes(s, u);
+    return simulate_block_family(s, u);
+  }
+  if (s.engine == sweep_engine::reference) return simulate_block_reference(s, u);
+  return detail::simulate_block_lanes(s, u);
+}
+
+std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
+  // Points with laws (and sensitivity designs) run on the scalar engine:
+  // one unit per batch, no lanes to keep busy, a finer grain for the stop
+  // rules.
+  if (!s.uncertain.empty()) return 1;
+  return s.engine == sweep_engine::fast ? 20 : 1;  // 20 x 50 realizations
+}
+
+std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<work_unit>& units) {
+  const bool lanes = units_per_batch(s) > 1;
+  std::vector<block_result> results;
+  results.reserve(units.size());
+  for (std::size_t a = 0; a < units.size();) {
+    std::size_t b = a + 1;  // units[a, b): consecutive blocks of one point
+    while (b < units.size() && units[b].point == units[a].point &&
+           units[b].block == units[b - 1].block + 1)
+      ++b;
+    if (lanes && s.uncertain.empty() && detail::runs_in_lanes(point_parameters(s, units[a].point))) {
+      auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
+      for (auto& x : r) results.push_back(std::move(x));
+    } else {
+      for (std::size_t c = a; c < b; ++c) results.push_back(simulate_block(s, units[c]));
+    }
+    a = b;
+  }
+  return results;
+}
+
+namespace {
+// Where the statistics keep no causal score (point_statistics::
+// keeps_causal_score: the paper study's configuration, whose lane observer
+// skips the bookkeeping), the reference engines drop theirs, so that the
+// records are the same bits.
+void drop_causal_score(realization_record& r) noexcept {
+  r.stick_switch_moment = r.stick_time_moment = 0.0;
+  r.events.switch_time_sum = 0.0;
+}
+
+// A scalar engine's block: one realization at a time, into
+// realization_observer and point_statistics::add in realization order.
+// `simulate_one(r, obs, with_states)` resets the observer to realization r
+// and simulates it into obs, or into with_states when it observes times.
+template <class SimulateOne>
+block_result simulate_block_scalar(const sweep_spec& s, const work_unit& u,
+                                   const model_parameters& p, SimulateOne simulate_one) {
+  block_result out;
+  out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
+                               s.means_only);
+  select_statistics(out.stats, s);
+  const std::uint64_t first = u.block * s.block_size;
+  const std::uint64_t last = std::min(s.realizations, first + s.block_size);
+  if (s.keep_records) out.records.reserve(last - first);
+  realization_observer obs(p, s.family_statistics, s.burn_in, &s.observe_times);
+  state_sampling_observer with_states(obs);
+  for (std::uint64_t r = first; r < last; ++r) {
+    const event_counts counts = simulate_one(r, obs, with_states);
+    obs.finish();
+    obs.record().events = counts;
+    if (!out.stats.keeps_causal_score()) drop_causal_score(obs.record());
+    out.stats.add(obs.samples(), p.window);
+    if (s.keep_records) out.records.push_back(obs.record());
+  }
+  return out;
+}
+}  // namespace
+
+// The paper's model: simulate with poisson_switches.
+block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
+  const auto p = point_parameters(s, u.point);
+  const auto key = stream_key(s, p);
+  return simulate_block_scalar(
+      s, u, p,
+      [&](std::uint64_t r, realization_observer& obs, state_sampling_observer& with_states) {
+        const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
+        poisson_switches sw(p.switch_rate, s.seed, key, r);
+        obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
+        return obs.observes_times() ? simulate(p, ic, sw, with_states, s.max_events)
+                                    : simulate(p, ic, sw, obs, s.max_events);
+      });
+}
+
+// The model family: simulate_model with the Markov belt
+// (model/model_realization.hpp).
+block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
+  const auto p = point_parameters(s, u.point);
+  const family_point fp(p, stream_key(s, p));
+  const std::size_t levels = fp.model.belt.level_count();
+  return simulate_block_scalar(
+      s, u, p,
+      [&](std::uint64_t r, realization_observer& obs, state_sampling_observer& with_states) {
+        const model_initial_state start = draw_model_initial_state(fp, s.initial, s.seed, r);
+        obs.reset(r, start.position, start.velocity, recorded_belt_start(start.level, levels));
+        return obs.observes_times()
+                   ? simulate_family_realization(fp, start, s.seed, r, s.max_events, with_states)
+                   : simulate_family_realization(fp, start, s.seed, r, s.max_events, obs);
+      });
+}
+
+}  // namespace stickslip
