@@ -24,6 +24,12 @@ class Record(dict):
             return self[_RECORD_SYMBOLS[key]]
         raise KeyError(key)
 
+    def get(self, key, default=None):
+        try:
+            return self[key]
+        except KeyError:
+            return default
+
 
 class Realization:
     """One realization on [0, t_a].

@@ -86,3 +86,4 @@ def test_a_field_reads_by_its_symbol():
         if f["symbol"] and f["role"] == "outcome":
             assert same(r[f["symbol"]], r[f["name"]]), f
     assert r["S_T"] == r["sticks"] and r["R"] == r["stick_fraction"]
+    assert r.get("S_L") == r["slips"] and r.get("no such field", 7) == 7
