@@ -33,6 +33,7 @@
 #include "stickslip/io/output_lock.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/precision/peak_sweep.hpp"
+#include "stickslip/record_schema.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/trajectory.hpp"
@@ -247,18 +248,11 @@ py::dict replay_py(const py::dict& model, std::uint64_t seed, std::optional<std:
   }
   out["laws"] = law_texts;
   out["drawn"] = drawn;
-  const auto& rec = t.record;
+  // The record's outcome fields (record_schema.hpp), -1 marking no first stick.
   py::dict record;
-  record["S_T"] = rec.sticks;
-  record["S_L"] = rec.slips;
-  record["R"] = rec.stick_fraction;
-  record["first_stick_start"] = rec.first_stick_start;
-  record["first_stick_duration"] = rec.first_stick_duration;
-  record["first_stick_censored"] = rec.first_stick_censored;
-  record["belt_switches"] = rec.events.belt_switches;
-  record["stick_onsets"] = rec.events.stick_onsets;
-  record["stick_breaks"] = rec.events.stick_breaks;
-  record["slip_reversals"] = rec.events.slip_reversals;
+  for_each_record_field(record_role::outcome, [&](const record_field& field) {
+    visit_field(field, t.record, [&](const auto& v) { record[field.name] = v; });
+  });
   out["record"] = record;
   return out;
 }
@@ -750,6 +744,22 @@ PYBIND11_MODULE(_stickslip, m) {
       for (const auto& q : quantities())
         if (row.has(q)) has.append(py::make_tuple(q.name, q.summary_name));
       d["quantities"] = has;
+      rows.append(d);
+    }
+    return rows;
+  });
+  // The record table (record_schema.hpp): Realization.record maps its
+  // outcome rows; this lists every row for the Python layer and the tests.
+  m.def("record_fields", [] {
+    static constexpr const char* role_names[] = {"identity", "outcome", "internal"};
+    py::list rows;
+    for (const auto& field : record_table) {
+      py::dict d;
+      d["name"] = field.name;
+      d["symbol"] = field.symbol;
+      d["units"] = field.units;
+      d["description"] = field.description;
+      d["role"] = role_names[static_cast<int>(field.role)];
       rows.append(d);
     }
     return rows;

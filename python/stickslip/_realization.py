@@ -7,6 +7,29 @@ from ._parameters import (belt_arguments, belt_start_text, describe, error, exte
 
 EPISODE_COLUMNS = ["mode", "start", "end", "x_start", "belt_velocity", "censored"]
 
+# The record table (record_schema.hpp): the symbol of each field that has one.
+_RECORD_SYMBOLS = {f["symbol"]: f["name"] for f in extension.record_fields() if f["symbol"]}
+
+
+class Record(dict):
+    """A realization's record: {name: value} with the names of records.csv's
+    columns (sticks, slips, stick_fraction, first_stick_start,
+    first_stick_duration, first_stick_censored, friction_power,
+    damping_power, belt_switches, stick_onsets, stick_breaks,
+    slip_reversals). A field is read by its symbol too: record["S_T"] is
+    record["sticks"], and likewise S_L, R, T_1, D_1, W_f, W_c, N."""
+
+    def __missing__(self, key):
+        if key in _RECORD_SYMBOLS:
+            return self[_RECORD_SYMBOLS[key]]
+        raise KeyError(key)
+
+    def get(self, key, default=None):
+        try:
+            return self[key]
+        except KeyError:
+            return default
+
 
 class Realization:
     """One realization on [0, t_a].
@@ -20,7 +43,10 @@ class Realization:
       events      pandas.DataFrame: kind (belt_switch, stick_onset,
                   stick_break, slip_reversal), time [s], x [m], xdot [m/s],
                   belt_velocity [m/s] just after the event.
-      record      dict: S_T, S_L, R, first stick, event counts.
+      record      Record (a dict) keyed by records.csv's column names: sticks,
+                  slips, stick_fraction, the first stick (-1 when none), the
+                  friction and damping power [W], the event counts; a
+                  field's symbol (S_T, S_L, R, ...) reads it too.
       x0, xdot0, belt_start: the initial state used (belt_start: +1 / -1 on
                   two levels, the level number 1..n on more), as the CLI's
                   JSON "initial_conditions".
@@ -38,7 +64,7 @@ class Realization:
         self.seed = seed
         self.realization = realization
         self.x0, self.xdot0, self.belt_start = raw["x0"], raw["xdot0"], raw["belt_start"]
-        self.record = dict(raw["record"])
+        self.record = Record(raw["record"])
         self.laws, self.drawn = dict(raw["laws"]), dict(raw["drawn"])
         self.episodes = pd.DataFrame(raw["episodes"], columns=EPISODE_COLUMNS)
         self.events = pd.DataFrame(raw["events"], columns=["kind", "time", "x", "xdot", "belt_velocity"])
@@ -47,7 +73,7 @@ class Realization:
     def __repr__(self):
         r = self.record
         return (f"<stickslip.Realization seed={self.seed} realization={self.realization}: "
-                f"{r['S_T']} sticks, R = {r['R']:.6g}, {len(self.episodes)} episodes>")
+                f"{r['sticks']} sticks, R = {r['stick_fraction']:.6g}, {len(self.episodes)} episodes>")
 
     def trajectory(self, dt):
         """x, x' and v sampled every `dt` seconds and at every event instant:

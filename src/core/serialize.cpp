@@ -209,7 +209,7 @@ std::pair<work_unit, block_result> deserialize_unit_result(std::string_view in) 
   std::pair<work_unit, block_result> out;
   out.first = get_unit(r);
   out.second.stats = get_statistics(r);
-  out.second.records.resize(r.count("records", record_bytes));
+  out.second.records.resize(r.count("records", record_bytes()));
   for (auto& x : out.second.records) x = get_record(r);
   r.finish("block result");
   return out;

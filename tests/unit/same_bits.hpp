@@ -3,7 +3,9 @@
 #pragma once
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
+#include "stickslip/record_schema.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 namespace stickslip::testing_support {
@@ -55,17 +57,24 @@ inline bool same_bits(const point_statistics& a, const point_statistics& b) {
   }
   return ok;
 }
+// Every field of the record table (record_schema.hpp), bit for bit.
 inline bool same_bits(const realization_record& a, const realization_record& b) {
-  return a.realization == b.realization && same_bits(a.x0, b.x0) && same_bits(a.xdot0, b.xdot0) &&
-         a.belt_start == b.belt_start && a.sticks == b.sticks && a.slips == b.slips &&
-         same_bits(a.stick_fraction, b.stick_fraction) &&
-         same_bits(a.first_stick_start, b.first_stick_start) &&
-         same_bits(a.first_stick_duration, b.first_stick_duration) &&
-         a.first_stick_censored == b.first_stick_censored &&
-         same_bits(a.friction_power, b.friction_power) &&
-         same_bits(a.damping_power, b.damping_power) &&
-         same_bits(a.stick_switch_moment, b.stick_switch_moment) &&
-         same_bits(a.stick_time_moment, b.stick_time_moment) && same_bits(a.events, b.events);
+  for (const auto& field : record_table) {
+    const bool same = visit_field(field, a, [&](const auto& x) {
+      return visit_field(field, b, [&](const auto& y) {
+        if constexpr (std::is_same_v<decltype(x), decltype(y)>) {
+          if constexpr (std::is_floating_point_v<std::remove_cvref_t<decltype(x)>>)
+            return same_bits(x, y);
+          else
+            return x == y;
+        } else {
+          return false;
+        }
+      });
+    });
+    if (!same) return false;
+  }
+  return true;
 }
 
 }  // namespace stickslip::testing_support

@@ -29,6 +29,7 @@ struct realization_report {
 [[nodiscard]] std::string events_csv(const realization_report& r);
 // {"parameters", "seed", "realization"[, "laws", "drawn"], "initial_conditions",
 //  "switch_times", "statistics", "event_counts", "episodes"[, "events"]};
+// "statistics" holds the record's outcome fields (record_schema.hpp);
 // with laws, "laws" maps each uncertain symbol to its law's canonical text
 // and "drawn" to the value realization r drew ("parameters" is the model at
 // those values).

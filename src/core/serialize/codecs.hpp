@@ -65,9 +65,9 @@ void put(writer& w, const point_statistics& s);
 [[nodiscard]] point_statistics get_statistics(reader& r);
 
 // ---- a realization's record (record_codec.cpp) ----
-// The fewest bytes a record takes (no drawn values).
-inline constexpr std::size_t record_bytes =
-    8 + 8 + 8 + 1 + 4 + 4 + 8 + 8 + 8 + 1 + 8 + 8 + 8 + 8 + 40 + 8;
+// The fewest bytes a record takes (no drawn values): its table's fields
+// and the count of drawn values.
+[[nodiscard]] std::size_t record_bytes() noexcept;
 void put(writer& w, const realization_record& x);
 [[nodiscard]] realization_record get_record(reader& r);
 

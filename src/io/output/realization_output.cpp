@@ -4,7 +4,10 @@
 
 #include <fmt/format.h>
 
+#include <type_traits>
+
 #include "json_emitter.hpp"
+#include "stickslip/record_schema.hpp"
 #include "stickslip/trajectory.hpp"
 
 namespace stickslip::io {
@@ -65,25 +68,31 @@ void emit_draws(json_emitter& j, const realization_report& r) {
   j.end_object();
 }
 
+// "statistics": the record's outcome fields (record_schema.hpp), null where
+// the realization has no such value (no first stick); "event_counts": the
+// counts again, named by event kind as the events are.
 void emit_statistics(json_emitter& j, const realization_report& r) {
   const auto& s = r.trace.record;
   j.key("statistics");
   j.begin_object();
-  j.member("sticks", static_cast<std::uint64_t>(s.sticks));
-  j.member("slips", static_cast<std::uint64_t>(s.slips));
-  j.member("stick_fraction", s.stick_fraction);
-  j.key("first_stick_start");
-  s.sticks ? j.value(s.first_stick_start) : j.null();
-  j.key("first_stick_duration");
-  s.sticks ? j.value(s.first_stick_duration) : j.null();
-  j.member("first_stick_censored", s.first_stick_censored);
+  for_each_record_field(record_role::outcome, [&](const record_field& field) {
+    j.key(field.name);
+    if (field.exists && !field.exists(s)) return j.null();
+    visit_field(field, s, [&](const auto& v) {
+      using type = std::remove_cvref_t<decltype(v)>;
+      if constexpr (std::is_same_v<type, std::uint32_t>)
+        j.value(static_cast<std::uint64_t>(v));
+      else
+        j.value(v);
+    });
+  });
   j.end_object();
   j.key("event_counts");
   j.begin_object();
-  j.member("belt_switch", r.trace.record.events.belt_switches);
-  j.member("stick_onset", r.trace.record.events.stick_onsets);
-  j.member("stick_break", r.trace.record.events.stick_breaks);
-  j.member("slip_reversal", r.trace.record.events.slip_reversals);
+  j.member(to_string(event_kind::belt_switch), s.events.belt_switches);
+  j.member(to_string(event_kind::stick_onset), s.events.stick_onsets);
+  j.member(to_string(event_kind::stick_break), s.events.stick_breaks);
+  j.member(to_string(event_kind::slip_reversal), s.events.slip_reversals);
   j.end_object();
 }
 

@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "stickslip/error.hpp"
 #include "stickslip/estimates.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/precision/crn_slopes.hpp"
+#include "stickslip/record_schema.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -137,6 +139,18 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   }
 }
 
+namespace {
+
+// The record columns of records.csv: the identity and outcome rows of the
+// record table (record_schema.hpp), in its order.
+template <class F>
+void for_each_records_csv_field(F&& f) {
+  for (const auto& field : record_table)
+    if (field.role != record_role::internal) f(field);
+}
+
+}  // namespace
+
 void fill_records_csv(text_sink& out, const result_set& rs) {
   check_shape(rs);
   const auto symbols = swept_symbols(rs.spec);
@@ -144,10 +158,15 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
   for (const auto& sym : symbols) out.print("{},", sym);
   // The values each realization drew for the uncertain parameters.
   for (const auto& u : rs.spec.uncertain) out.print("{},", u.symbol);
-  out.write(
-      "realization,x0,xdot0,belt_start,sticks,slips,stick_fraction,first_stick_start,"
-      "first_stick_duration,first_stick_censored,friction_power,damping_power,belt_switches,"
-      "stick_onsets,stick_breaks,slip_reversals\n");
+  const char* separator = "";
+  for_each_records_csv_field([&](const record_field& field) {
+    out.print("{}{}", separator, field.name);
+    separator = ",";
+  });
+  out.put('\n');
+  // The fields of the family statistics (pieces of motion) are nan without
+  // them, which the lanes and the reference alike do not sum.
+  const bool family = rs.spec.family_statistics;
   for (std::size_t i = 0; i < rs.records.size(); ++i) {
     // The point's coordinates once, reused for every one of its records.
     std::string prefix = fmt::format("{},", i);
@@ -159,15 +178,22 @@ void fill_records_csv(text_sink& out, const result_set& rs) {
       // -1 marks "no D_1" for first_stick_start/duration, as in realization_record
       // (with a burn-in a row can have sticks = 1 and -1 here: its stick is the
       // left-truncated one).
-      // The powers need the family statistics (pieces of motion): NaN
-      // without them, which the lanes and the reference alike do not sum.
-      const bool powers = rs.spec.family_statistics;
-      out.print("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.realization, r.x0, r.xdot0,
-                r.belt_start, r.sticks, r.slips, r.stick_fraction, r.first_stick_start,
-                r.first_stick_duration, r.first_stick_censored ? 1 : 0,
-                powers ? r.friction_power : std::nan(""), powers ? r.damping_power : std::nan(""),
-                r.events.belt_switches,
-                r.events.stick_onsets, r.events.stick_breaks, r.events.slip_reversals);
+      separator = "";
+      for_each_records_csv_field([&](const record_field& field) {
+        out.write(separator);
+        separator = ",";
+        if (field.needs_family && !family) {
+          out.write("nan");
+          return;
+        }
+        visit_field(field, r, [&](const auto& v) {
+          if constexpr (std::is_same_v<std::remove_cvref_t<decltype(v)>, bool>)
+            out.put(v ? '1' : '0');
+          else
+            out.print("{}", v);
+        });
+      });
+      out.put('\n');
     }
   }
 }
