@@ -78,46 +78,23 @@ std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
       if (flag.option == opt &&
           std::find(given.begin(), given.end(), &flag) == given.end())
         given.push_back(&flag);
-  std::stable_partition(given.begin(), given.end(),
-                        [](const model_flags::flag* g) { return g->symbol == "mu"; });
+  order_assignments(given, [](const model_flags::flag* g) -> std::string_view { return g->symbol; });
   return given;
 }
 
-std::string flag_name(const std::string& symbol) {
-  std::string name = "--" + symbol;
-  std::replace(name.begin(), name.end(), '_', '-');
-  return name;
-}
+std::string flag_name(const std::string& symbol) { return flag_of(symbol); }
 
 std::string flag_label(const std::string& symbol) {
   return fmt::format("{} ({})", flag_name(symbol), info_for(symbol).description);
 }
 
 model_parameters apply_belt_flags(const model_flags& f, model_parameters base) {
-  if (f.belt_levels_option && f.belt_levels_option->count() > 0) {
-    base.belt_levels = io::parse_value_list("--belt-levels", f.belt_levels);
-    if (base.belt_levels.size() < 2)
-      throw invalid_parameter("--belt-levels (count)", static_cast<double>(base.belt_levels.size()),
-                              "at least 2 levels");
-  }
+  if (f.belt_levels_option && f.belt_levels_option->count() > 0)
+    base.belt_levels = io::parse_belt_levels(f.belt_levels);
   if (f.belt_rates_option && f.belt_rates_option->count() > 0)
     base.belt_rates = io::parse_value_list("--belt-rates", f.belt_rates);
-  if (f.belt_generator_option && f.belt_generator_option->count() > 0) {
-    base.belt_generator.clear();
-    std::size_t rows = 0, start = 0;
-    const std::string& text = f.belt_generator;
-    while (start <= text.size()) {
-      const std::size_t end = std::min(text.find(';', start), text.size());
-      const auto row = io::parse_value_list(fmt::format("--belt-generator row {}", rows + 1),
-                                            text.substr(start, end - start));
-      base.belt_generator.insert(base.belt_generator.end(), row.begin(), row.end());
-      ++rows;
-      start = end + 1;
-    }
-    if (base.belt_generator.size() != rows * rows)
-      throw invalid_value("--belt-generator", text,
-                          fmt::format("a square matrix: {} rows need {} rates each", rows, rows));
-  }
+  if (f.belt_generator_option && f.belt_generator_option->count() > 0)
+    base.belt_generator = io::parse_belt_generator(f.belt_generator);
   return base;
 }
 
@@ -155,21 +132,12 @@ void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& c
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
   base = apply_belt_flags(f, std::move(base));
+  std::vector<parameter_assignment> values;
   for (const auto* flag : given_model_flags(cmd, f))
     if (!holds_law(*flag))
-      set_parameter(base, flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text));
-  return base;
+      values.push_back({flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text)});
+  return assign(std::move(base), std::move(values));
 }
-
-namespace {
-
-// Grid axes that come from flags: lambda first, then mu, then the others in
-// the order they were given.
-int axis_rank(const std::string& symbol) {
-  return symbol == "lambda" ? 0 : symbol == "mu" ? 1 : 2;
-}
-
-}  // namespace
 
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
                        bool grids_allowed) {
@@ -200,9 +168,7 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
     else
       added.push_back({sym, std::move(values)});
   }
-  std::stable_sort(added.begin(), added.end(), [](const axis& a, const axis& b) {
-    return axis_rank(a.name) < axis_rank(b.name);
-  });
+  io::order_added_axes(added);
   spec.axes.insert(spec.axes.end(), added.begin(), added.end());
 }
 

@@ -16,6 +16,8 @@
 // when the resolved model is the paper's (is_paper_model), the lane engine
 // runs it with the bits of 0.1.0.
 #pragma once
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <span>
 #include <string>
@@ -97,13 +99,75 @@ struct model_parameters {
 // min_magnitude and max_magnitude).
 void validate(const model_parameters& p);
 
-// The scalar parameters as they appear on the command line, in config files,
-// as NetCDF coordinates and attributes, and as output columns.
-inline constexpr const char* parameter_names[] = {"m", "k", "g", "mu", "V", "lambda", "ta"};
-inline constexpr const char* family_parameter_names[] = {"c", "mu_s", "mu_k"};
-// Every recorded scalar: parameter_names then family_parameter_names.
-inline constexpr const char* recorded_parameter_names[] = {"m", "k", "g", "mu", "V", "lambda",
-                                                           "ta", "c", "mu_s", "mu_k"};
+// What values a scalar parameter takes (validate), and a grid of it.
+enum class parameter_domain {
+  positive,           // finite and > 0, within [min_magnitude, max_magnitude]
+  non_negative,       // finite and >= 0
+  positive_or_unset,  // finite and > 0, or 0: unset (mu_s, mu_k resolve to mu)
+  any,                // finite, |value| <= max_magnitude
+};
+
+// One parameter's descriptor: every reader and writer of parameters (the
+// CLI's flags, TOML keys, Python keywords, validation, the stream key,
+// checkpoints, the output columns and attributes) iterates these rows.
+struct parameter_info {
+  const char* symbol;       // "mu_s": the output column, TOML key, Python keyword, --mu-s
+  const char* long_name;    // "static-friction": the flag's alias; in messages "static friction"
+  const char* description;
+  const char* units;
+  // The value as given (not resolved: mu_s = 0 is unset); its default is
+  // that of model_parameters{}. Null for the indexed rows vI and rI.
+  double model_parameters::*field = nullptr;
+  parameter_domain domain = parameter_domain::positive;
+  // Its place in the random streams' point key (random_stream.hpp): the
+  // paper's parameters hash first, as in 0.1.0; the family's after them,
+  // only for a model that is not the paper's, in this order.
+  unsigned key_position = 0;
+  // Assigned before the others (CLI, TOML and Python alike): mu sets mu_s
+  // and mu_k both, which may then refine it whatever their written order.
+  bool sets_others = false;
+};
+
+// The scalar parameters, the paper's seven first, in the order of the output
+// columns and of a checkpoint's layout.
+inline constexpr parameter_info scalar_parameters[] = {
+    {"m", "mass", "mass of the oscillator", "kg", &model_parameters::mass,
+     parameter_domain::positive, 0},
+    {"k", "stiffness", "spring stiffness", "N/m", &model_parameters::stiffness,
+     parameter_domain::positive, 1},
+    {"g", "gravity", "acceleration of gravity", "m/s^2", &model_parameters::gravity,
+     parameter_domain::positive, 2},
+    {"mu", "friction-coefficient", "Coulomb friction coefficient (sets mu_s and mu_k)", "1",
+     &model_parameters::friction_coefficient, parameter_domain::positive, 3, true},
+    {"V", "belt-speed", "belt speed magnitude (levels +V, -V)", "m/s",
+     &model_parameters::belt_speed, parameter_domain::positive, 4},
+    {"lambda", "switch-rate", "Poisson rate of belt direction switches (both levels)", "1/s",
+     &model_parameters::switch_rate, parameter_domain::positive, 5},
+    {"ta", "window", "analysis window t_a", "s", &model_parameters::window,
+     parameter_domain::positive, 6},
+    {"c", "damping", "viscous damping coefficient", "N s/m", &model_parameters::damping,
+     parameter_domain::non_negative, 9},
+    {"mu_s", "static-friction", "static friction coefficient (default mu)", "1",
+     &model_parameters::static_friction, parameter_domain::positive_or_unset, 7},
+    {"mu_k", "kinetic-friction", "kinetic friction coefficient (default mu)", "1",
+     &model_parameters::kinetic_friction, parameter_domain::positive_or_unset, 8},
+};
+// The paper's parameters: the first rows, the seven keys of 0.1.0's streams.
+inline constexpr std::size_t paper_parameter_count = 7;
+
+// The scalar parameters' symbols: as they appear on the command line, in
+// config files, as NetCDF coordinates and attributes, and as output columns.
+inline constexpr auto recorded_parameter_names = [] {
+  std::array<const char*, std::size(scalar_parameters)> names{};
+  for (std::size_t i = 0; i < names.size(); ++i) names[i] = scalar_parameters[i].symbol;
+  return names;
+}();
+// The paper's seven: m, k, g, mu, V, lambda, ta.
+inline constexpr auto parameter_names = [] {
+  std::array<const char*, paper_parameter_count> names{};
+  for (std::size_t i = 0; i < names.size(); ++i) names[i] = scalar_parameters[i].symbol;
+  return names;
+}();
 
 // Access by symbol. Besides the names above (and their long aliases), a
 // belt level is "v1".."vN" and the rate of leaving a level of a two-level
@@ -113,20 +177,45 @@ inline constexpr const char* recorded_parameter_names[] = {"m", "k", "g", "mu", 
 // (+V, -V) or rates (lambda, lambda). Throws on an unknown name or index.
 [[nodiscard]] double parameter_value(const model_parameters& p, std::string_view symbol);
 void set_parameter(model_parameters& p, std::string_view symbol, double value);
+// A row's resolved value: its field, or mu for an unset mu_s, mu_k.
+[[nodiscard]] inline double resolved_value(const model_parameters& p, const parameter_info& row) {
+  const double v = p.*row.field;
+  return row.domain == parameter_domain::positive_or_unset && v == 0.0 ? p.friction_coefficient : v;
+}
 // Whether `symbol` names a parameter (a fixed one, or vI / rI with I >= 1).
 [[nodiscard]] bool is_parameter_symbol(std::string_view symbol);
 // The canonical symbol of a name or long alias ("friction-coefficient" -> "mu").
 [[nodiscard]] std::string canonical_symbol(std::string_view name);
 
-// Long, descriptive aliases and units of each symbol.
-struct parameter_info {
-  const char* symbol;
-  const char* long_name;   // e.g. "friction-coefficient"
-  const char* description;
-  const char* units;
-};
 // Throws on a name that is not a fixed symbol or long alias; the info of
 // "vI" and "rI" is that of "belt-level" and "belt-rate".
 const parameter_info& info_for(const std::string& symbol);
+// The domain of a symbol: its row's, a belt level's (any) or rate's (positive).
+[[nodiscard]] parameter_domain domain_of(std::string_view symbol);
+// How the command line and messages name a parameter: "--mu-s" for mu_s; a
+// belt level or rate by its symbol ("v1", "r2"), which has no flag.
+[[nodiscard]] std::string flag_of(std::string_view symbol);
+
+// One assignment of a number to a parameter, as a flag, a TOML key or a
+// Python keyword gives it.
+struct parameter_assignment {
+  std::string symbol;  // a symbol or long alias
+  double value = 0.0;
+};
+// Whether assignments to `symbol` come first: its row sets others (mu).
+[[nodiscard]] bool assigned_first(std::string_view symbol);
+// The one order in which assignments apply, shared by the CLI, TOML and
+// Python: the rows that set others (mu) first, then the rest as given
+// (stable), so that mu_s and mu_k refine mu whatever their written order.
+// `symbol_of(item)` gives an item's symbol.
+template <class Item, class SymbolOf>
+void order_assignments(std::vector<Item>& items, SymbolOf symbol_of) {
+  std::stable_partition(items.begin(), items.end(),
+                        [&](const Item& item) { return assigned_first(symbol_of(item)); });
+}
+// `base` with the assignments applied in that order (set_parameter), not
+// validated.
+[[nodiscard]] model_parameters assign(model_parameters base,
+                                      std::vector<parameter_assignment> assignments);
 
 }  // namespace stickslip

@@ -54,15 +54,6 @@ std::string list_text(const std::vector<double>& values) {
   return fmt::format("{}", fmt::join(values, ","));
 }
 
-// The flag of a symbol, as parse_law and the messages name it ("--mu-s"; a
-// belt level or rate by its symbol); Python maps it to the keyword.
-std::string flag_of(const std::string& symbol) {
-  if (symbol.size() > 1 && (symbol[0] == 'v' || symbol[0] == 'r')) return symbol;
-  std::string flag = "--" + symbol;
-  std::replace(flag.begin(), flag.end(), '_', '-');
-  return flag;
-}
-
 // The model from stickslip's keyword arguments, applied as the CLI applies
 // its flags (apps/stickslip/model_flags.cpp): the belt (levels, rates,
 // generator) first, then the scalars in the order given with mu first, so
@@ -74,32 +65,21 @@ std::string flag_of(const std::string& symbol) {
 model_parameters parameters_from(const py::dict& model, model_parameters p = {},
                                  std::vector<uncertain_parameter>* laws = nullptr,
                                  const char* refusal = "") {
-  if (model.contains("belt_levels") && !model["belt_levels"].is_none()) {
-    p.belt_levels = io::parse_value_list(
-        "--belt-levels", list_text(py::cast<std::vector<double>>(model["belt_levels"])));
-    if (p.belt_levels.size() < 2)
-      throw invalid_parameter("--belt-levels (count)", static_cast<double>(p.belt_levels.size()),
-                              "at least 2 levels");
-  }
+  if (model.contains("belt_levels") && !model["belt_levels"].is_none())
+    p.belt_levels =
+        io::parse_belt_levels(list_text(py::cast<std::vector<double>>(model["belt_levels"])));
   if (model.contains("belt_rates") && !model["belt_rates"].is_none())
     p.belt_rates = io::parse_value_list("--belt-rates",
                                         list_text(py::cast<std::vector<double>>(model["belt_rates"])));
   if (model.contains("belt_generator") && !model["belt_generator"].is_none()) {
     const auto rows = py::cast<std::vector<std::vector<double>>>(model["belt_generator"]);
+    if (rows.empty())
+      throw invalid_value("--belt-generator", "", "a square matrix: 0 rows need 0 rates each");
     std::string text;
     for (std::size_t i = 0; i < rows.size(); ++i) text += (i ? ";" : "") + list_text(rows[i]);
-    p.belt_generator.clear();
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const auto row = io::parse_value_list(fmt::format("--belt-generator row {}", i + 1),
-                                            list_text(rows[i]));
-      p.belt_generator.insert(p.belt_generator.end(), row.begin(), row.end());
-    }
-    if (rows.empty() || p.belt_generator.size() != rows.size() * rows.size())
-      throw invalid_value("--belt-generator", text,
-                          fmt::format("a square matrix: {} rows need {} rates each", rows.size(),
-                                      rows.size()));
+    p.belt_generator = io::parse_belt_generator(text);
   }
-  std::vector<std::pair<std::string, double>> scalars;
+  std::vector<parameter_assignment> scalars;
   for (const auto& [key, value] : model) {
     auto sym = py::cast<std::string>(key);
     if (sym == "belt_levels" || sym == "belt_rates" || sym == "belt_generator") continue;
@@ -109,12 +89,10 @@ model_parameters parameters_from(const py::dict& model, model_parameters p = {},
       laws->push_back({sym, parse_law(text, flag_of(sym))});
       continue;
     }
-    scalars.emplace_back(std::move(sym), py::cast<double>(value));
+    scalars.push_back({std::move(sym), py::cast<double>(value)});
   }
   if (laws) io::sort_laws(*laws);
-  std::stable_partition(scalars.begin(), scalars.end(), [](const auto& s) { return s.first == "mu"; });
-  for (const auto& [sym, value] : scalars) set_parameter(p, sym, value);
-  return p;
+  return assign(std::move(p), std::move(scalars));
 }
 
 // The model as the CLI records it (simulate --format json "parameters",
@@ -404,16 +382,9 @@ sweep_spec spec_from(const py::dict& base, const std::vector<std::pair<std::stri
     const std::string sym = canonical_symbol(name);
     const bool flag = std::find(std::begin(recorded_parameter_names), std::end(recorded_parameter_names),
                                 sym) != std::end(recorded_parameter_names);
-    std::string key = "--" + sym;
-    std::replace(key.begin(), key.end(), '_', '-');
-    s.axes.push_back(axis{sym, flag ? io::parse_grid(key, list_text(values), io::grid_domain_of(sym)) : values});
+    s.axes.push_back(axis{sym, flag ? io::parse_grid(flag_of(sym), list_text(values), io::grid_domain_of(sym)) : values});
   }
-  // The command line's axis order (docs/cli.md, apps/stickslip/cmd_sweep.cpp
-  // axis_rank): lambda first, then mu, then the others in the order given.
-  std::stable_sort(s.axes.begin(), s.axes.end(), [](const axis& a, const axis& b) {
-    const auto rank = [](const std::string& sym) { return sym == "lambda" ? 0 : sym == "mu" ? 1 : 2; };
-    return rank(a.name) < rank(b.name);
-  });
+  io::order_added_axes(s.axes);  // the command line's axis order
   for (auto& u : laws) io::set_law(s, u.symbol, std::move(u.law));
   s.realizations = realizations;
   s.seed = seed;
@@ -723,6 +694,23 @@ PYBIND11_MODULE(_stickslip, m) {
         py::arg("max_events"));
   m.def("resolve_parameters", [](const py::dict& model) { return model_dict(parameters_from(model)); },
         py::arg("model"));
+  // The parameter table (parameters.hpp, scalar_parameters): the Python
+  // keywords, their defaults and units come from its rows.
+  m.def("parameter_table", [] {
+    py::list rows;
+    const model_parameters defaults;
+    for (const auto& row : scalar_parameters) {
+      py::dict d;
+      d["symbol"] = row.symbol;
+      d["long_name"] = row.long_name;
+      d["description"] = row.description;
+      d["units"] = row.units;
+      d["default"] = defaults.*row.field;
+      d["unset_means_mu"] = row.domain == parameter_domain::positive_or_unset;
+      rows.append(d);
+    }
+    return rows;
+  });
   // How a keyword's text is told to be a law (parameter_law.hpp), as flags and TOML tell it.
   m.def("looks_like_law", [](const std::string& text) { return looks_like_law(text); },
         py::arg("text"));

@@ -14,18 +14,14 @@ import numpy as np
 
 from . import _stickslip
 
-# symbol used by the library -> (keyword, default, unit, meaning)
+# symbol used by the library -> (keyword, default, unit, meaning): the rows
+# of the library's parameter table (parameters.hpp, scalar_parameters); a
+# symbol that is a Python keyword (lambda) is spelled "lam".
 PARAMETERS = {
-    "m": ("m", 1.0, "kg", "mass"),
-    "k": ("k", 4.0, "N/m", "spring stiffness"),
-    "g": ("g", 9.81, "m/s^2", "gravitational acceleration"),
-    "mu": ("mu", 5.0, "1", "friction coefficient; sets mu_s and mu_k both"),
-    "V": ("V", 1.0, "m/s", "belt speed (the belt runs at +V or -V)"),
-    "lambda": ("lam", 1.0, "1/s", "switch rate of the belt direction (Poisson)"),
-    "ta": ("ta", 50.0, "s", "observation window t_a"),
-    "c": ("c", 0.0, "N s/m", "viscous damping (alias damping)"),
-    "mu_s": ("mu_s", "mu", "1", "static friction coefficient, >= mu_k"),
-    "mu_k": ("mu_k", "mu", "1", "kinetic friction coefficient"),
+    row["symbol"]: ("lam" if row["symbol"] == "lambda" else row["symbol"],
+                    "mu" if row["unset_means_mu"] else row["default"], row["units"],
+                    row["description"])
+    for row in _stickslip.parameter_table()
 }
 ALIASES = {"switch_rate": "lam", "lambda_": "lam", "damping": "c"}
 BELT = {

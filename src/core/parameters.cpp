@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 
@@ -10,23 +11,11 @@
 namespace stickslip {
 namespace {
 
-constexpr std::array<parameter_info, 12> infos{{
-    {"m", "mass", "mass of the oscillator", "kg"},
-    {"k", "stiffness", "spring stiffness", "N/m"},
-    {"g", "gravity", "acceleration of gravity", "m/s^2"},
-    {"mu", "friction-coefficient", "Coulomb friction coefficient (sets mu_s and mu_k)", "1"},
-    {"V", "belt-speed", "belt speed magnitude (levels +V, -V)", "m/s"},
-    {"lambda", "switch-rate", "Poisson rate of belt direction switches (both levels)", "1/s"},
-    {"ta", "window", "analysis window t_a", "s"},
-    {"c", "damping", "viscous damping coefficient", "N s/m"},
-    {"mu_s", "static-friction", "static friction coefficient (default mu)", "1"},
-    {"mu_k", "kinetic-friction", "kinetic friction coefficient (default mu)", "1"},
-    {"v", "belt-level", "belt velocity level v_I", "m/s"},
-    {"r", "belt-rate", "rate of leaving belt level I (two-level belt)", "1/s"},
-}};
-
-// The named parameters; the last two rows describe the indexed vI and rI.
-constexpr std::size_t fixed_count = 10;
+// The indexed rows: a belt level vI and the rate rI of leaving level I.
+constexpr parameter_info belt_level_info{"v", "belt-level", "belt velocity level v_I", "m/s",
+                                         nullptr, parameter_domain::any};
+constexpr parameter_info belt_rate_info{"r", "belt-rate",
+                                        "rate of leaving belt level I (two-level belt)", "1/s"};
 
 // "v3" -> 3 (prefix 'v'); 0 when `symbol` is not prefix + a positive integer.
 std::size_t indexed(std::string_view symbol, char prefix) {
@@ -38,8 +27,25 @@ std::size_t indexed(std::string_view symbol, char prefix) {
   return i;
 }
 
-const char* const allowed_names =
-    "m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, v1..vN (belt levels), r1, r2 (belt rates)";
+// "m, k, ..., mu_k, v1..vN (belt levels), r1, r2 (belt rates)"
+std::string allowed_names() {
+  std::string names;
+  for (const auto& row : scalar_parameters) names += std::string(row.symbol) + ", ";
+  return names + "v1..vN (belt levels), r1, r2 (belt rates)";
+}
+
+// "mu_s (static friction)": a row as messages name it.
+std::string message_name(const parameter_info& row) {
+  std::string words = row.long_name;
+  std::replace(words.begin(), words.end(), '-', ' ');
+  return fmt::format("{} ({})", row.symbol, words);
+}
+
+const parameter_info* row_of(std::string_view name) {
+  for (const auto& row : scalar_parameters)
+    if (name == row.symbol || name == row.long_name) return &row;
+  return nullptr;
+}
 
 void require_positive_finite(const char* name, double value) {
   if (!std::isfinite(value) || value <= 0.0)
@@ -55,15 +61,26 @@ void require_representable(const char* name, double value) {
     throw invalid_parameter(name, value, "between 1e-60 and 1e60");
 }
 
+// A row's checks: its name is spelled out only for a refusal (validate runs
+// for every point and drawn model).
+void require_positive_finite(const parameter_info& row, double value) {
+  if (!std::isfinite(value) || value <= 0.0) require_positive_finite(message_name(row).c_str(), value);
+}
+void require_representable(const parameter_info& row, double value) {
+  if (!(value >= min_magnitude && value <= max_magnitude))
+    require_representable(message_name(row).c_str(), value);
+}
+
 void validate_family(const model_parameters& p) {
-  if (!std::isfinite(p.damping) || p.damping < 0.0)
-    throw invalid_parameter("c (damping)", p.damping, "a finite number >= 0");
-  if (!std::isfinite(p.static_friction) || p.static_friction < 0.0)
-    throw invalid_parameter("mu_s (static friction)", p.static_friction,
-                            "a finite number > 0 (or unset: mu)");
-  if (!std::isfinite(p.kinetic_friction) || p.kinetic_friction < 0.0)
-    throw invalid_parameter("mu_k (kinetic friction)", p.kinetic_friction,
-                            "a finite number > 0 (or unset: mu)");
+  for (const auto& row : scalar_parameters) {
+    const double v = p.*row.field;
+    if (row.domain == parameter_domain::non_negative && (!std::isfinite(v) || v < 0.0))
+      throw invalid_parameter(message_name(row), v, "a finite number >= 0");
+    if (row.domain == parameter_domain::positive_or_unset && (!std::isfinite(v) || v < 0.0))
+      throw invalid_parameter(message_name(row), v, "a finite number > 0 (or unset: mu)");
+    if (row.domain == parameter_domain::any && (!std::isfinite(v) || std::abs(v) > max_magnitude))
+      throw invalid_parameter(message_name(row), v, "a finite number with |value| <= 1e60");
+  }
   if (p.mu_k() > p.mu_s())
     throw invalid_parameter("mu_k (kinetic friction)", p.mu_k(),
                             fmt::format("<= mu_s = {} (kinetic friction cannot exceed static)",
@@ -168,20 +185,12 @@ model_parameters paper_form(const model_parameters& p) {
 }
 
 void validate(const model_parameters& p) {
-  require_positive_finite("m (mass)", p.mass);
-  require_positive_finite("k (stiffness)", p.stiffness);
-  require_positive_finite("g (gravity)", p.gravity);
-  require_positive_finite("mu (friction coefficient)", p.friction_coefficient);
-  require_positive_finite("V (belt speed)", p.belt_speed);
-  require_positive_finite("lambda (switch rate)", p.switch_rate);
-  require_positive_finite("ta (window)", p.window);
-  require_representable("m (mass)", p.mass);
-  require_representable("k (stiffness)", p.stiffness);
-  require_representable("g (gravity)", p.gravity);
-  require_representable("mu (friction coefficient)", p.friction_coefficient);
-  require_representable("V (belt speed)", p.belt_speed);
-  require_representable("lambda (switch rate)", p.switch_rate);
-  require_representable("ta (window)", p.window);
+  for (const auto& row : scalar_parameters)
+    if (row.domain == parameter_domain::positive)
+      require_positive_finite(row, p.*row.field);
+  for (const auto& row : scalar_parameters)
+    if (row.domain == parameter_domain::positive)
+      require_representable(row, p.*row.field);
   // Derived quantities can still overflow or underflow (e.g. mu*m*g = inf).
   const double a = p.band_half_width(), w = p.natural_frequency();
   require_representable("a = mu m g / k (band half-width)", a);
@@ -193,17 +202,14 @@ void validate(const model_parameters& p) {
 }
 
 const parameter_info& info_for(const std::string& symbol) {
-  for (std::size_t k = 0; k < fixed_count; ++k)
-    if (symbol == infos[k].symbol || symbol == infos[k].long_name) return infos[k];
-  if (indexed(symbol, 'v') > 0) return infos[10];
-  if (indexed(symbol, 'r') > 0) return infos[11];
-  throw invalid_value("parameter name", symbol, allowed_names);
+  if (const auto* row = row_of(symbol)) return *row;
+  if (indexed(symbol, 'v') > 0) return belt_level_info;
+  if (indexed(symbol, 'r') > 0) return belt_rate_info;
+  throw invalid_value("parameter name", symbol, allowed_names());
 }
 
 bool is_parameter_symbol(std::string_view symbol) {
-  for (std::size_t k = 0; k < fixed_count; ++k)
-    if (symbol == infos[k].symbol || symbol == infos[k].long_name) return true;
-  return indexed(symbol, 'v') > 0 || indexed(symbol, 'r') > 0;
+  return row_of(symbol) || indexed(symbol, 'v') > 0 || indexed(symbol, 'r') > 0;
 }
 
 std::string canonical_symbol(std::string_view name) {
@@ -211,18 +217,34 @@ std::string canonical_symbol(std::string_view name) {
   return info_for(std::string(name)).symbol;
 }
 
+parameter_domain domain_of(std::string_view symbol) {
+  if (const auto* row = row_of(symbol)) return row->domain;
+  return indexed(symbol, 'v') > 0 ? belt_level_info.domain : belt_rate_info.domain;
+}
+
+std::string flag_of(std::string_view symbol) {
+  if (!row_of(symbol)) return std::string(symbol);
+  std::string flag = "--" + std::string(row_of(symbol)->symbol);
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+bool assigned_first(std::string_view symbol) {
+  const auto* row = row_of(symbol);
+  return row && row->sets_others;
+}
+
+model_parameters assign(model_parameters base, std::vector<parameter_assignment> assignments) {
+  order_assignments(assignments, [](const parameter_assignment& a) -> std::string_view {
+    return a.symbol;
+  });
+  for (const auto& a : assignments) set_parameter(base, a.symbol, a.value);
+  return base;
+}
+
 double parameter_value(const model_parameters& p, std::string_view name) {
   const std::string s = canonical_symbol(name);
-  if (s == "m") return p.mass;
-  if (s == "k") return p.stiffness;
-  if (s == "g") return p.gravity;
-  if (s == "mu") return p.friction_coefficient;
-  if (s == "V") return p.belt_speed;
-  if (s == "lambda") return p.switch_rate;
-  if (s == "ta") return p.window;
-  if (s == "c") return p.damping;
-  if (s == "mu_s") return p.mu_s();
-  if (s == "mu_k") return p.mu_k();
+  if (const auto* row = row_of(s)) return resolved_value(p, *row);
   if (const std::size_t i = indexed(s, 'v'); i > 0) {
     const auto v = p.levels();
     if (i > v.size())
@@ -241,18 +263,12 @@ double parameter_value(const model_parameters& p, std::string_view name) {
 
 void set_parameter(model_parameters& p, std::string_view name, double value) {
   const std::string s = canonical_symbol(name);
-  if (s == "m") p.mass = value;
-  else if (s == "k") p.stiffness = value;
-  else if (s == "g") p.gravity = value;
-  else if (s == "mu") {
-    p.friction_coefficient = value;
-    p.static_friction = p.kinetic_friction = 0.0;
-  } else if (s == "V") p.belt_speed = value;
-  else if (s == "lambda") p.switch_rate = value;
-  else if (s == "ta") p.window = value;
-  else if (s == "c") p.damping = value;
-  else if (s == "mu_s") p.static_friction = value;
-  else if (s == "mu_k") p.kinetic_friction = value;
+  if (const auto* row = row_of(s)) {
+    p.*row->field = value;
+    if (row->sets_others)  // mu: the values it sets are no longer given separately
+      for (const auto& other : scalar_parameters)
+        if (other.domain == parameter_domain::positive_or_unset) p.*other.field = 0.0;
+  }
   else if (const std::size_t i = indexed(s, 'v'); i > 0) {
     if (p.belt_levels.empty()) p.belt_levels = p.levels();
     if (i > p.belt_levels.size())

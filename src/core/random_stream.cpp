@@ -1,5 +1,6 @@
 #include "stickslip/random_stream.hpp"
 
+#include <array>
 #include <bit>
 
 namespace stickslip {
@@ -18,14 +19,18 @@ std::uint64_t point_key(const model_parameters& p) noexcept {
   // 0.1.0 (same streams, same bits).
   const bool paper = p.is_paper_model();
   const model_parameters q = paper ? paper_form(p) : p;
-  for (double v : {q.mass, q.stiffness, q.gravity, q.friction_coefficient, q.belt_speed,
-                   q.switch_rate, q.window})
-    h = mix(h ^ std::bit_cast<std::uint64_t>(v));
+  // The rows in the order of their key positions: the paper's seven of q,
+  // then the family's resolved values (mu_s of a model without one is mu).
+  std::array<const parameter_info*, std::size(scalar_parameters)> rows{};
+  for (const auto& row : scalar_parameters) rows[row.key_position] = &row;
+  for (std::size_t i = 0; i < paper_parameter_count; ++i)
+    h = mix(h ^ std::bit_cast<std::uint64_t>(q.*rows[i]->field));
   if (paper) return h;
   // The family: the resolved friction, damping and belt, after a separator
   // so that no family model shares a key with a paper model by construction.
   h = mix(h ^ 0x46414d494c59ULL);  // "FAMILY"
-  for (double v : {p.mu_s(), p.mu_k(), p.damping}) h = mix(h ^ std::bit_cast<std::uint64_t>(v));
+  for (std::size_t i = paper_parameter_count; i < rows.size(); ++i)
+    h = mix(h ^ std::bit_cast<std::uint64_t>(resolved_value(p, *rows[i])));
   const auto levels = p.levels();
   const auto q_matrix = p.generator();
   h = mix(h ^ levels.size());

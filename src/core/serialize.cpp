@@ -15,24 +15,19 @@ namespace {
 constexpr std::string_view spec_tag = "SSPC", unit_tag = "SSWU", result_tag = "SSBR",
                            prefix_tag = "SSMP";
 
-// The fields as given (not resolved): the paper's seven in the order of
-// parameter_names, then the family's c, mu_s, mu_k (0 = mu) and the belt's
+// The fields as given (not resolved), in the order of scalar_parameters
+// (the paper's seven, then the family's c, mu_s, mu_k; 0 = mu), and the belt's
 // levels, rates and generator, each with its length (the layout id covers
 // both name lists).
 void put(writer& w, const model_parameters& p) {
-  for (double v : {p.mass, p.stiffness, p.gravity, p.friction_coefficient, p.belt_speed,
-                   p.switch_rate, p.window, p.damping, p.static_friction, p.kinetic_friction})
-    w.f64(v);
+  for (const auto& row : scalar_parameters) w.f64(p.*row.field);
   put_values(w, p.belt_levels);
   put_values(w, p.belt_rates);
   put_values(w, p.belt_generator);
 }
 model_parameters get_parameters(reader& r) {
   model_parameters p;
-  for (double* v : {&p.mass, &p.stiffness, &p.gravity, &p.friction_coefficient, &p.belt_speed,
-                    &p.switch_rate, &p.window, &p.damping, &p.static_friction,
-                    &p.kinetic_friction})
-    *v = r.f64("model parameter");
+  for (const auto& row : scalar_parameters) p.*row.field = r.f64("model parameter");
   p.belt_levels = get_values(r, "belt levels");
   p.belt_rates = get_values(r, "belt rates");
   p.belt_generator = get_values(r, "belt generator");

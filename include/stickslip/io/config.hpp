@@ -31,6 +31,14 @@ namespace stickslip::io {
 // `key` names the parameter in error messages (e.g. "--lambda", "grid.mu").
 enum class grid_domain : unsigned char { positive, non_negative, any };
 [[nodiscard]] grid_domain grid_domain_of(std::string_view symbol);
+// The order of the axes that flags or Python keywords add (docs/cli.md):
+// lambda first, then mu, then the others as given (stable).
+void order_added_axes(std::vector<axis>& axes);
+// The belt as --belt-levels "v1,v2,..." (at least 2) and --belt-generator
+// "q11,q12;q21,q22" (square) give it; Python passes its lists as this text,
+// so that both refuse alike. Exit 2 naming the flag (and the row).
+[[nodiscard]] std::vector<double> parse_belt_levels(std::string_view text);
+[[nodiscard]] std::vector<double> parse_belt_generator(std::string_view text);
 [[nodiscard]] std::vector<double> parse_grid(std::string_view key, std::string_view text,
                                              grid_domain d = grid_domain::positive);
 

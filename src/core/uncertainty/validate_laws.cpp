@@ -20,25 +20,16 @@
 namespace stickslip {
 namespace {
 
-// The domain of each symbol (parameters.hpp, validate): rates and the
+// The domain of each symbol (parameters.hpp, domain_of): rates and the
 // paper's parameters are > 0, damping >= 0, belt levels any finite value.
 enum class domain : unsigned char { positive, nonnegative, finite };
 
-domain domain_of(const std::string& symbol) {
-  if (symbol == "c") return domain::nonnegative;
-  if (symbol.size() > 1 && symbol[0] == 'v' && std::isdigit(static_cast<unsigned char>(symbol[1])))
-    return domain::finite;
-  return domain::positive;
-}
-
-// How messages name a parameter: its flag (--mu-s), or vI / rI.
-std::string flag_of(const std::string& symbol) {
-  if (symbol.size() > 1 && (symbol[0] == 'v' || symbol[0] == 'r') &&
-      std::isdigit(static_cast<unsigned char>(symbol[1])))
-    return symbol;
-  std::string name = "--" + symbol;
-  std::replace(name.begin(), name.end(), '_', '-');
-  return name;
+domain law_domain(const std::string& symbol) {
+  switch (domain_of(symbol)) {
+    case parameter_domain::non_negative: return domain::nonnegative;
+    case parameter_domain::any: return domain::finite;
+    default: return domain::positive;
+  }
 }
 
 error invalid_law(const uncertain_parameter& u, const std::string& problem) {
@@ -50,7 +41,7 @@ void check_domain(const uncertain_parameter& u) {
   const auto [low, high] = support(u.law);
   const bool closed_low =
       u.law.family != law_family::lognormal && u.law.family != law_family::gamma;
-  switch (domain_of(u.symbol)) {
+  switch (law_domain(u.symbol)) {
     case domain::positive:
       if (low < 0.0 || (low == 0.0 && closed_low))
         throw invalid_law(

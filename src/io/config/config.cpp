@@ -2,6 +2,7 @@
 // The TOML side is in config_toml.cpp.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -203,10 +204,17 @@ bool is_single_value(std::string_view text) noexcept {
 }
 
 grid_domain grid_domain_of(std::string_view symbol) {
-  if (symbol == "c") return grid_domain::non_negative;
-  if (symbol.size() > 1 && symbol[0] == 'v' && symbol[1] >= '1' && symbol[1] <= '9')
-    return grid_domain::any;
-  return grid_domain::positive;
+  switch (domain_of(symbol)) {
+    case parameter_domain::non_negative: return grid_domain::non_negative;
+    case parameter_domain::any: return grid_domain::any;
+    default: return grid_domain::positive;  // mu_s, mu_k: a grid gives them values
+  }
+}
+
+void order_added_axes(std::vector<axis>& axes) {
+  const auto rank = [](const axis& a) { return a.name == "lambda" ? 0 : a.name == "mu" ? 1 : 2; };
+  std::stable_sort(axes.begin(), axes.end(),
+                   [&](const axis& a, const axis& b) { return rank(a) < rank(b); });
 }
 
 std::vector<double> parse_grid(std::string_view key, std::string_view text, grid_domain d) {
@@ -300,6 +308,31 @@ std::vector<double> parse_value_list(std::string_view key, std::string_view text
   for (std::size_t i = 0; i < items.size(); ++i)
     values.push_back(parse_number(fmt::format("{} entry #{}", key, i + 1), items[i]));
   return values;
+}
+
+std::vector<double> parse_belt_levels(std::string_view text) {
+  auto levels = parse_value_list("--belt-levels", text);
+  if (levels.size() < 2)
+    throw invalid_parameter("--belt-levels (count)", static_cast<double>(levels.size()),
+                            "at least 2 levels");
+  return levels;
+}
+
+std::vector<double> parse_belt_generator(std::string_view text) {
+  std::vector<double> q;
+  std::size_t rows = 0, start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(';', start), text.size());
+    const auto row =
+        parse_value_list(fmt::format("--belt-generator row {}", rows + 1), text.substr(start, end - start));
+    q.insert(q.end(), row.begin(), row.end());
+    ++rows;
+    start = end + 1;
+  }
+  if (q.size() != rows * rows)
+    throw invalid_value("--belt-generator", std::string(text),
+                        fmt::format("a square matrix: {} rows need {} rates each", rows, rows));
+  return q;
 }
 
 std::vector<double> parse_switch_time_list(std::string_view key, std::string_view text) {

@@ -2,6 +2,7 @@
 // Reading is strict: unknown tables and keys, wrong types and bad grid specs
 // are errors that name the key and its position (file:line:col).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
@@ -158,20 +159,27 @@ void read_model_value(const context& cx, const std::string& key, const toml::nod
   set_parameter(s.base, key, read_number(cx, "model." + key, n));
 }
 
+// "m, k, g, mu, V, lambda, ta, c, mu_s, mu_k": the scalar keys.
+std::string scalar_list() {
+  return fmt::format("{}", fmt::join(recorded_parameter_names, ", "));
+}
+
 bool is_indexed_symbol(const std::string& key) {
   return key.size() > 1 && (key[0] == 'v' || key[0] == 'r') && is_parameter_symbol(key) &&
          key.find('-') == std::string::npos && canonical_symbol(key) == key;
 }
 
 void read_model(const context& cx, const toml::table& t, sweep_spec& s) {
-  // "mu" sets mu_s and mu_k both: read it first, so that mu_s and mu_k in
-  // the same table refine it whatever their order in the file. The belt
-  // arrays come before vI and rI (the table is ordered by key).
-  if (const auto* mu = t.get("mu")) read_model_value(cx, "mu", *mu, s);
+  // The CLI's and Python's order (assigned_first, order_assignments): "mu"
+  // sets mu_s and mu_k both, so it is read first, and mu_s and mu_k in the
+  // same table refine it whatever their order in the file. The belt arrays
+  // come before vI and rI (the table is ordered by key).
+  for (auto&& [k, n] : t)
+    if (assigned_first(k.str())) read_model_value(cx, std::string(k.str()), n, s);
   for (auto&& [k, n] : t) {
     const std::string key(k.str());
     const std::string dotted = "model." + key;
-    if (key == "mu") continue;
+    if (assigned_first(key)) continue;
     if (key == "belt_levels") {
       s.base.belt_levels = read_numbers(cx, dotted, n);
     } else if (key == "belt_rates") {
@@ -189,9 +197,10 @@ void read_model(const context& cx, const toml::table& t, sweep_spec& s) {
       read_law(cx, key, n, s);
     } else {
       cx.unknown_key(dotted, k,
-                     "[model] takes m, k, g, mu, V, lambda, ta, c, mu_s, mu_k (each a number or "
-                     "a law), belt_levels, belt_rates, belt_generator, and laws of belt levels "
-                     "v1..vN and rates r1, r2");
+                     fmt::format("[model] takes {} (each a number or a law), belt_levels, "
+                                 "belt_rates, belt_generator, and laws of belt levels v1..vN "
+                                 "and rates r1, r2",
+                                 scalar_list()));
     }
   }
 }
@@ -302,8 +311,9 @@ void read_grid(const context& cx, const toml::table& t, const sweep_spec& spec,
     const std::string dotted = "grid." + key;
     if (!is_parameter_symbol(key) || key.find('-') != std::string::npos)
       cx.unknown_key(dotted, k,
-                     "[grid] takes order and m, k, g, mu, V, lambda, ta, c, mu_s, mu_k, belt "
-                     "levels v1..vN, two-level belt rates r1, r2");
+                     fmt::format("[grid] takes order and {}, belt levels v1..vN, two-level belt "
+                                 "rates r1, r2",
+                                 scalar_list()));
     if (find_law(spec, key))  // [model] was read first
       cx.wrong(dotted, n, "a law or a [grid] axis, not both: [model] gives " + key + " a law");
     found.push_back({key, read_axis_values(cx, dotted, n, grid_domain_of(key))});
@@ -467,20 +477,18 @@ std::string to_toml(const sweep_spec& s) {
     const parameter_law* law = find_law(s, name);
     return law ? fmt::format("{} = \"{}\"\n", name, to_string(*law)) : std::string();
   };
-  for (const char* name : parameter_names) {
-    const std::string line = law_line(name);
-    out += line.empty() ? fmt::format("{} = {}\n", name, toml_float(parameter_value(s.base, name)))
-                        : line;
-  }
-  // The family's values as given (unset mu_s, mu_k and belt arrays stay unset).
+  // The values as given: the rows that cannot be unset always, the others
+  // (an unset mu_s, mu_k) only when given, so that a configuration without
+  // them reads and prints as before.
   const auto& b = s.base;
-  const std::string c_law = law_line("c");
-  out += c_law.empty() ? fmt::format("c = {}\n", toml_float(b.damping)) : c_law;
-  for (const char* name : {"mu_s", "mu_k"}) {  // 0 is unset; any other value as given
-    const double v = name == std::string_view("mu_s") ? b.static_friction : b.kinetic_friction;
-    const std::string line = law_line(name);
+  for (const auto& row : scalar_parameters) {
+    const std::string line = law_line(row.symbol);
+    const double v = b.*row.field;
+    const bool always = row.domain == parameter_domain::positive ||
+                        row.domain == parameter_domain::non_negative;
     if (!line.empty()) out += line;
-    else if (v != 0) out += fmt::format("{} = {}\n", name, toml_float(v));
+    else if (always || v != model_parameters{}.*row.field)
+      out += fmt::format("{} = {}\n", row.symbol, toml_float(v));
   }
   auto array = [](const std::vector<double>& v, std::size_t from, std::size_t count) {
     std::string a = "[";

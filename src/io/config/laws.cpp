@@ -24,19 +24,12 @@ std::size_t law_rank(const std::string& symbol) {
   return (!symbol.empty() && symbol[0] == 'v' ? 1'000 : 1'000'000) + index;
 }
 
-// The base value of a scalar back to its default (model_parameters{}); a belt
-// level or rate keeps its value, which to_toml writes in belt_levels or
-// belt_rates as it is.
+// The base value of a scalar back to its default (model_parameters{}), as
+// given: a law of mu leaves mu_s and mu_k as they are. A belt level or rate
+// keeps its value, which to_toml writes in belt_levels or belt_rates as it is.
 void reset_base_value(model_parameters& p, const std::string& symbol) {
-  const model_parameters defaults;
-  if (symbol == "mu")
-    p.friction_coefficient = defaults.friction_coefficient;  // mu_s, mu_k untouched
-  else if (symbol == "mu_s")
-    p.static_friction = defaults.static_friction;
-  else if (symbol == "mu_k")
-    p.kinetic_friction = defaults.kinetic_friction;
-  else if (law_rank(symbol) < std::size(recorded_parameter_names))
-    set_parameter(p, symbol, parameter_value(defaults, symbol));
+  for (const auto& row : scalar_parameters)
+    if (symbol == row.symbol) p.*row.field = model_parameters{}.*row.field;
 }
 
 }  // namespace

@@ -1,0 +1,121 @@
+// The parameter table (parameters.hpp, scalar_parameters): access by symbol
+// and alias, domains, the stream key's order, the one assignment order
+// (mu before mu_s and mu_k) that TOML shares with the CLI and Python, and
+// the refusal of a value outside a row's domain.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "stickslip/error.hpp"
+#include "stickslip/io/config.hpp"
+#include "stickslip/parameters.hpp"
+#include "stickslip/random_stream.hpp"
+
+namespace stickslip {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+std::string refusal_of(const model_parameters& p) {
+  try {
+    validate(p);
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::invalid_input) << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ParameterTable, EveryRowIsReadAndWrittenBySymbolAndAlias) {
+  for (const auto& row : scalar_parameters) {
+    model_parameters p;
+    set_parameter(p, row.symbol, 0.75);
+    EXPECT_EQ(p.*row.field, 0.75) << row.symbol;
+    EXPECT_EQ(parameter_value(p, row.symbol), 0.75) << row.symbol;
+    set_parameter(p, row.long_name, 0.5);
+    EXPECT_EQ(parameter_value(p, row.long_name), 0.5) << row.long_name;
+    EXPECT_EQ(canonical_symbol(row.long_name), row.symbol);
+    EXPECT_TRUE(is_parameter_symbol(row.symbol));
+    EXPECT_EQ(&info_for(row.long_name), &row);
+    EXPECT_EQ(domain_of(row.symbol), row.domain);
+  }
+  EXPECT_EQ(flag_of("mu_s"), "--mu-s");
+  EXPECT_EQ(flag_of("v2"), "v2");
+  EXPECT_EQ(domain_of("v3"), parameter_domain::any);
+  EXPECT_EQ(domain_of("r1"), parameter_domain::positive);
+}
+
+TEST(ParameterTable, NamesAndStreamKeyPositionsComeFromTheRows) {
+  EXPECT_THAT(std::vector<std::string>(recorded_parameter_names.begin(),
+                                       recorded_parameter_names.end()),
+              ::testing::ElementsAre("m", "k", "g", "mu", "V", "lambda", "ta", "c", "mu_s", "mu_k"));
+  std::vector<unsigned> positions;
+  for (const auto& row : scalar_parameters) positions.push_back(row.key_position);
+  for (std::size_t i = 0; i < paper_parameter_count; ++i) EXPECT_EQ(positions[i], i);
+  std::sort(positions.begin(), positions.end());
+  for (std::size_t i = 0; i < positions.size(); ++i) EXPECT_EQ(positions[i], i);
+}
+
+TEST(ParameterTable, UnsetFrictionResolvesToMuAndMuClearsIt) {
+  model_parameters p;
+  set_parameter(p, "mu_s", 7.0);
+  set_parameter(p, "mu", 3.0);
+  EXPECT_EQ(p.static_friction, 0.0);
+  EXPECT_EQ(parameter_value(p, "mu_s"), 3.0);
+  EXPECT_EQ(parameter_value(p, "mu_k"), 3.0);
+}
+
+TEST(ParameterTable, AssignAppliesMuBeforeMuSAndMuKWhateverTheWrittenOrder) {
+  const model_parameters p = assign({}, {{"mu_s", 6.0}, {"mu_k", 4.0}, {"mu", 5.0}, {"c", 0.3}});
+  EXPECT_EQ(p.mu_s(), 6.0);
+  EXPECT_EQ(p.mu_k(), 4.0);
+  EXPECT_EQ(p.friction_coefficient, 5.0);
+  EXPECT_EQ(p.damping, 0.3);
+  // A later value of the same parameter wins.
+  EXPECT_EQ(assign({}, {{"k", 2.0}, {"stiffness", 3.0}}).stiffness, 3.0);
+}
+
+TEST(ParameterTable, TomlGivesTheModelOfTheSameAssignments) {
+  const auto s = io::parse_sweep_toml("[model]\nmu_s = 6\nmu_k = 4.0\nmu = 5\nc = 0.3\nk = 9\n",
+                                      "order.toml");
+  const model_parameters expected =
+      assign({}, {{"mu_s", 6.0}, {"mu_k", 4.0}, {"mu", 5.0}, {"c", 0.3}, {"k", 9.0}});
+  EXPECT_EQ(s.base, expected);
+  EXPECT_EQ(point_key(s.base), point_key(expected));
+  // The resolved configuration prints the rows as given and reads back.
+  EXPECT_EQ(io::parse_sweep_toml(io::to_toml(s), "again.toml").base, expected);
+}
+
+TEST(ParameterTable, TheStreamKeyOfThePaperModelIsItsSevenValues) {
+  model_parameters a, b;
+  set_parameter(b, "mu_s", a.friction_coefficient);
+  set_parameter(b, "mu_k", a.friction_coefficient);
+  EXPECT_EQ(point_key(a), point_key(b));
+  set_parameter(b, "mu_k", 4.0);
+  EXPECT_NE(point_key(a), point_key(b));
+}
+
+TEST(ParameterTable, AValueOutsideItsRowsDomainIsRefusedByNameValueAndRange) {
+  for (const auto& row : scalar_parameters) {
+    model_parameters p;
+    p.*row.field = row.domain == parameter_domain::any ? INFINITY : -1.0;
+    const std::string words = [&] {
+      std::string w = row.long_name;
+      std::replace(w.begin(), w.end(), '-', ' ');
+      return w;
+    }();
+    EXPECT_THAT(refusal_of(p), AllOf(HasSubstr(std::string(row.symbol) + " (" + words + ")"),
+                                     HasSubstr("allowed")))
+        << row.symbol;
+  }
+  model_parameters p = assign({}, {{"mu_s", 3.0}, {"mu_k", 4.0}});
+  EXPECT_THAT(refusal_of(p), AllOf(HasSubstr("mu_k (kinetic friction)"), HasSubstr("<= mu_s = 3")));
+}
+
+}  // namespace
+}  // namespace stickslip
