@@ -117,5 +117,20 @@ TEST(ParameterTable, AValueOutsideItsRowsDomainIsRefusedByNameValueAndRange) {
   EXPECT_THAT(refusal_of(p), AllOf(HasSubstr("mu_k (kinetic friction)"), HasSubstr("<= mu_s = 3")));
 }
 
+// TOML's [model] keys are the symbols: a long alias is an unknown key (the
+// CLI takes it as a flag, TOML never did), also for mu, which is read
+// before the others.
+TEST(ParameterTable, TomlRefusesALongAliasAsAModelKey) {
+  for (const char* text : {"[model]\nfriction-coefficient = 3\n", "[model]\nstiffness = 9\n"}) {
+    try {
+      (void)io::parse_sweep_toml(text, "alias.toml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const error& e) {
+      EXPECT_NE(std::string(e.what()).find("model."), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(io::parse_sweep_toml("[model]\nmu = 3\n", "symbol.toml").base.friction_coefficient, 3.0);
+}
+
 }  // namespace
 }  // namespace stickslip

@@ -174,12 +174,17 @@ void read_model(const context& cx, const toml::table& t, sweep_spec& s) {
   // sets mu_s and mu_k both, so it is read first, and mu_s and mu_k in the
   // same table refine it whatever their order in the file. The belt arrays
   // come before vI and rI (the table is ordered by key).
+  // TOML keys are the symbols only: a long alias ("friction-coefficient")
+  // is an unknown key, as it always was.
+  const auto first = [](std::string_view key) {
+    return assigned_first(key) && canonical_symbol(key) == key;
+  };
   for (auto&& [k, n] : t)
-    if (assigned_first(k.str())) read_model_value(cx, std::string(k.str()), n, s);
+    if (first(k.str())) read_model_value(cx, std::string(k.str()), n, s);
   for (auto&& [k, n] : t) {
     const std::string key(k.str());
     const std::string dotted = "model." + key;
-    if (assigned_first(key)) continue;
+    if (first(key)) continue;
     if (key == "belt_levels") {
       s.base.belt_levels = read_numbers(cx, dotted, n);
     } else if (key == "belt_rates") {
