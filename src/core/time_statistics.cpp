@@ -61,9 +61,7 @@ void time_statistics::add(const observed_states& s) {
 }
 
 // The buffered codes, realization by realization (each time's x then x'),
-// into the sketches: the same counts as adding each sample at once. (Time by
-// time instead, one sketch at a time over strided codes, took 3 times as
-// long.)
+// into the sketches: the same counts as adding each sample at once.
 void time_statistics::add_codes(const code_buffer& codes) const {
   const std::size_t n = at_.size();
   for (std::size_t i = 0; i < codes.size(); i += 2 * n)
