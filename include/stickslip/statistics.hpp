@@ -82,6 +82,15 @@ struct realization_record {
   std::vector<double> drawn_values;
 };
 
+// Where the statistics keep no causal score (point_statistics::
+// keeps_causal_score: the paper study's configuration, whose lane observer
+// skips the bookkeeping), the scalar engines drop theirs from the record,
+// so that the records are the same bits whichever engine ran.
+inline void drop_causal_score(realization_record& r) noexcept {
+  r.stick_switch_moment = r.stick_time_moment = 0.0;
+  r.events.switch_time_sum = 0.0;
+}
+
 // Whether a realization has a first stick D_1: a stick that starts in the
 // window (with a burn-in T, a stick in progress at T is not one; burn_in.hpp).
 [[nodiscard]] inline bool has_first_stick(const realization_record& r) noexcept {
@@ -149,7 +158,7 @@ class point_statistics {
   // Whether add() keeps R's causal score: not in the paper study's
   // configuration (neither family statistics nor means only), whose lane
   // observer skips its bookkeeping (paper_statistics_observer); the
-  // reference engines drop theirs there too (sweep.cpp).
+  // reference engines drop theirs there too (sweep/block_engines.cpp).
   [[nodiscard]] bool keeps_causal_score() const noexcept { return family_statistics || means_only; }
   // Sizes the survival counts (empty, not selected, by default) on the grid `g`.
   void select_survival(const survival_spec& g);

@@ -1,6 +1,6 @@
 // One realization of a grid point of the model family, drawn exactly as a
 // sweep draws it: what the sweep, `simulate --seed --realization` and the
-// Python package share (the paper's model keeps simulate(); sweep.cpp sends
+// Python package share (the paper's model keeps simulate(); sweep/block_engines.cpp sends
 // the paper's model and the undamped two-level models, detail::runs_in_lanes,
 // to the lane engine, which draws these same values for the latter).
 //

@@ -58,15 +58,6 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
 }
 
 namespace {
-// Where the statistics keep no causal score (point_statistics::
-// keeps_causal_score: the paper study's configuration, whose lane observer
-// skips the bookkeeping), the reference engines drop theirs, so that the
-// records are the same bits.
-void drop_causal_score(realization_record& r) noexcept {
-  r.stick_switch_moment = r.stick_time_moment = 0.0;
-  r.events.switch_time_sum = 0.0;
-}
-
 // A scalar engine's block: one realization at a time, into
 // realization_observer and point_statistics::add in realization order.
 // `simulate_one(r, obs, with_states)` resets the observer to realization r

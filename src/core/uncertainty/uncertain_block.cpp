@@ -10,13 +10,6 @@
 namespace stickslip {
 namespace {
 
-// As the reference engines do (sweep/block_engines.cpp): where the statistics keep no
-// causal score, the records drop theirs, so that they are the same bits.
-void drop_causal_score(realization_record& r) noexcept {
-  r.stick_switch_moment = r.stick_time_moment = 0.0;
-  r.events.switch_time_sum = 0.0;
-}
-
 // Whether a law changes the switching law or the window the scores are
 // centred with (K = N - lambda t_a, K_j = N_j - r_j T_j).
 bool scores_centred_wrongly(const std::vector<uncertain_parameter>& laws) {
