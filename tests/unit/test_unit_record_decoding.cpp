@@ -6,6 +6,8 @@
 // unit writes, which a resume then silently replaces.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <string>
 
 #include "stickslip/error.hpp"
@@ -113,5 +115,46 @@ TEST_P(UnitRecordDecoding, EveryAcceptedSingleByteChangeOfTheHeaderReadsBackAsWr
 INSTANTIATE_TEST_SUITE_P(Units, UnitRecordDecoding,
                          ::testing::Values(&damped_family_spec, &stickless_paper_spec,
                                            &survival_paper_spec));
+
+
+// The journal's record layout, written out here by hand (not from the record
+// table the codec iterates): the realization, x0, x0', the belt start as a
+// signed byte, S_T and S_L as 32 bits, R, the first stick's start and
+// duration, its censoring flag as a byte, W_f, W_c, the two causal-score
+// moments, the four event counts, the sum of switch times, then the count
+// of drawn values. 138 bytes, little-endian: the bytes resumes of earlier
+// journals read.
+TEST(JournalRecordLayout, IsTheHandWrittenLayoutByteForByte) {
+  sweep_spec s = damped_family_spec();
+  const work_unit u = unit_at(s, 0);
+  block_result r = simulate_block(s, u);
+  ASSERT_FALSE(r.records.empty());
+  realization_record& x = r.records.front();
+  x.realization = 0x0102030405060708u;
+  x.x0 = 1.25, x.xdot0 = -2.5, x.belt_start = -1;
+  x.sticks = 0x0a0b0c0du, x.slips = 0x01020304u, x.stick_fraction = 0.375;
+  x.first_stick_start = 0.5, x.first_stick_duration = 0.75, x.first_stick_censored = true;
+  x.friction_power = 3.5, x.damping_power = 4.5;
+  x.stick_switch_moment = 5.5, x.stick_time_moment = 6.5;
+  x.events = {11, 12, 13, 14, 7.5};
+  x.drawn_values.clear();
+  std::string expected;
+  const auto put = [&](auto v) {
+    unsigned char b[sizeof v];
+    std::memcpy(b, &v, sizeof v);  // the machines are little-endian, as the format
+    expected.append(reinterpret_cast<const char*>(b), sizeof v);
+  };
+  put(x.realization), put(x.x0), put(x.xdot0), put(static_cast<std::int8_t>(-1));
+  put(x.sticks), put(x.slips), put(x.stick_fraction), put(x.first_stick_start);
+  put(x.first_stick_duration), put(std::uint8_t{1}), put(x.friction_power), put(x.damping_power);
+  put(x.stick_switch_moment), put(x.stick_time_moment);
+  put(std::uint64_t{11}), put(std::uint64_t{12}), put(std::uint64_t{13}), put(std::uint64_t{14});
+  put(7.5), put(std::uint64_t{0});
+  ASSERT_EQ(expected.size(), 138u);
+  const std::string message = serialize(u, r);
+  EXPECT_NE(message.find(expected), std::string::npos);
+  // and it reads back as written
+  EXPECT_EQ(deserialize_unit_result(message).second.records.front().sticks, x.sticks);
+}
 
 }  // namespace
