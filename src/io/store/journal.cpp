@@ -74,7 +74,7 @@ bytes encode_segment_header(std::uint64_t fingerprint, double elapsed, const std
 // `final_path`, fsync the directory. On failure removes `tmp` and throws
 // io_error(final_path, reason) (ENOSPC, EFBIG under `ulimit -f`, EIO, ...).
 void write_file_durably(const std::string& tmp, const std::string& final_path,
-                        std::string_view data) {
+                        std::initializer_list<std::string_view> pieces) {
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) throw io_error(final_path, fmt::format("cannot create '{}': {}", tmp, std::strerror(errno)));
   auto fail = [&](const char* what) {
@@ -83,15 +83,17 @@ void write_file_durably(const std::string& tmp, const std::string& final_path,
     ::unlink(tmp.c_str());
     return io_error(final_path, fmt::format("{} failed: {}", what, std::strerror(saved)));
   };
-  std::size_t done = 0;
-  while (done < data.size()) {
-    const auto n = ::write(fd, data.data() + done, data.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      if (n == 0) errno = ENOSPC;
-      throw fail("write");
+  for (const std::string_view data : pieces) {
+    std::size_t done = 0;
+    while (done < data.size()) {
+      const auto n = ::write(fd, data.data() + done, data.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        if (n == 0) errno = ENOSPC;
+        throw fail("write");
+      }
+      done += static_cast<std::size_t>(n);
     }
-    done += static_cast<std::size_t>(n);
   }
   if (::fsync(fd) != 0) throw fail("fsync");
   if (::close(fd) != 0) {
@@ -240,9 +242,9 @@ void journal_writer::flush() {
   const double elapsed = std::chrono::duration<double>(now - started_).count();
   const std::string name = fmt::format("seg-{}-{:06}.bin", run_id_, segment_seq_);
   const std::string path = (fs::path(journal_dir_) / name).string();
-  bytes data = detail::encode_segment_header(fingerprint_, elapsed, run_id_, buffered_);
-  data += buffer_;
-  detail::write_file_durably((fs::path(journal_dir_) / (".tmp-" + name)).string(), path, data);
+  const bytes header = detail::encode_segment_header(fingerprint_, elapsed, run_id_, buffered_);
+  detail::write_file_durably((fs::path(journal_dir_) / (".tmp-" + name)).string(), path,
+                             {header, buffer_});
   written_ += buffered_units_;
   own_.push_back({path, segment_seq_, std::move(buffered_covers_)});
   for (const auto& [point, blocks] : buffered_prefixes_) {

@@ -1,6 +1,7 @@
 // Internals shared by journal.cpp (writing) and journal_read.cpp (reading).
 #pragma once
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -38,8 +39,15 @@ struct journal_header {
 [[nodiscard]] bytes encode_segment_header(std::uint64_t fingerprint, double elapsed,
                                           const std::string& run_id, std::uint64_t records);
 
+// data written to tmp, fsynced, renamed to final_path (the directory
+// synced): the file appears whole or not at all. The pieces are written one
+// after the other (a segment's header and its records, without joining them).
 void write_file_durably(const std::string& tmp, const std::string& final_path,
-                        std::string_view data);
+                        std::initializer_list<std::string_view> pieces);
+inline void write_file_durably(const std::string& tmp, const std::string& final_path,
+                               std::string_view data) {
+  write_file_durably(tmp, final_path, {data});
+}
 [[nodiscard]] std::string unique_suffix();
 
 }  // namespace stickslip::io::detail
