@@ -268,8 +268,9 @@ class lane_engine {
   static constexpr bool with_causal = wants_causal_score<observer>;
   // An observer with a state sampler (realization_observer::
   // sampler_to_fill): with observe times, the round that holds a lane's next
-  // observe time queues it (queue_observe_times), and the queue is evaluated
-  // in batches (evaluate_observe_times) into the sampler's states.
+  // observe time writes the round's start state at it in the sampler's
+  // states (queue_observe_times), and they are evaluated in place when the
+  // realization ends (evaluate_observed).
   static constexpr bool samples_states = requires(observer& o) { o.sampler_to_fill(); };
 
  public:
@@ -392,6 +393,7 @@ class lane_engine {
         // its states over (realization_observer::samples)
         if (observe_cursor_[l] != s_.observe_times.size())
           throw error(exit_code::internal, "the lane engine missed an observe time");
+        evaluate_observed(dtag(), *observed_[l]);
         observer_[l]->sampler_to_fill().mark_sampled();
       }
     observer_[l]->on_episode(episode{episode_kind_[l], episode_start_[l], ta_, episode_position_[l],
@@ -880,11 +882,12 @@ class lane_engine {
 
   // The lanes `at` (bits) whose round [t, end) holds their next observe time
   // (end: the round's end, t_a's moved to the next double, so that
-  // t_j < end; the round's start state in round_*): each time the round
-  // holds is queued with the round's start state, to be evaluated with the
-  // others in evaluate_observe_times. (Lane by lane: vcompresspd to memory,
-  // a vector at a time, was slower.)
-  HWY_NOINLINE void queue_observe_times(dtag d, std::uint32_t at, std::uint32_t stick_bits) {
+  // t_j < end; the round's start state in round_*): each time t_j the round
+  // holds gets the round's start state, written in place in the lane's own
+  // states at j (x, x', v and whether sticking where they belong; the start
+  // time and the centre in the energy and level slots, which
+  // evaluate_observed overwrites when the realization ends).
+  HWY_NOINLINE void queue_observe_times(dtag, std::uint32_t at, std::uint32_t stick_bits) {
     if constexpr (samples_states) {
       const double* times = s_.observe_times.data();
       const std::size_t count = s_.observe_times.size();
@@ -892,42 +895,61 @@ class lane_engine {
         const auto l = static_cast<std::size_t>(std::countr_zero(m));
         const double sticking = (stick_bits >> l) & 1u ? 1.0 : 0.0;
         const double end = round_end_[l];
+        const double start = round_start_[l], x = round_position_[l], z = round_velocity_[l];
+        const double v = round_belt_velocity_[l], centre = round_centre_[l];
+        observed_states& o = *observed_[l];
+        double *position = o.position(), *velocity = o.velocity(), *belt = o.belt_velocity();
+        double *start_at = o.energy(), *centre_at = o.level(), *stick = o.sticking();
         std::size_t c = observe_cursor_[l];
-        double next = next_observe_time_[l];
         do {
-          if (queued_ == observe_queue) evaluate_observe_times(d);
-          const std::size_t q = queued_++;
-          queued_start_[q] = round_start_[l], queued_time_[q] = next;
-          queued_position_[q] = round_position_[l], queued_velocity_[q] = round_velocity_[l];
-          queued_belt_velocity_[q] = round_belt_velocity_[l];
-          queued_centre_[q] = round_centre_[l], queued_sticking_[q] = sticking;
-          queued_states_[q] = observed_[l], queued_index_[q] = static_cast<std::uint32_t>(c);
-          next = ++c < count ? times[c] : inf;
-        } while (next < end);
+          position[c] = x, velocity[c] = z, belt[c] = v;
+          start_at[c] = start, centre_at[c] = centre, stick[c] = sticking;
+        } while (++c < count && times[c] < end);
         observe_cursor_[l] = c;
-        next_observe_time_[l] = next;
+        next_observe_time_[l] = c < count ? times[c] : inf;
       }
     }
   }
 
-  // The queued observe times: the state at t_j, as evaluate() (episode.cpp)
-  // gives it for the segment simulate() and simulate_model() would build for
-  // the round (a stick moves at v from x; a slip rotates (w (x - c), x')
-  // about the centre c = sigma a_k by w (t_j - t)), and the energy and level
-  // as state_sampler::record_next gives them, with the vector forms of the
-  // same formulas and kernels: the same bits, a vector of times at a time.
-  // Runs before any realization is handed over (side_effects).
-  void evaluate_observe_times(dtag d) {
+  // A finished realization's states at the observe times, from the start
+  // states queue_observe_times left at each t_j: the state at t_j, as
+  // evaluate() (episode.cpp) gives it for the segment simulate() and
+  // simulate_model() would build for the round (a stick moves at v from x; a
+  // slip rotates (w (x - c), x') about the centre c = sigma a_k by
+  // w (t_j - t)), and the energy and level as state_sampler::record_next
+  // gives them, with the vector forms of the same formulas and kernels: the
+  // same bits, a vector of times at a time (each lane on its own: the
+  // vectors' other lanes change nothing in it).
+  HWY_NOINLINE void evaluate_observed(dtag d, observed_states& o) {
     if constexpr (samples_states) {
       const vec W = Set(d, w_), zero = hn::Zero(d), one = Set(d, 1.0);
       const vec half_m = Set(d, 0.5 * observed_mass_), half_k = Set(d, 0.5 * observed_stiffness_);
       const vec L0 = Set(d, observed_levels_[0]), L1 = Set(d, observed_levels_[1]);
-      for (std::size_t q = 0; q < queued_; q += N) {
-        const vec t = hn::Load(d, queued_start_ + q), tj = hn::Load(d, queued_time_ + q);
-        const vec x = hn::Load(d, queued_position_ + q), z = hn::Load(d, queued_velocity_ + q);
-        const vec v = hn::Load(d, queued_belt_velocity_ + q);
-        const vec centre = hn::Load(d, queued_centre_ + q);
-        const auto sticking = hn::Eq(hn::Load(d, queued_sticking_ + q), one);
+      const double* times = s_.observe_times.data();
+      const std::size_t n = o.size();
+      double *position = o.position(), *velocity = o.velocity(), *belt = o.belt_velocity();
+      double *start_at = o.energy(), *centre_at = o.level(), *stick = o.sticking();
+      // the last, partial vector through a padded copy (a stick at t = 0)
+      HWY_ALIGN double tail[7][N];
+      for (std::size_t j = 0; j < n; j += N) {
+        const std::size_t r = std::min<std::size_t>(N, n - j);
+        const double* in[6] = {start_at + j, times + j, position + j, velocity + j, belt + j,
+                               centre_at + j};
+        const double* sticking_in = stick + j;
+        if (r < N) {
+          for (std::size_t f = 0; f < 6; ++f) {
+            std::fill_n(tail[f], N, 0.0);
+            std::copy_n(in[f], r, tail[f]);
+            in[f] = tail[f];
+          }
+          std::fill_n(tail[6], N, 1.0);
+          std::copy_n(sticking_in, r, tail[6]);
+          sticking_in = tail[6];
+        }
+        const vec t = hn::LoadU(d, in[0]), tj = hn::LoadU(d, in[1]);
+        const vec x = hn::LoadU(d, in[2]), z = hn::LoadU(d, in[3]);
+        const vec v = hn::LoadU(d, in[4]), centre = hn::LoadU(d, in[5]);
+        const auto sticking = hn::Eq(hn::LoadU(d, sticking_in), one);
         vec xj = vphysics::stick_position(x, v, t, tj), zj = v;
         if (!hn::AllTrue(d, sticking)) {
           vec u = Mul(W, Sub(tj, t));
@@ -947,22 +969,17 @@ class lane_engine {
         const vec energy = hn::Add(Mul(Mul(half_m, zj), zj), Mul(Mul(half_k, xj), xj));
         const vec level = IfThenElse(hn::Eq(v, L0), zero, IfThenElse(hn::Eq(v, L1), one,
                                                                       Set(d, 2.0)));
-        // the evaluated state in place of the start state it came from (the
-        // start time and centre are not needed again)
-        hn::Store(xj, d, queued_position_ + q), hn::Store(zj, d, queued_velocity_ + q);
-        hn::Store(energy, d, queued_start_ + q), hn::Store(level, d, queued_centre_ + q);
+        if (r == N) {
+          hn::StoreU(xj, d, position + j), hn::StoreU(zj, d, velocity + j);
+          hn::StoreU(energy, d, start_at + j), hn::StoreU(level, d, centre_at + j);
+        } else {
+          HWY_ALIGN double out[4][N];
+          hn::Store(xj, d, out[0]), hn::Store(zj, d, out[1]);
+          hn::Store(energy, d, out[2]), hn::Store(level, d, out[3]);
+          std::copy_n(out[0], r, position + j), std::copy_n(out[1], r, velocity + j);
+          std::copy_n(out[2], r, start_at + j), std::copy_n(out[3], r, centre_at + j);
+        }
       }
-      for (std::size_t q = 0; q < queued_; ++q) {
-        observed_states& o = *queued_states_[q];
-        const std::size_t i = queued_index_[q];
-        o.position()[i] = queued_position_[q];
-        o.velocity()[i] = queued_velocity_[q];
-        o.belt_velocity()[i] = queued_belt_velocity_[q];
-        o.energy()[i] = queued_start_[q];
-        o.level()[i] = queued_centre_[q];
-        o.sticking()[i] = queued_sticking_[q];
-      }
-      queued_ = 0;
     }
   }
 
@@ -990,8 +1007,6 @@ class lane_engine {
           static_cast<int>(step_event_[l]) == ev_slip_switch)
         contact_at_switch(l);
     }
-    if constexpr (samples_states)
-      if (finished != 0 && queued_ != 0) evaluate_observe_times(dtag());
     for (unsigned m = finished; m != 0; m &= m - 1) finish_realization(std::countr_zero(m));
   }
 
@@ -1069,17 +1084,6 @@ class lane_engine {
   mode episode_kind_[lanes] = {};
   observer* observer_[lanes] = {};
   HWY_ALIGN double next_observe_time_[lanes] = {};  // +inf: none left
-  // The queue of observe times (queue_observe_times): the round's start
-  // state, the time, and the slot to fill; the energy and the level of the
-  // observers' state samplers (one point: the same for all).
-  static constexpr std::size_t observe_queue = samples_states ? 32 * N : N;
-  std::size_t queued_ = 0;
-  HWY_ALIGN double queued_start_[observe_queue] = {}, queued_time_[observe_queue] = {};
-  HWY_ALIGN double queued_position_[observe_queue] = {}, queued_velocity_[observe_queue] = {};
-  HWY_ALIGN double queued_belt_velocity_[observe_queue] = {}, queued_centre_[observe_queue] = {};
-  HWY_ALIGN double queued_sticking_[observe_queue] = {};
-  observed_states* queued_states_[observe_queue] = {};
-  std::uint32_t queued_index_[observe_queue] = {};
   // Per lane: the states of its realization's observer, and the index of
   // its next observe time (next_observe_time_ is that time).
   observed_states* observed_[lanes] = {};
