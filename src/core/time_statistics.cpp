@@ -1,17 +1,27 @@
 #include "stickslip/accumulators/time_statistics.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace stickslip {
 
 namespace {
 
+// The row loops below are compiled for AVX-512 and AVX2 as well as the
+// baseline, and the widest the CPU has runs (GCC function multiversioning):
+// 8 or 4 lanes instead of SSE2's 2. Each element's operations are the same
+// (+, -, x, no fused multiply-add: the core is built with -ffp-contract=off),
+// so every version gives the same bits.
+#define STICKSLIP_ROW_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
+
 // Welford's update (mean_variance::add(x, inverse)) of every time's moments
 // by one realization's values x[j] - minus[j] (minus: nullptr for 0): one
 // pass down the arrays, which the compiler vectorizes; each element's
 // operations are those of mean_variance::add, so the same bits. (An AVX2
 // clone of this function saved nothing measurable.)
+STICKSLIP_ROW_CLONES
 void add_row(double* __restrict mean, double* __restrict m2, const double* __restrict x,
              const double* __restrict minus, std::size_t n, double inverse) noexcept {
   if (minus == nullptr) {
@@ -30,10 +40,22 @@ void add_row(double* __restrict mean, double* __restrict m2, const double* __res
   }
 }
 
+// quantile_sketch::code of x[j] and z[j] into c[2 j], c[2 j + 1], without
+// a branch, so that the loop vectorizes: the same codes.
+STICKSLIP_ROW_CLONES
+void add_code_row(std::uint32_t* __restrict c, const double* __restrict x,
+                  const double* __restrict z, std::size_t n) noexcept {
+  for (std::size_t j = 0; j < n; ++j) {
+    c[2 * j] = quantile_sketch::code_branchless(x[j]);
+    c[2 * j + 1] = quantile_sketch::code_branchless(z[j]);
+  }
+}
+
 }  // namespace
 
 void time_statistics::add(const observed_states& s) {
   ++realizations_;
+  quantiles_.clear();
   // Every moment counts every realization (count() + 1 = realizations_ for
   // each): one division for all (mean_variance::add with the reciprocal).
   const double inverse = 1.0 / static_cast<double>(realizations_);
@@ -52,18 +74,14 @@ void time_statistics::add(const observed_states& s) {
   if (codes_.empty()) codes_.reserve(2 * n * buffered_realizations);
   const std::size_t first = codes_.size();
   codes_.resize(first + 2 * n);
-  std::uint32_t* __restrict c = codes_.data() + first;
-  for (std::size_t j = 0; j < n; ++j) {
-    c[2 * j] = quantile_sketch::code(s.position()[j]);
-    c[2 * j + 1] = quantile_sketch::code(s.velocity()[j]);
-  }
+  add_code_row(codes_.data() + first, s.position(), s.velocity(), n);
   if (codes_.size() >= 2 * n * buffered_realizations) settle();
 }
 
 // The buffered codes, realization by realization (each time's x then x'),
 // into the sketches: the same counts as adding each sample at once.
 void time_statistics::add_codes(const code_buffer& codes) const {
-  const std::size_t n = at_.size();
+  const std::size_t n = times_.size();
   for (std::size_t i = 0; i < codes.size(); i += 2 * n)
     for (std::size_t j = 0; j < n; ++j) {
       at_[j].position_quantiles.add_code(codes[i + 2 * j]);
@@ -72,6 +90,10 @@ void time_statistics::add_codes(const code_buffer& codes) const {
 }
 
 void time_statistics::refresh() const {
+  if (at_.size() != times_.size()) {  // made when first read (a unit's accumulator never is)
+    at_.resize(times_.size());
+    at_stale_ = true;
+  }
   if (at_stale_) {
     for (std::size_t j = 0; j < at_.size(); ++j) {
       time_point_statistics& a = at_[j];
@@ -94,20 +116,25 @@ void time_statistics::settle() const {
 
 time_statistics& time_statistics::operator+=(const time_statistics& o) {
   settle();
+  quantiles_.clear();
   // o is only read: its buffered codes, its rows (current even when its at_
   // is not refreshed) and its sketches
   add_codes(o.codes_);
   const std::uint64_t n = o.realizations_;
+  // o's sketches, where o has them: an accumulator never read holds its
+  // samples in its codes alone
+  const bool o_sketches = !o.at_.empty();
   for (std::size_t j = 0; j < at_.size(); ++j) {
     time_point_statistics& a = at_[j];
-    const time_point_statistics& b = o.at_[j];
     a.sticking += o.sticking_[j];
     a.position += o.position_.at(j, n);
     a.velocity += o.velocity_.at(j, n);
     a.relative_velocity += o.relative_velocity_.at(j, n);
     a.energy += o.energy_.at(j, n);
-    a.position_quantiles += b.position_quantiles;
-    a.velocity_quantiles += b.velocity_quantiles;
+    if (o_sketches) {
+      a.position_quantiles += o.at_[j].position_quantiles;
+      a.velocity_quantiles += o.at_[j].velocity_quantiles;
+    }
     sticking_[j] = a.sticking;
     position_.set(j, a.position);
     velocity_.set(j, a.velocity);
@@ -117,6 +144,21 @@ time_statistics& time_statistics::operator+=(const time_statistics& o) {
   realizations_ += n;
   for (std::size_t i = 0; i < level_counts_.size(); ++i) level_counts_[i] += o.level_counts_[i];
   return *this;
+}
+
+void time_statistics::quantiles(std::size_t j, quantile_sketch time_point_statistics::*sketch,
+                                double* out) const {
+  constexpr std::size_t q = std::size(observed_quantile_levels);
+  if (quantiles_.empty()) {
+    settle();
+    quantiles_.resize(times_.size() * 2 * q);
+    for (std::size_t i = 0; i < times_.size(); ++i) {
+      at_[i].position_quantiles.quantiles(observed_quantile_levels, q, &quantiles_[2 * q * i]);
+      at_[i].velocity_quantiles.quantiles(observed_quantile_levels, q, &quantiles_[2 * q * i + q]);
+    }
+  }
+  const std::size_t which = sketch == &time_point_statistics::position_quantiles ? 0 : 1;
+  std::copy_n(&quantiles_[2 * q * j + which * q], q, out);
 }
 
 double time_statistics::stick_probability(std::size_t j) const noexcept {
@@ -138,6 +180,7 @@ void time_statistics::set_raw(std::uint64_t realizations, std::vector<time_point
                               std::vector<std::uint64_t> level_counts) {
   realizations_ = realizations;
   codes_.clear();
+  quantiles_.clear();
   at_ = std::move(at);
   at_stale_ = false;
   for (std::size_t j = 0; j < at_.size(); ++j) {

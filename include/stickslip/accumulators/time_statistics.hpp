@@ -67,7 +67,7 @@ class time_statistics {
   time_statistics(std::vector<double> times, std::size_t levels)
       : times_(std::move(times)), levels_(levels), sticking_(times_.size(), 0),
         position_(times_.size()), velocity_(times_.size()), relative_velocity_(times_.size()),
-        energy_(times_.size()), at_(times_.size()), level_counts_(times_.size() * levels, 0) {}
+        energy_(times_.size()), level_counts_(times_.size() * levels, 0) {}
 
   [[nodiscard]] bool selected() const noexcept { return !times_.empty(); }
   // One realization: its state at each of times(). Precondition: one per
@@ -87,6 +87,11 @@ class time_statistics {
     settle();
     return at_[j];
   }
+  // The quantiles at observed_quantile_levels of the sketch `sketch` (a
+  // member of time_point_statistics) at t_j, into out[0 .. 5): computed for
+  // every time and both sketches at the first call after a change, and kept
+  // (the writers read them once each; the same caveat as at()).
+  void quantiles(std::size_t j, quantile_sketch time_point_statistics::*sketch, double* out) const;
   [[nodiscard]] std::uint64_t level_count(std::size_t j, std::size_t level) const noexcept {
     return level_counts_[j * levels_ + level];
   }
@@ -163,10 +168,13 @@ class time_statistics {
   std::uint64_t realizations_ = 0;
   std::vector<std::uint64_t> sticking_;
   moment_rows position_, velocity_, relative_velocity_, energy_;
-  mutable std::vector<time_point_statistics> at_;
+  mutable std::vector<time_point_statistics> at_;  // empty until first read (refresh())
   mutable bool at_stale_ = false;  // the rows changed since at_ got them
   std::vector<std::uint64_t> level_counts_;  // times x levels, row-major
   mutable code_buffer codes_;
+  // quantiles(): per time, the position's then the velocity's quantiles
+  // (empty: to be computed)
+  mutable std::vector<double> quantiles_;
 };
 
 // The quantile levels written for x and x' (5, 25, 50, 75, 95 %).

@@ -146,7 +146,7 @@ inline std::vector<observed_variable> build() {
              ", at the levels q of the quantile coordinate: the k-th smallest value, k = max(1, "
              "ceil(q n)), from a streaming log-binned sketch: within " + sketch_accuracy(),
          shape::per_quantile, [sk = q.sketch](const time_statistics& s, std::size_t j, double* v) {
-           (s.at(j).*sk).quantiles(observed_quantile_levels, std::size(observed_quantile_levels), v);
+           s.quantiles(j, sk, v);
          }});
   }
   return out;
