@@ -50,8 +50,9 @@ install(TARGETS stickslip RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # Public headers: include/stickslip but its detail/ folder, the generated
 # version header, and the MPI backend's header when it is built. detail/ is
 # private to the build: the lane engine's interface with the sweep
-# (fast_block.hpp) and its Highway kernels (fast_math_simd.hpp: Highway is
-# linked PRIVATE, and a user need not have it). package.downstream
+# (fast_block.hpp, there because the lane tests include it too). The Highway
+# kernels are a private header of the core, src/core/engines/fast_math_simd.hpp
+# (Highway is linked PRIVATE, and a user need not have it). package.downstream
 # checks that no installed header is under detail/, includes Highway or
 # includes a header that is not installed, and that each compiles alone.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/stickslip

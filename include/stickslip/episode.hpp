@@ -6,9 +6,9 @@
 #pragma once
 #include <cstdint>
 
-namespace stickslip {
+#include "stickslip/motion_mode.hpp"
 
-enum class mode : unsigned char { stick, slip };
+namespace stickslip {
 
 enum class event_kind : unsigned char {
   belt_switch,    // the belt changes level (in the paper's model it flips sign at
@@ -18,9 +18,6 @@ enum class event_kind : unsigned char {
   slip_reversal,  // a slip reaches x' = v outside the band; slip continues the other way
 };
 
-inline constexpr const char* to_string(mode m) noexcept {
-  return m == mode::stick ? "stick" : "slip";
-}
 inline constexpr const char* to_string(event_kind k) noexcept {
   switch (k) {
     case event_kind::belt_switch: return "belt_switch";

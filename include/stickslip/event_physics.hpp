@@ -1,6 +1,6 @@
 // The closed-form steps of one event, written once over the number type
 // (event_physics_steps.inl): `simulate` (integrator.hpp) calls them
-// with double, the lane engine (src/core/fast_lanes.cpp) with Highway vectors
+// with double, the lane engine (src/core/engines/fast_lanes.cpp) with Highway vectors
 // of realizations, so both evaluate the same operations in the same order and
 // round alike, bit for bit. Only + - * / appear in them (Highway's vectors
 // overload them for every x86 target); negation goes through Neg(), found for
@@ -16,7 +16,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stickslip/episode.hpp"
+#include "stickslip/motion_mode.hpp"
 
 namespace stickslip::detail::physics {
 

@@ -1,7 +1,7 @@
 // The closed-form steps of one event as templates over the number type: the
 // body of event_physics.hpp. No include guard and no namespace on
 // purpose: event_physics.hpp includes it into stickslip::detail::physics
-// (doubles, for `simulate`), and src/core/fast_lanes.cpp includes it once more
+// (doubles, for `simulate`), and src/core/engines/fast_lanes.cpp includes it once more
 // inside each SIMD target's namespace, so that the vector instantiations are
 // compiled for that target (Highway's vector operators can only be inlined
 // into code of their own target). One text, so one order of operations, so

@@ -2,13 +2,13 @@
 // shared by every engine so that they give bit-identical results.
 //
 // All of them are Highway's vector polynomials (hwy/contrib/math,
-// detail/fast_math_simd.hpp), compiled once per SIMD target (AVX3 = AVX-512,
+// src/core/engines/fast_math_simd.hpp), compiled once per SIMD target (AVX3 = AVX-512,
 // AVX2, SSE4, SSSE3 and Highway's one-lane SCALAR baseline) with Highway's
 // foreach_target.h, and chosen at run time (HWY_DYNAMIC_DISPATCH) for the
 // CPU the program runs on: one binary runs on any x86-64 CPU. The scalar
 // functions below broadcast their argument to a whole vector of the chosen
 // target and return lane 0; the lane engine
-// (src/core/fast_lanes.cpp) is dispatched the same way and evaluates the very
+// (src/core/engines/fast_lanes.cpp) is dispatched the same way and evaluates the very
 // same kernels on whole vectors of realizations. Every dispatch in the
 // process reads Highway's one chosen target, so the scalar integrator and the
 // lane engine always run the same target, and Highway's math is lane-wise:
@@ -32,6 +32,8 @@
 #include <cstdint>
 #include <numbers>
 
+#include "stickslip/phase_reduction.hpp"  // reduce_phase
+
 namespace stickslip::detail::fm {
 
 [[nodiscard]] double log(double x) noexcept;             // x > 0
@@ -41,14 +43,6 @@ namespace stickslip::detail::fm {
 [[nodiscard]] double cos(double x) noexcept;
 // p[i] = log(p[i]) for i < n, the same values as log() (vectorized).
 void log_inplace(double* p, std::size_t n) noexcept;
-
-// Highway's Sin/Cos are valid for |x| <= 39000: larger phases are reduced
-// first with fmod by the double nearest 2 pi (fmod itself is exact; the
-// rounding of 2 pi shifts such huge phases slightly). Both engines apply this.
-inline constexpr double max_direct_phase = 39000.0;
-[[nodiscard]] inline double reduce_phase(double x) noexcept {
-  return std::abs(x) > max_direct_phase ? std::fmod(x, 2.0 * std::numbers::pi) : x;
-}
 
 // The SIMD target the kernels and the lane engine run on now, as Highway's
 // bit (HWY_AVX3, HWY_AVX2, ...) and name ("AVX3", "AVX2", "SSE4", "SSSE3",

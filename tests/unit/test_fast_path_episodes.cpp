@@ -163,7 +163,7 @@ TEST(FastPathEpisodes, WorkBoundGivesTheReferenceError) {
 
 // The statistics observer takes neither events nor segments, so the sweep's
 // lane engine builds no events; an observer of segments is refused at
-// compile time (static_assert in src/core/fast_lanes.cpp).
+// compile time (static_assert in src/core/engines/fast_lanes.cpp).
 TEST(FastPathEpisodes, ObserverTraits) {
   EXPECT_FALSE(observes_events<realization_observer>);
   EXPECT_FALSE(observes_segments<realization_observer>);

@@ -1,5 +1,5 @@
 // The lane engine behind simulate_block (sweep_engine::fast,
-// src/core/fast_lanes.cpp): several realizations per thread in lock step,
+// src/core/engines/fast_lanes.cpp): several realizations per thread in lock step,
 // their transcendentals evaluated as SIMD vectors of the target chosen at
 // run time. It runs the physics of `simulate` (integrator.hpp), with the same
 // operations in the same order and the same kernels (fast_math.hpp),

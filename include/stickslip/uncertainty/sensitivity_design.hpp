@@ -19,7 +19,7 @@
 #include <string>
 
 #include "stickslip/statistics_schema.hpp"
-#include "stickslip/sweep.hpp"
+#include "stickslip/sweep_spec.hpp"
 
 namespace stickslip {
 

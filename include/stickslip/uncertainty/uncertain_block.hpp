@@ -9,7 +9,7 @@
 
 #include "stickslip/random_stream.hpp"
 #include "stickslip/statistics.hpp"
-#include "stickslip/sweep.hpp"
+#include "stickslip/sweep_spec.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "stickslip/uncertainty/uncertain_realization.hpp"
 

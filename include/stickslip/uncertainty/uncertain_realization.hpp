@@ -23,7 +23,7 @@
 #include "stickslip/integrator.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/statistics.hpp"
-#include "stickslip/sweep.hpp"
+#include "stickslip/sweep_spec.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
 
 namespace stickslip {

@@ -1,6 +1,6 @@
 // Vector forms of the kernels of stickslip/fast_math.hpp, for every SIMD target.
 // Include only from translation units that are compiled once per Highway
-// target (hwy/foreach_target.h: src/core/fast_math.cpp, src/core/fast_lanes.cpp):
+// target (hwy/foreach_target.h: engines/fast_math.cpp, engines/fast_lanes.cpp):
 // like Highway's own -inl headers it is re-included for each target, and
 // defines stickslip::detail::simd::HWY_NAMESPACE (N_AVX3, N_AVX2, N_SSE4, ...).
 // Highway's math is lane-wise (no cross-lane step), so a lane's result does
@@ -20,7 +20,7 @@
 
 #include <numbers>
 
-#include "stickslip/fast_math.hpp"
+#include "stickslip/phase_reduction.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace stickslip::detail::simd {

@@ -60,7 +60,7 @@
 // realization_observer does not, so the sweep builds none), and refuses an
 // observer of segments at compile time.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "fast_lanes.cpp"  // src/core is on the core's include path
+#define HWY_TARGET_INCLUDE "engines/fast_lanes.cpp"  // src/core is on the core's include path
 #include <hwy/foreach_target.h>  // must come before highway.h
 
 #include <hwy/highway.h>
@@ -81,7 +81,7 @@
 #include "stickslip/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
 #include "stickslip/fast_math.hpp"
-#include "stickslip/detail/fast_math_simd.hpp"
+#include "engines/fast_math_simd.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"

@@ -2,13 +2,13 @@
 // SIMD target of the CPU: see stickslip/fast_math.hpp. This file is compiled
 // once per Highway target (foreach_target.h re-includes it).
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "fast_math.cpp"  // src/core is on the core's include path
+#define HWY_TARGET_INCLUDE "engines/fast_math.cpp"  // src/core is on the core's include path
 #include <hwy/foreach_target.h>  // must come before highway.h
 
 #include <hwy/highway.h>
 
 #include "stickslip/fast_math.hpp"
-#include "stickslip/detail/fast_math_simd.hpp"
+#include "engines/fast_math_simd.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace stickslip::detail::fm {
