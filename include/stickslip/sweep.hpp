@@ -183,17 +183,17 @@ struct block_result {
   std::vector<realization_record> records;  // filled when spec.keep_records
 };
 
-// Simulate the realizations of one unit with s.engine. Pure: depends only on
-// (spec, unit), and the two engines give bit-identical results.
+// Simulate the realizations of one unit on the engine engine_for gives its
+// point (engines/engine_choice.hpp). Pure: depends only on (spec, unit), and
+// the engines give bit-identical results where more than one runs.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
-// The reference engine, whatever s.engine says. Precondition: the point is
-// the paper's model.
+// The point's reference engine (reference_engine), whatever s.engine says:
+// simulate for the paper's model, simulate_block_family otherwise.
+// Precondition: the point has no laws.
 [[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
 // The model family's engine (simulate_model, model/model_engine.hpp), one
-// realization at a time; simulate_block uses it for the points that are not
-// the paper's model with sweep_engine::reference, and with fast for those
-// the lane engine does not run (detail::runs_in_lanes: damped, or more than
-// two levels). Both give the same bits where both run.
+// realization at a time, for any model without laws. Where the lane engine
+// runs too, both give the same bits.
 [[nodiscard]] block_result simulate_block_family(const sweep_spec& s, const work_unit& u);
 // simulate_block of each unit, in order. Runs of consecutive blocks of one
 // point go to the lane engine together, so its lanes move on to the next

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "stickslip/belt_switches.hpp"
+#include "stickslip/engines/engine_choice.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -41,6 +42,7 @@ void trace_realization(const replay_request& r, const model_parameters& p, reali
 // The model family (or given switch levels): simulate_model with the start
 // drawn as the sweep draws it (model_realization.hpp), then the fixed inputs.
 void replay_family(const replay_request& r, const sweep_spec& spec, realization_trace& out) {
+  detail::count_engine_run(point_engine::family_reference);
   const model_parameters& p = spec.base;
   const family_point fp(p, stream_key(spec, p));  // as the sweep draws it
   const std::size_t levels = fp.model.belt.level_count();
@@ -99,13 +101,15 @@ realization_trace replay(const replay_request& r) {
   if (r.switch_times) validate_switch_times(*r.switch_times);
 
   realization_trace out;
-  if (!spec.base.is_paper_model() || r.switch_levels) {
+  // Given switch levels need the family engine's level switches.
+  if (reference_engine(spec.base) == point_engine::family_reference || r.switch_levels) {
     replay_family(r, spec, out);
     return out;
   }
   // The parameters as asked (lambda may be 0 with given switch times), in
   // the paper's form: the stream key of the sweep's point, hence the sweep's
   // x0 and x'0 for this realization.
+  detail::count_engine_run(point_engine::paper_reference);
   const model_parameters p = paper_form(r.parameters);
   const auto key = stream_key(spec, p);  // point_key(p), or the common key
   auto& ic = out.initial;
