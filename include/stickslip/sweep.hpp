@@ -36,9 +36,12 @@ struct axis {
 //              event per lane per round, the SIMD target chosen at run time,
 //              finished realizations added to the statistics in realization
 //              order (src/core/fast_lanes.cpp; docs/performance.md); the default;
-//   reference  `simulate` one realization at a time, poisson_switches +
-//              realization_observer + point_statistics::add: the plain path,
-//              kept as the oracle.
+//   reference  `simulate_model` one realization at a time, for every model
+//              (the paper's is its undamped two-level case, the same bits as
+//              `simulate`), markov_level_switches + realization_observer +
+//              point_statistics::add: the plain path, kept as the oracle.
+// engine_for (engines/engine_choice.hpp) turns this and a point's model into
+// the engine that runs it.
 enum class sweep_engine : unsigned char { fast, reference };
 inline constexpr const char* to_string(sweep_engine e) noexcept {
   return e == sweep_engine::fast ? "fast" : "reference";
@@ -187,14 +190,11 @@ struct block_result {
 // point (engines/engine_choice.hpp). Pure: depends only on (spec, unit), and
 // the engines give bit-identical results where more than one runs.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
-// The point's reference engine (reference_engine), whatever s.engine says:
-// simulate for the paper's model, simulate_block_family otherwise.
-// Precondition: the point has no laws.
+// The reference engine, whatever s.engine says: simulate_model
+// (model/model_engine.hpp) one realization at a time, for every model (the
+// paper's included: the same bits as simulate). Where the lane engine runs
+// too, both give the same bits. Precondition: the point has no laws.
 [[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
-// The model family's engine (simulate_model, model/model_engine.hpp), one
-// realization at a time, for any model without laws. Where the lane engine
-// runs too, both give the same bits.
-[[nodiscard]] block_result simulate_block_family(const sweep_spec& s, const work_unit& u);
 // simulate_block of each unit, in order. Runs of consecutive blocks of one
 // point go to the lane engine together, so its lanes move on to the next
 // block instead of idling at a block's tail (~20 % with blocks of 50); the

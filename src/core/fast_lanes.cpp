@@ -36,7 +36,8 @@
 // statistics by point_statistics::add in realization order, exactly as the
 // reference engine adds it: every accumulator update happens in the same order.
 // A realization that exceeds max_events makes the whole block rerun on the
-// reference engine, which throws the same error the reference would.
+// reference engine (simulate_model), which throws the error the reference
+// throws.
 //
 // The same engine runs the undamped two-level models of the family
 // (detail::runs_in_lanes; lane_engine<..., Family = true>) with
@@ -219,21 +220,15 @@ class trace_collector {
   void end(observer& o, const event_counts& counts) const { o.trace.counts = counts; }
   void deliver(std::uint64_t r, observer& o) { out_[r - first_] = std::move(o.trace); }
   void fallback() {
-    // Rerun on the model's reference engine (engine_choice.hpp).
+    // Rerun on the reference engine (simulate_model, engine_choice.hpp).
     count_lane_reference_rerun();
-    const point_engine reference = reference_engine(p_);
-    const bool family = reference == point_engine::family_reference;
-    count_engine_run(reference);
+    count_engine_run(point_engine::reference);
     const family_point fp(p_, stream_key(s_, p_));
     for (std::size_t i = 0; i < out_.size(); ++i) {
       trace_observer o;
       const std::uint64_t r = first_ + i;
-      if (family) {
-        const auto start = draw_model_initial_state(fp, s_.initial, s_.seed, r);
-        o.trace.counts = simulate_family_realization(fp, start, s_.seed, r, s_.max_events, o);
-      } else {
-        o.trace.counts = simulate_realization(s_, p_, r, o);
-      }
+      const auto start = draw_model_initial_state(fp, s_.initial, s_.seed, r);
+      o.trace.counts = simulate_family_realization(fp, start, s_.seed, r, s_.max_events, o);
       out_[i] = std::move(o.trace);
     }
   }
@@ -335,7 +330,7 @@ class lane_engine {
     initial_conditions ic;
     double v;
     if constexpr (Family) {
-      // draw_model_initial_state and markov_level_switches, as simulate_block_family
+      // draw_model_initial_state and markov_level_switches, as simulate_block_reference
       const model_initial_state st = draw_model_initial_state(*family_, s_.initial, s_.seed, r);
       ic = initial_conditions{st.position, st.velocity, recorded_belt_start(st.level, 2)};
       switch_times_[l] = two_level_switch_times(family_->chain.mean_wait(st.level),

@@ -3,8 +3,10 @@
 // level) under sweep_engine::fast and ::reference: engine_for gives the
 // expected engine, and every site runs that engine and no other (the
 // process-wide counts of engine runs): simulate_block, simulate_units,
-// simulate_block_reference, replay, and the lane engine's rerun after
-// max_events. Points with laws and sensitivity designs run their own engines.
+// simulate_block_reference; replay and the lane engine's rerun after
+// max_events run the reference engine for every model, the paper's
+// included. Points with laws and sensitivity designs run their own engines,
+// and a draw of the paper's model there runs simulate.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -23,9 +25,9 @@
 namespace stickslip {
 namespace {
 
-constexpr std::array all_engines{point_engine::lanes, point_engine::paper_reference,
-                                 point_engine::family_reference, point_engine::uncertain,
-                                 point_engine::sensitivity};
+constexpr std::array all_engines{point_engine::lanes, point_engine::reference,
+                                 point_engine::uncertain, point_engine::sensitivity,
+                                 point_engine::paper_integrator};
 
 // The engine runs `run` made, by engine.
 std::array<std::uint64_t, all_engines.size()> runs_of(const auto& run) {
@@ -86,9 +88,10 @@ sweep_spec spec_of(const model_parameters& p, sweep_engine engine) {
 
 TEST(EngineChoice, EachModelAndEngineSetting) {
   for (const auto& m : models()) {
-    const point_engine reference =
-        m.paper ? point_engine::paper_reference : point_engine::family_reference;
-    EXPECT_EQ(reference_engine(m.parameters), reference) << m.name;
+    const point_engine reference = point_engine::reference;
+    EXPECT_EQ(draw_engine(m.parameters),
+              m.paper ? point_engine::paper_integrator : point_engine::reference)
+        << m.name;
     for (sweep_engine asked : {sweep_engine::fast, sweep_engine::reference}) {
       const std::string what = std::string(m.name) + ", " + to_string(asked);
       const sweep_spec s = spec_of(m.parameters, asked);
@@ -130,7 +133,7 @@ TEST(EngineChoice, TheLaneRerunUsesTheReferenceEngine) {
     if (!m.lanes) continue;
     sweep_spec s = spec_of(m.parameters, sweep_engine::fast);
     s.max_events = 3;
-    const point_engine reference = reference_engine(m.parameters);
+    const point_engine reference = point_engine::reference;
     const auto reruns = detail::lane_reference_reruns();
     const auto runs = runs_of([&] {
       EXPECT_THROW((void)simulate_block(s, work_unit{0, 0}), error) << m.name;

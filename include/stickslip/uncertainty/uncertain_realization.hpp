@@ -7,9 +7,10 @@
 //      (substream uncertain_parameters, words 0 .. d-1);
 //   2. runs at those values with its own intrinsic randomness, the initial
 //      conditions and the belt drawn from the same key and realization as
-//      any realization (substreams 0, 1, 2), on the drawn model's reference
-//      engine (reference_engine, engines/engine_choice.hpp): the paper
-//      engine simulate() or the family engine (model/model_realization.hpp).
+//      any realization (substreams 0, 1, 2), on the engine draw_engine
+//      (engines/engine_choice.hpp) gives the drawn model: simulate() for
+//      the paper's model, else the reference engine
+//      (model/model_realization.hpp).
 // So a realization replays alone from (seed, key, r), and its draws depend
 // on nothing else: not on the other points, realizations, threads or ranks.
 // Points with laws run one realization at a time (no lanes).
@@ -84,7 +85,7 @@ struct drawn_realization {
 template <class Observer>
 event_counts simulate_with_values(const sweep_spec& s, const model_parameters& drawn,
                                   std::uint64_t key, std::uint64_t realization, Observer& obs) {
-  if (reference_engine(drawn) == point_engine::paper_reference) {
+  if (draw_engine(drawn) == point_engine::paper_integrator) {
     const model_parameters p = paper_form(drawn);
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, realization);
     poisson_switches switches(p.switch_rate, s.seed, key, realization);

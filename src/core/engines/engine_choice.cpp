@@ -15,10 +15,10 @@ namespace stickslip {
 const char* to_string(point_engine e) noexcept {
   switch (e) {
     case point_engine::lanes: return "lanes";
-    case point_engine::paper_reference: return "paper_reference";
-    case point_engine::family_reference: return "family_reference";
+    case point_engine::reference: return "reference";
     case point_engine::uncertain: return "uncertain";
     case point_engine::sensitivity: return "sensitivity";
+    case point_engine::paper_integrator: return "paper_integrator";
   }
   return "?";
 }
@@ -35,7 +35,7 @@ bool detail::runs_in_lanes(const model_parameters& p) {
 }
 
 namespace {
-std::atomic<std::uint64_t> g_engine_runs[5] = {};
+std::atomic<std::uint64_t> g_engine_runs[5] = {};  // by point_engine
 }
 void detail::count_engine_run(point_engine e) noexcept {
   g_engine_runs[static_cast<std::size_t>(e)].fetch_add(1, std::memory_order_relaxed);
@@ -44,15 +44,15 @@ std::uint64_t detail::engine_runs(point_engine e) noexcept {
   return g_engine_runs[static_cast<std::size_t>(e)].load(std::memory_order_relaxed);
 }
 
-point_engine reference_engine(const model_parameters& p) {
-  return p.is_paper_model() ? point_engine::paper_reference : point_engine::family_reference;
+point_engine draw_engine(const model_parameters& drawn) {
+  return drawn.is_paper_model() ? point_engine::paper_integrator : point_engine::reference;
 }
 
 point_engine engine_for(const sweep_spec& s, const model_parameters& p) {
   if (is_sensitivity(s)) return point_engine::sensitivity;
   if (!s.uncertain.empty()) return point_engine::uncertain;
   if (s.engine == sweep_engine::fast && detail::runs_in_lanes(p)) return point_engine::lanes;
-  return reference_engine(p);
+  return point_engine::reference;
 }
 
 }  // namespace stickslip

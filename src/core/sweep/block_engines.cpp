@@ -1,7 +1,7 @@
 // The engines a work unit runs on, chosen per point by engine_for
-// (engines/engine_choice.hpp): the lane engine, the paper model's reference
-// integrator, the family's scalar engine, and the scalar engines of points
-// with laws and of sensitivity designs.
+// (engines/engine_choice.hpp): the lane engine, the reference engine
+// (simulate_model, for every model), and the scalar engines of points with
+// laws and of sensitivity designs.
 #include "stickslip/sweep.hpp"
 
 #include <algorithm>
@@ -14,25 +14,15 @@
 #include "stickslip/uncertainty/uncertain_block.hpp"
 
 namespace stickslip {
-namespace {
-block_result simulate_block_paper(const sweep_spec& s, const work_unit& u);
-}  // namespace
-
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
   switch (engine_for(s, point_parameters(s, u.point))) {
     case point_engine::sensitivity: return simulate_block_sensitivity(s, u);
     case point_engine::uncertain: return simulate_block_uncertain(s, u);
     case point_engine::lanes: return detail::simulate_block_lanes(s, u);
-    case point_engine::paper_reference: return simulate_block_paper(s, u);
-    case point_engine::family_reference: return simulate_block_family(s, u);
+    case point_engine::reference: return simulate_block_reference(s, u);
+    case point_engine::paper_integrator: break;  // only a draw of a point with laws
   }
   throw std::logic_error("simulate_block: an engine without a block");
-}
-
-block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
-  return reference_engine(point_parameters(s, u.point)) == point_engine::paper_reference
-             ? simulate_block_paper(s, u)
-             : simulate_block_family(s, u);
 }
 
 std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
@@ -89,28 +79,12 @@ block_result simulate_block_scalar(const sweep_spec& s, const work_unit& u,
   }
   return out;
 }
-
-// The paper's model: simulate with poisson_switches.
-block_result simulate_block_paper(const sweep_spec& s, const work_unit& u) {
-  detail::count_engine_run(point_engine::paper_reference);
-  const auto p = point_parameters(s, u.point);
-  const auto key = stream_key(s, p);
-  return simulate_block_scalar(
-      s, u, p,
-      [&](std::uint64_t r, realization_observer& obs, state_sampling_observer& with_states) {
-        const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
-        poisson_switches sw(p.switch_rate, s.seed, key, r);
-        obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
-        return obs.observes_times() ? simulate(p, ic, sw, with_states, s.max_events)
-                                    : simulate(p, ic, sw, obs, s.max_events);
-      });
-}
 }  // namespace
 
-// The model family: simulate_model with the Markov belt
-// (model/model_realization.hpp).
-block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
-  detail::count_engine_run(point_engine::family_reference);
+// The reference engine: simulate_model with the Markov belt
+// (model/model_realization.hpp), for every model.
+block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
+  detail::count_engine_run(point_engine::reference);
   const auto p = point_parameters(s, u.point);
   const family_point fp(p, stream_key(s, p));
   const std::size_t levels = fp.model.belt.level_count();
