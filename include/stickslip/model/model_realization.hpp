@@ -1,8 +1,8 @@
-// One realization of a grid point of the model family, drawn exactly as a
-// sweep draws it: what the sweep, `simulate --seed --realization` and the
-// Python package share when engine_for (engines/engine_choice.hpp) chooses
-// the family's reference engine (the lane engine, which runs the undamped
-// two-level models, draws these same values).
+// One realization of a grid point of any model, drawn exactly as a sweep
+// draws it: the reference engine (engines/engine_choice.hpp) that the sweep,
+// `simulate --seed --realization` and the Python package share; the paper's
+// model is its undamped two-level case (the lane engine draws these same
+// values).
 //
 // Random inputs, each a pure function of (seed, point_key, realization,
 // substream, index):
