@@ -55,7 +55,7 @@ struct realization_trace {
 // times (naming the parameter, the value and the allowed range), and when the
 // realization exceeds max_events. With given switch times the switch rate is
 // not used and may also be 0. Every model runs on the reference engine,
-// simulate_model (engines/engine_choice.hpp): the paper's model with the
+// simulate_model (engines/point_engine.hpp): the paper's model with the
 // bits of simulate(), hence of 0.1.0.
 [[nodiscard]] realization_trace replay(const replay_request& r);
 

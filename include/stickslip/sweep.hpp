@@ -40,7 +40,7 @@ struct axis {
 //              (the paper's is its undamped two-level case, the same bits as
 //              `simulate`), markov_level_switches + realization_observer +
 //              point_statistics::add: the plain path, kept as the oracle.
-// engine_for (engines/engine_choice.hpp) turns this and a point's model into
+// engine_for (engines/point_engine.hpp) turns this and a point's model into
 // the engine that runs it.
 enum class sweep_engine : unsigned char { fast, reference };
 inline constexpr const char* to_string(sweep_engine e) noexcept {
@@ -187,7 +187,7 @@ struct block_result {
 };
 
 // Simulate the realizations of one unit on the engine engine_for gives its
-// point (engines/engine_choice.hpp). Pure: depends only on (spec, unit), and
+// point (engines/point_engine.hpp). Pure: depends only on (spec, unit), and
 // the engines give bit-identical results where more than one runs.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
 // The reference engine, whatever s.engine says: simulate_model

@@ -81,7 +81,7 @@
 #include "stickslip/burn_in.hpp"
 #include "stickslip/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
-#include "stickslip/engines/engine_choice.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/fast_math.hpp"
 #include "stickslip/detail/fast_math_simd.hpp"
 #include "stickslip/error.hpp"
@@ -220,7 +220,7 @@ class trace_collector {
   void end(observer& o, const event_counts& counts) const { o.trace.counts = counts; }
   void deliver(std::uint64_t r, observer& o) { out_[r - first_] = std::move(o.trace); }
   void fallback() {
-    // Rerun on the reference engine (simulate_model, engine_choice.hpp).
+    // Rerun on the reference engine (simulate_model, engines/point_engine.hpp).
     count_lane_reference_rerun();
     count_engine_run(point_engine::reference);
     const family_point fp(p_, stream_key(s_, p_));

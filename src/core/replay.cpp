@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "stickslip/belt_switches.hpp"
-#include "stickslip/engines/engine_choice.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/sweep.hpp"
 

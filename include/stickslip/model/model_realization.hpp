@@ -1,5 +1,5 @@
 // One realization of a grid point of any model, drawn exactly as a sweep
-// draws it: the reference engine (engines/engine_choice.hpp) that the sweep,
+// draws it: the reference engine (engines/point_engine.hpp) that the sweep,
 // `simulate --seed --realization` and the Python package share; the paper's
 // model is its undamped two-level case (the lane engine draws these same
 // values).

@@ -8,7 +8,7 @@
 //   2. runs at those values with its own intrinsic randomness, the initial
 //      conditions and the belt drawn from the same key and realization as
 //      any realization (substreams 0, 1, 2), on the engine draw_engine
-//      (engines/engine_choice.hpp) gives the drawn model: simulate() for
+//      (engines/point_engine.hpp) gives the drawn model: simulate() for
 //      the paper's model, else the reference engine
 //      (model/model_realization.hpp).
 // So a realization replays alone from (seed, key, r), and its draws depend
@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "stickslip/belt_switches.hpp"
-#include "stickslip/engines/engine_choice.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/model/model_realization.hpp"

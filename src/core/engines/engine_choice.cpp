@@ -1,5 +1,5 @@
-// The choice of engine for a point (engines/engine_choice.hpp).
-#include "stickslip/engines/engine_choice.hpp"
+// The choice of engine for a point (engines/point_engine.hpp).
+#include "stickslip/engines/point_engine.hpp"
 
 #include <atomic>
 #include <cstddef>

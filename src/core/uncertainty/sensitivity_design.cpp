@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "stickslip/engines/engine_choice.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
 #include "stickslip/uncertainty/uncertain_block.hpp"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "stickslip/engines/engine_choice.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/uncertainty/uncertain_realization.hpp"

@@ -5,7 +5,9 @@
 // Python's stickslip.simulate; the lane engine's rerun after max_events)
 // runs the reference engine, simulate_model, for every model: the paper's
 // model is its undamped two-level case, with the same bits as simulate
-// (tests/unit/test_model_paper_case.cpp). (src/core/engines/engine_choice.cpp)
+// (tests/unit/test_model_paper_case.cpp). Declarations only: the laws'
+// headers use them, and their definitions (src/core/engines/engine_choice.cpp)
+// read the sweep_spec those headers take.
 #pragma once
 #include <cstdint>
 
