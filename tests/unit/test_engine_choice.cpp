@@ -1,4 +1,4 @@
-// One place chooses the engine of a point (engines/engine_choice.hpp). For a
+// One place chooses the engine of a point (engines/point_engine.hpp). For a
 // table of models (the paper's, mu_s > mu_k, damped, three levels, a resting
 // level) under sweep_engine::fast and ::reference: engine_for gives the
 // expected engine, and every site runs that engine and no other (the
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "stickslip/detail/fast_block.hpp"
-#include "stickslip/engines/engine_choice.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/sweep.hpp"
