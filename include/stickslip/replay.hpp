@@ -54,8 +54,9 @@ struct realization_trace {
 // Throws stickslip::error for invalid parameters, initial state or switch
 // times (naming the parameter, the value and the allowed range), and when the
 // realization exceeds max_events. With given switch times the switch rate is
-// not used and may also be 0. The paper's model runs simulate() (the bits of
-// 0.1.0); any other model, or given switch levels, simulate_model.
+// not used and may also be 0. Every model runs on the reference engine,
+// simulate_model (engines/point_engine.hpp): the paper's model with the
+// bits of simulate(), hence of 0.1.0.
 [[nodiscard]] realization_trace replay(const replay_request& r);
 
 }  // namespace stickslip

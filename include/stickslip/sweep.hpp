@@ -34,18 +34,15 @@ void resolve_survival_grid(sweep_spec& s);
 // realizations, absurd size).
 void validate(const sweep_spec& s);
 
-// Simulate the realizations of one unit with s.engine. Pure: depends only on
-// (spec, unit), and the two engines give bit-identical results.
+// Simulate the realizations of one unit on the engine engine_for gives its
+// point (engines/point_engine.hpp). Pure: depends only on (spec, unit), and
+// the engines give bit-identical results where more than one runs.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
-// The reference engine, whatever s.engine says. Precondition: the point is
-// the paper's model.
+// The reference engine, whatever s.engine says: simulate_model
+// (model/model_engine.hpp) one realization at a time, for every model (the
+// paper's included: the same bits as simulate). Where the lane engine runs
+// too, both give the same bits. Precondition: the point has no laws.
 [[nodiscard]] block_result simulate_block_reference(const sweep_spec& s, const work_unit& u);
-// The model family's engine (simulate_model, model/model_engine.hpp), one
-// realization at a time; simulate_block uses it for the points that are not
-// the paper's model with sweep_engine::reference, and with fast for those
-// the lane engine does not run (detail::runs_in_lanes: damped, or more than
-// two levels). Both give the same bits where both run.
-[[nodiscard]] block_result simulate_block_family(const sweep_spec& s, const work_unit& u);
 // simulate_block of each unit, in order. Runs of consecutive blocks of one
 // point go to the lane engine together, so its lanes move on to the next
 // block instead of idling at a block's tail (~20 % with blocks of 50); the

@@ -35,9 +35,12 @@ struct axis {
 //              event per lane per round, the SIMD target chosen at run time,
 //              finished realizations added to the statistics in realization
 //              order (src/core/engines/fast_lanes.cpp; docs/performance.md); the default;
-//   reference  `simulate` one realization at a time, poisson_switches +
-//              realization_observer + point_statistics::add: the plain path,
-//              kept as the oracle.
+//   reference  `simulate_model` one realization at a time, for every model
+//              (the paper's is its undamped two-level case, the same bits as
+//              `simulate`), markov_level_switches + realization_observer +
+//              point_statistics::add: the plain path, kept as the oracle.
+// engine_for (engines/point_engine.hpp) turns this and a point's model into
+// the engine that runs it.
 enum class sweep_engine : unsigned char { fast, reference };
 inline constexpr const char* to_string(sweep_engine e) noexcept {
   return e == sweep_engine::fast ? "fast" : "reference";

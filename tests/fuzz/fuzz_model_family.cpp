@@ -32,7 +32,7 @@
 // (trace_realizations_lanes) must equal simulate_model with the Markov belt
 // (simulate_family_realization) bit for bit, episode by episode and event by
 // event, and simulate_block must give the same bytes with either engine
-// (sweep_engine::reference runs simulate_block_family).
+// (sweep_engine::reference runs simulate_block_reference).
 // The inputs of faults it found are in the corpus (known-*: the two found
 // at omega a_s / |v| ~ 1e52 are now refused by validate()). FUZZ_TRACE=1
 // prints what an input decodes to and every event, episode and piece.
@@ -364,7 +364,7 @@ void compare_lanes(const sweep_spec& s) {
     FUZZ_CHECK(e.code() == exit_code::work_bound, "unexpected error: %s", e.what());
   }
   try {
-    sweep_spec r = s;  // the family's reference engine: simulate_block_family
+    sweep_spec r = s;  // the reference engine: simulate_block_reference
     r.engine = sweep_engine::reference;
     reference = serialize(work_unit{}, simulate_block(r, work_unit{}));
   } catch (const error& e) {

@@ -149,7 +149,7 @@ TEST(FamilyStatistics, FamilyEngineGivesTheLaneEnginesStatisticsOnThePaperModel)
     for (std::uint64_t block = 0; block < blocks_per_point(s); ++block) {
       const work_unit u{point, block};
       const auto lanes = simulate_block(s, u).stats;
-      const auto family = simulate_block_family(s, u).stats;
+      const auto family = simulate_block_reference(s, u).stats;
       // Episodes are the same bits: X and the joint histogram too.
       EXPECT_TRUE(lanes.stick_onset_position == family.stick_onset_position);
       EXPECT_TRUE(lanes.stick_duration_onset == family.stick_duration_onset);

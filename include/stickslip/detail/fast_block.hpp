@@ -28,10 +28,12 @@ namespace stickslip::detail {
 // Whether the lane engine runs a point: the paper's model, or a family model
 // with c = 0 on a two-level belt (any levels, 0 included, any rates, mu_s >=
 // mu_k): the same episodes, events and statistics as simulate_model
-// (tests/unit/test_fast_path_family.cpp). Other points: simulate_block_family.
+// (tests/unit/test_fast_path_family.cpp). Only engine_for
+// (engines/point_engine.hpp, which defines it) chooses with it.
 [[nodiscard]] bool runs_in_lanes(const model_parameters& p);
 
 // simulate_block with the lane engine. Pure: depends only on (spec, unit).
+// Precondition: runs_in_lanes of the point (else throws stickslip::error).
 [[nodiscard]] block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u);
 // The same for `count` consecutive blocks of one point at once (what
 // run_units uses): lanes move on to the next block's realizations instead of

@@ -1,8 +1,8 @@
-// One realization of a grid point of the model family, drawn exactly as a
-// sweep draws it: what the sweep, `simulate --seed --realization` and the
-// Python package share (the paper's model keeps simulate(); sweep/block_engines.cpp sends
-// the paper's model and the undamped two-level models, detail::runs_in_lanes,
-// to the lane engine, which draws these same values for the latter).
+// One realization of a grid point of any model, drawn exactly as a sweep
+// draws it: the reference engine (engines/point_engine.hpp) that the sweep,
+// `simulate --seed --realization` and the Python package share; the paper's
+// model is its undamped two-level case (the lane engine draws these same
+// values).
 //
 // Random inputs, each a pure function of (seed, point_key, realization,
 // substream, index):

@@ -7,8 +7,9 @@
 //      (substream uncertain_parameters, words 0 .. d-1);
 //   2. runs at those values with its own intrinsic randomness, the initial
 //      conditions and the belt drawn from the same key and realization as
-//      any realization (substreams 0, 1, 2): the paper engine simulate()
-//      when the drawn model is the paper's, else the family engine
+//      any realization (substreams 0, 1, 2), on the engine draw_engine
+//      (engines/point_engine.hpp) gives the drawn model: simulate() for
+//      the paper's model, else the reference engine
 //      (model/model_realization.hpp).
 // So a realization replays alone from (seed, key, r), and its draws depend
 // on nothing else: not on the other points, realizations, threads or ranks.
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "stickslip/belt_switches.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/initial_conditions.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/model/model_realization.hpp"
@@ -83,7 +85,7 @@ struct drawn_realization {
 template <class Observer>
 event_counts simulate_with_values(const sweep_spec& s, const model_parameters& drawn,
                                   std::uint64_t key, std::uint64_t realization, Observer& obs) {
-  if (drawn.is_paper_model()) {
+  if (draw_engine(drawn) == point_engine::paper_integrator) {
     const model_parameters p = paper_form(drawn);
     const auto ic = draw_initial_conditions(s.initial, s.seed, key, realization);
     poisson_switches switches(p.switch_rate, s.seed, key, realization);

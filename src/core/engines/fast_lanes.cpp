@@ -36,7 +36,8 @@
 // statistics by point_statistics::add in realization order, exactly as the
 // reference engine adds it: every accumulator update happens in the same order.
 // A realization that exceeds max_events makes the whole block rerun on the
-// reference engine, which throws the same error the reference would.
+// reference engine (simulate_model), which throws the error the reference
+// throws.
 //
 // The same engine runs the undamped two-level models of the family
 // (detail::runs_in_lanes; lane_engine<..., Family = true>) with
@@ -80,6 +81,7 @@
 #include "stickslip/burn_in.hpp"
 #include "stickslip/event_physics.hpp"
 #include "stickslip/detail/fast_block.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/fast_math.hpp"
 #include "engines/fast_math_simd.hpp"
 #include "stickslip/error.hpp"
@@ -152,7 +154,8 @@ enum : int {
 //   void begin(observer&, r, ic);              before realization r
 //   void end(observer&, counts);               after its last episode
 //   void deliver(r, observer&);                in realization order
-//   void fallback();                           max_events exceeded: redo on the reference
+//   void fallback();                           max_events exceeded: redo on the
+//                                              model's reference engine
 
 // The sweep's statistics: realization_observer, then point_statistics::add
 // in realization order into the block of each realization.
@@ -162,8 +165,8 @@ class statistics_collector {
   using observer = Observer;
   statistics_collector(const sweep_spec& s, const model_parameters& p,
                        std::vector<block_result>& outs, std::size_t point,
-                       std::uint64_t first_block, bool family)
-      : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block), family_(family) {}
+                       std::uint64_t first_block)
+      : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
   [[nodiscard]] observer make() const {
     return observer(p_, s_.family_statistics, s_.burn_in, &s_.observe_times);
   }
@@ -182,10 +185,8 @@ class statistics_collector {
   void fallback() {
     // Rerun on the reference engine, which throws what the reference throws.
     count_lane_reference_rerun();
-    for (std::uint64_t b = 0; b < outs_.size(); ++b) {
-      const work_unit u{point_, first_block_ + b};
-      outs_[b] = family_ ? simulate_block_family(s_, u) : simulate_block_reference(s_, u);
-    }
+    for (std::uint64_t b = 0; b < outs_.size(); ++b)
+      outs_[b] = simulate_block_reference(s_, work_unit{point_, first_block_ + b});
   }
 
  private:
@@ -194,7 +195,6 @@ class statistics_collector {
   std::vector<block_result>& outs_;
   std::size_t point_;
   std::uint64_t first_block_;
-  bool family_;
 };
 
 // Every episode and event of every realization (the tests' view).
@@ -213,23 +213,22 @@ class trace_collector {
  public:
   using observer = trace_observer;
   trace_collector(const sweep_spec& s, const model_parameters& p, std::uint64_t first,
-                  std::vector<realization_trace>& out, const family_point* family)
-      : s_(s), p_(p), first_(first), out_(out), family_(family) {}
+                  std::vector<realization_trace>& out)
+      : s_(s), p_(p), first_(first), out_(out) {}
   [[nodiscard]] observer make() const { return {}; }
   void begin(observer& o, std::uint64_t, const initial_conditions&) const { o.trace = {}; }
   void end(observer& o, const event_counts& counts) const { o.trace.counts = counts; }
   void deliver(std::uint64_t r, observer& o) { out_[r - first_] = std::move(o.trace); }
   void fallback() {
+    // Rerun on the reference engine (simulate_model, engines/point_engine.hpp).
     count_lane_reference_rerun();
+    count_engine_run(point_engine::reference);
+    const family_point fp(p_, stream_key(s_, p_));
     for (std::size_t i = 0; i < out_.size(); ++i) {
       trace_observer o;
       const std::uint64_t r = first_ + i;
-      if (family_) {
-        const auto start = draw_model_initial_state(*family_, s_.initial, s_.seed, r);
-        o.trace.counts = simulate_family_realization(*family_, start, s_.seed, r, s_.max_events, o);
-      } else {
-        o.trace.counts = simulate_realization(s_, p_, r, o);
-      }
+      const auto start = draw_model_initial_state(fp, s_.initial, s_.seed, r);
+      o.trace.counts = simulate_family_realization(fp, start, s_.seed, r, s_.max_events, o);
       out_[i] = std::move(o.trace);
     }
   }
@@ -239,7 +238,6 @@ class trace_collector {
   const model_parameters& p_;
   std::uint64_t first_;
   std::vector<realization_trace>& out_;
-  const family_point* family_;
 };
 
 // Family = false: the paper's model (poisson_switches, levels +-V, mu_s =
@@ -333,7 +331,7 @@ class lane_engine {
     initial_conditions ic;
     double v;
     if constexpr (Family) {
-      // draw_model_initial_state and markov_level_switches, as simulate_block_family
+      // draw_model_initial_state and markov_level_switches, as simulate_block_reference
       const model_initial_state st = draw_model_initial_state(*family_, s_.initial, s_.seed, r);
       ic = initial_conditions{st.position, st.velocity, recorded_belt_start(st.level, 2)};
       switch_times_[l] = two_level_switch_times(family_->chain.mean_wait(st.level),
@@ -1132,16 +1130,13 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   // per-stick and per-round work (sweep_spec::family_statistics), or
   // without the duration lists too (sweep_spec::means_only).
   if (s.family_statistics) {
-    statistics_collector<realization_observer> collect(s, p, outs, point, first_block,
-                                                       fp.has_value());
+    statistics_collector<realization_observer> collect(s, p, outs, point, first_block);
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   } else if (!s.means_only) {
-    statistics_collector<paper_statistics_observer> collect(s, p, outs, point, first_block,
-                                                            fp.has_value());
+    statistics_collector<paper_statistics_observer> collect(s, p, outs, point, first_block);
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   } else {  // the peak finder's sweeps: no duration lists either
-    statistics_collector<mean_statistics_observer> collect(s, p, outs, point, first_block,
-                                                           fp.has_value());
+    statistics_collector<mean_statistics_observer> collect(s, p, outs, point, first_block);
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   }
   return outs;
@@ -1153,7 +1148,7 @@ std::vector<realization_trace> TraceRealizationsLanes(const sweep_spec& s, std::
   std::vector<realization_trace> out(last > first ? last - first : 0);
   std::optional<family_point> fp;
   if (!p.is_paper_model()) fp.emplace(p, stream_key(s, p));
-  trace_collector collect(s, p, first, out, fp ? &*fp : nullptr);
+  trace_collector collect(s, p, first, out);
   run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   return out;
 }
@@ -1178,22 +1173,19 @@ std::uint64_t lane_reference_reruns() noexcept {
 HWY_EXPORT(SimulateBlocksLanes);
 HWY_EXPORT(TraceRealizationsLanes);
 
-bool runs_in_lanes(const model_parameters& p) {
-  if (p.is_paper_model()) return true;
-  const oscillator_model m = model_of(p);
-  return m.damping == 0.0 && m.belt.level_count() == 2 &&
-         m.static_friction >= m.kinetic_friction;
+namespace {
+// The entry points run only the points engine_for sends to the lanes.
+void require_lanes(const char* entry, const sweep_spec& s, std::size_t point) {
+  if (!runs_in_lanes(point_parameters(s, point)))
+    throw invalid_value(entry, "a point the lane engine does not run",
+                        "the paper's model or an undamped two-level belt");
 }
+}  // namespace
 
 std::vector<block_result> simulate_blocks_lanes(const sweep_spec& s, std::size_t point,
                                                std::uint64_t first_block, std::uint64_t count) {
-  if (!runs_in_lanes(point_parameters(s, point))) {  // the scalar engine of the family
-    std::vector<block_result> outs;
-    outs.reserve(count);
-    for (std::uint64_t b = 0; b < count; ++b)
-      outs.push_back(simulate_block_family(s, work_unit{point, first_block + b}));
-    return outs;
-  }
+  require_lanes("simulate_blocks_lanes", s, point);
+  count_engine_run(point_engine::lanes);
   return HWY_DYNAMIC_DISPATCH(SimulateBlocksLanes)(s, point, first_block, count);
 }
 
@@ -1203,9 +1195,8 @@ block_result simulate_block_lanes(const sweep_spec& s, const work_unit& u) {
 
 std::vector<realization_trace> trace_realizations_lanes(const sweep_spec& s, std::size_t point,
                                                        std::uint64_t first, std::uint64_t last) {
-  if (!runs_in_lanes(point_parameters(s, point)))
-    throw invalid_value("trace_realizations_lanes", "a point the lane engine does not run",
-                        "the paper's model or an undamped two-level belt");
+  require_lanes("trace_realizations_lanes", s, point);
+  count_engine_run(point_engine::lanes);
   return HWY_DYNAMIC_DISPATCH(TraceRealizationsLanes)(s, point, first, last);
 }
 

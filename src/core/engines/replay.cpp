@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "stickslip/belt_switches.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/sweep.hpp"
 
@@ -38,11 +39,15 @@ void trace_realization(const replay_request& r, const model_parameters& p, reali
   out.record.events = counts;
 }
 
-// The model family (or given switch levels): simulate_model with the start
-// drawn as the sweep draws it (model_realization.hpp), then the fixed inputs.
-void replay_family(const replay_request& r, const sweep_spec& spec, realization_trace& out) {
+// The reference engine, simulate_model, for every model (the paper's is its
+// undamped two-level case, the same bits as simulate): the start drawn as
+// the sweep draws it (model_realization.hpp) from the streams of `key`, then
+// the fixed inputs.
+void replay_reference(const replay_request& r, const sweep_spec& spec, std::uint64_t key,
+                      realization_trace& out) {
+  detail::count_engine_run(point_engine::reference);
   const model_parameters& p = spec.base;
-  const family_point fp(p, stream_key(spec, p));  // as the sweep draws it
+  const family_point fp(p, key);
   const std::size_t levels = fp.model.belt.level_count();
   model_initial_state start = draw_model_initial_state(fp, r.initial, r.seed, r.realization);
   if (r.x0) start.position = *r.x0;
@@ -98,31 +103,12 @@ realization_trace replay(const replay_request& r) {
                             " levels, so 'go to the other one' is not defined");
   if (r.switch_times) validate_switch_times(*r.switch_times);
 
+  // The streams of the point as asked. With given switch times and lambda =
+  // 0, the paper's model keys lambda = 0 (its bits of 0.1.0) and any other
+  // model the rate 1 the checks above ran with.
+  const std::uint64_t key = stream_key(spec, r.parameters.is_paper_model() ? r.parameters : spec.base);
   realization_trace out;
-  if (!spec.base.is_paper_model() || r.switch_levels) {
-    replay_family(r, spec, out);
-    return out;
-  }
-  // The parameters as asked (lambda may be 0 with given switch times), in
-  // the paper's form: the stream key of the sweep's point, hence the sweep's
-  // x0 and x'0 for this realization.
-  const model_parameters p = paper_form(r.parameters);
-  const auto key = stream_key(spec, p);  // point_key(p), or the common key
-  auto& ic = out.initial;
-  ic = draw_initial_conditions(r.initial, r.seed, key, r.realization);
-  if (r.x0) ic.position = *r.x0;
-  if (r.xdot0) ic.velocity = *r.xdot0;
-  if (r.belt_start) ic.belt_direction = *r.belt_start;
-  validate(ic);
-
-  trace_realization(r, p, out, [&](auto& observer) {
-    if (r.switch_times) {
-      given_switches sw(*r.switch_times);
-      return simulate(p, ic, sw, observer, r.max_events);
-    }
-    poisson_switches sw(p.switch_rate, r.seed, key, r.realization);
-    return simulate(p, ic, sw, observer, r.max_events);
-  });
+  replay_reference(r, spec, key, out);
   return out;
 }
 

@@ -1,32 +1,28 @@
-// The engines a work unit runs on, chosen per point: the lane engine, the
-// paper model's reference integrator, the family's scalar engine, and the
-// scalar engines of points with laws and of sensitivity designs.
+// The engines a work unit runs on, chosen per point by engine_for
+// (engines/point_engine.hpp): the lane engine, the reference engine
+// (simulate_model, for every model), and the scalar engines of points with
+// laws and of sensitivity designs.
 #include "stickslip/sweep.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "stickslip/detail/fast_block.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/uncertainty/uncertain_block.hpp"
 
 namespace stickslip {
-
-// The paper's model: the lane engine or simulate() (the reference). The
-// family: the lane engine for the models it runs (detail::runs_in_lanes:
-// undamped two-level belts), simulate_model otherwise
-// and for sweep_engine::reference.
 block_result simulate_block(const sweep_spec& s, const work_unit& u) {
-  if (is_sensitivity(s)) return simulate_block_sensitivity(s, u);
-  if (!s.uncertain.empty()) return simulate_block_uncertain(s, u);
-  const auto p = point_parameters(s, u.point);
-  if (!p.is_paper_model()) {
-    if (s.engine == sweep_engine::fast && detail::runs_in_lanes(p))
-      return detail::simulate_block_lanes(s, u);
-    return simulate_block_family(s, u);
+  switch (engine_for(s, point_parameters(s, u.point))) {
+    case point_engine::sensitivity: return simulate_block_sensitivity(s, u);
+    case point_engine::uncertain: return simulate_block_uncertain(s, u);
+    case point_engine::lanes: return detail::simulate_block_lanes(s, u);
+    case point_engine::reference: return simulate_block_reference(s, u);
+    case point_engine::paper_integrator: break;  // only a draw of a point with laws
   }
-  if (s.engine == sweep_engine::reference) return simulate_block_reference(s, u);
-  return detail::simulate_block_lanes(s, u);
+  throw std::logic_error("simulate_block: an engine without a block");
 }
 
 std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
@@ -38,7 +34,6 @@ std::uint64_t units_per_batch(const sweep_spec& s) noexcept {
 }
 
 std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<work_unit>& units) {
-  const bool lanes = units_per_batch(s) > 1;
   std::vector<block_result> results;
   results.reserve(units.size());
   for (std::size_t a = 0; a < units.size();) {
@@ -46,7 +41,7 @@ std::vector<block_result> simulate_units(const sweep_spec& s, const std::vector<
     while (b < units.size() && units[b].point == units[a].point &&
            units[b].block == units[b - 1].block + 1)
       ++b;
-    if (lanes && s.uncertain.empty() && detail::runs_in_lanes(point_parameters(s, units[a].point))) {
+    if (engine_for(s, point_parameters(s, units[a].point)) == point_engine::lanes) {
       auto r = detail::simulate_blocks_lanes(s, units[a].point, units[a].block, b - a);
       for (auto& x : r) results.push_back(std::move(x));
     } else {
@@ -86,24 +81,10 @@ block_result simulate_block_scalar(const sweep_spec& s, const work_unit& u,
 }
 }  // namespace
 
-// The paper's model: simulate with poisson_switches.
+// The reference engine: simulate_model with the Markov belt
+// (model/model_realization.hpp), for every model.
 block_result simulate_block_reference(const sweep_spec& s, const work_unit& u) {
-  const auto p = point_parameters(s, u.point);
-  const auto key = stream_key(s, p);
-  return simulate_block_scalar(
-      s, u, p,
-      [&](std::uint64_t r, realization_observer& obs, state_sampling_observer& with_states) {
-        const auto ic = draw_initial_conditions(s.initial, s.seed, key, r);
-        poisson_switches sw(p.switch_rate, s.seed, key, r);
-        obs.reset(r, ic.position, ic.velocity, ic.belt_direction);
-        return obs.observes_times() ? simulate(p, ic, sw, with_states, s.max_events)
-                                    : simulate(p, ic, sw, obs, s.max_events);
-      });
-}
-
-// The model family: simulate_model with the Markov belt
-// (model/model_realization.hpp).
-block_result simulate_block_family(const sweep_spec& s, const work_unit& u) {
+  detail::count_engine_run(point_engine::reference);
   const auto p = point_parameters(s, u.point);
   const family_point fp(p, stream_key(s, p));
   const std::size_t levels = fp.model.belt.level_count();

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
 #include "stickslip/uncertainty/uncertain_block.hpp"
@@ -86,6 +87,7 @@ void validate_sensitivity(const sweep_spec& s) {
 }
 
 block_result simulate_block_sensitivity(const sweep_spec& s, const work_unit& u) {
+  detail::count_engine_run(point_engine::sensitivity);
   const quantity_info& q = sensitivity_quantity(s);
   const std::size_t d = s.uncertain.size();
   const auto key = uncertain_stream_key(s, s.base);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/uncertainty/uncertain_realization.hpp"
@@ -76,6 +77,7 @@ drawn_realization draw_realization(const sweep_spec& s, std::size_t point,
 }
 
 block_result simulate_block_uncertain(const sweep_spec& s, const work_unit& u) {
+  detail::count_engine_run(point_engine::uncertain);
   const model_parameters point = point_parameters(s, u.point);  // at the medians
   const std::uint64_t key = uncertain_stream_key(s, u.point);
   block_result out;
