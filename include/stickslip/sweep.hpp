@@ -35,7 +35,7 @@ void resolve_survival_grid(sweep_spec& s);
 void validate(const sweep_spec& s);
 
 // Simulate the realizations of one unit on the engine engine_for gives its
-// point (engines/point_engine.hpp). Pure: depends only on (spec, unit), and
+// point (engines/engine_choice.hpp). Pure: depends only on (spec, unit), and
 // the engines give bit-identical results where more than one runs.
 [[nodiscard]] block_result simulate_block(const sweep_spec& s, const work_unit& u);
 // The reference engine, whatever s.engine says: simulate_model

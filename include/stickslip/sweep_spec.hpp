@@ -39,7 +39,7 @@ struct axis {
 //              (the paper's is its undamped two-level case, the same bits as
 //              `simulate`), markov_level_switches + realization_observer +
 //              point_statistics::add: the plain path, kept as the oracle.
-// engine_for (engines/point_engine.hpp) turns this and a point's model into
+// engine_for (engines/engine_choice.hpp) turns this and a point's model into
 // the engine that runs it.
 enum class sweep_engine : unsigned char { fast, reference };
 inline constexpr const char* to_string(sweep_engine e) noexcept {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "stickslip/detail/fast_block.hpp"
-#include "stickslip/engines/point_engine.hpp"
+#include "stickslip/engines/engine_choice.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/sweep.hpp"
@@ -155,7 +155,10 @@ TEST(EngineChoice, LawsAndSensitivityDesignsRunTheirOwnEngines) {
     EXPECT_EQ(engine_for(s, point_parameters(s, 0)), point_engine::uncertain);
     expect_only(runs_of([&] { (void)simulate_units(s, {{0, 0}, {0, 1}}); }),
                 point_engine::uncertain, 2, "laws");
-    set_sensitivity_design(s, {.samples = 8, .block_size = 4});
+    sensitivity_choice design;
+    design.samples = 8;
+    design.block_size = 4;
+    set_sensitivity_design(s, design);
     EXPECT_EQ(engine_for(s, point_parameters(s, 0)), point_engine::sensitivity);
     expect_only(runs_of([&] { (void)simulate_block(s, work_unit{0, 0}); }),
                 point_engine::sensitivity, 1, "sensitivity");

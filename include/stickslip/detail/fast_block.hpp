@@ -29,7 +29,8 @@ namespace stickslip::detail {
 // with c = 0 on a two-level belt (any levels, 0 included, any rates, mu_s >=
 // mu_k): the same episodes, events and statistics as simulate_model
 // (tests/unit/test_fast_path_family.cpp). Only engine_for
-// (engines/point_engine.hpp, which defines it) chooses with it.
+// (engines/engine_choice.hpp; defined beside it in engine_choice.cpp)
+// chooses with it.
 [[nodiscard]] bool runs_in_lanes(const model_parameters& p);
 
 // simulate_block with the lane engine. Pure: depends only on (spec, unit).

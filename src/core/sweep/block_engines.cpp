@@ -1,5 +1,5 @@
 // The engines a work unit runs on, chosen per point by engine_for
-// (engines/point_engine.hpp): the lane engine, the reference engine
+// (engines/engine_choice.hpp): the lane engine, the reference engine
 // (simulate_model, for every model), and the scalar engines of points with
 // laws and of sensitivity designs.
 #include "stickslip/sweep.hpp"
@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "stickslip/detail/fast_block.hpp"
-#include "stickslip/engines/point_engine.hpp"
+#include "stickslip/engines/engine_choice.hpp"
 #include "stickslip/model/model_realization.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/uncertainty/uncertain_block.hpp"
