@@ -13,14 +13,21 @@ namespace {
 // baseline, and the widest the CPU has runs (GCC function multiversioning):
 // 8 or 4 lanes instead of SSE2's 2. Each element's operations are the same
 // (+, -, x, no fused multiply-add: the core is built with -ffp-contract=off),
-// so every version gives the same bits.
+// so every version gives the same bits. Only where the toolchain makes such
+// clones (x86-64 ELF with ifunc); elsewhere the baseline alone.
+#if defined(__x86_64__) && defined(__ELF__) && defined(__has_attribute)
+#if __has_attribute(target_clones)
 #define STICKSLIP_ROW_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
+#endif
+#endif
+#ifndef STICKSLIP_ROW_CLONES
+#define STICKSLIP_ROW_CLONES
+#endif
 
 // Welford's update (mean_variance::add(x, inverse)) of every time's moments
 // by one realization's values x[j] - minus[j] (minus: nullptr for 0): one
 // pass down the arrays, which the compiler vectorizes; each element's
-// operations are those of mean_variance::add, so the same bits. (An AVX2
-// clone of this function saved nothing measurable.)
+// operations are those of mean_variance::add, so the same bits.
 STICKSLIP_ROW_CLONES
 void add_row(double* __restrict mean, double* __restrict m2, const double* __restrict x,
              const double* __restrict minus, std::size_t n, double inverse) noexcept {
