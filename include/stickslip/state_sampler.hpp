@@ -7,10 +7,11 @@
 //     t_j, one that ends there is not); a zero-length segment holds no time;
 //   - t_j = t_a belongs to the last segment (end = t_a): the state at t_a.
 // The reference engines pass every segment (state_sampling_observer in
-// statistics.hpp); the lane engine queues each observe time in the round that
-// holds it and fills the states in batches with the vector forms of
-// evaluate()'s closed forms and kernels and of record_next's energy and
-// level (fast_lanes.cpp): both give the same bits.
+// statistics.hpp); the lane engine writes the start state of the round that
+// holds each observe time at it, and evaluates a realization's states in
+// place when it ends, with the vector forms of evaluate()'s closed forms and
+// kernels and of record_next's energy and level (fast_lanes.cpp): both give
+// the same bits.
 #pragma once
 #include <cstddef>
 #include <limits>
@@ -45,9 +46,8 @@ class state_sampler {
   void on_segment(const segment& s) {
     if (holds_next(s)) sample(s);
   }
-  // The lane engine's path: it fills the state of every time itself, in
-  // batches, with record_next's values (fast_lanes.cpp), and then marks them
-  // sampled. Precondition of mark_sampled: each of the times filled.
+  // The lane engine's path: it fills the state of every time itself, with
+  // record_next's values (fast_lanes.cpp), and then marks them sampled. Precondition of mark_sampled: each of the times filled.
   [[nodiscard]] observed_states& states_to_fill() noexcept { return states_; }
   void mark_sampled() noexcept { next_ = states_.size(); }
   [[nodiscard]] const std::vector<double>& levels() const noexcept { return levels_; }

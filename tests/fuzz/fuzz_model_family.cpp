@@ -534,7 +534,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     switches.push_back({t, level});
   }
 
-  // The CLI's checks (replay.cpp: replay_family).
+  // The CLI's checks (replay.cpp: replay_reference).
   spec.base = p;
   spec.realizations = 3;
   spec.block_size = 3;

@@ -14,7 +14,7 @@ namespace stickslip {
 // engines' own sine and cosine (fast_math.hpp), a damped one decays as
 // model/damped_slip.hpp advances it. So the lane engine, which samples the
 // observe times with the vector forms of the same kernels
-// (evaluate_observe_times in fast_lanes.cpp), gets the same bits.
+// (evaluate_observed in fast_lanes.cpp), gets the same bits.
 phase_point evaluate(const segment& s, double t) noexcept {
   namespace physics = detail::physics;
   const double dt = t - s.start;

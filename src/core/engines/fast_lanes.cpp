@@ -13,7 +13,7 @@
 //      end (band edge, switch or t_a), the slip's root by atan (mirror
 //      return) or atan2 (general root), and the sin and cos of the phase
 //      w * (min(t_switch, t_a) - t) when some slip ends at a switch or at t_a,
-//      with the same kernels (detail/fast_math_simd.hpp) that the scalar
+//      with the same kernels (engines/fast_math_simd.hpp) that the scalar
 //      integrator calls one lane at a time through fast_math.hpp;
 //   3. vector: finish both outcomes exactly as `simulate` does, count the
 //      events, and leave one bit per lane for each piece of bookkeeping

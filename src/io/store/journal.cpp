@@ -70,9 +70,6 @@ bytes encode_segment_header(std::uint64_t fingerprint, double elapsed, const std
   return framed(segment_magic, body.take());
 }
 
-// write(2) all of `data` to a fresh file `tmp`, fsync, close, rename to
-// `final_path`, fsync the directory. On failure removes `tmp` and throws
-// io_error(final_path, reason) (ENOSPC, EFBIG under `ulimit -f`, EIO, ...).
 void write_file_durably(const std::string& tmp, const std::string& final_path,
                         std::initializer_list<std::string_view> pieces) {
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);

@@ -39,9 +39,11 @@ struct journal_header {
 [[nodiscard]] bytes encode_segment_header(std::uint64_t fingerprint, double elapsed,
                                           const std::string& run_id, std::uint64_t records);
 
-// data written to tmp, fsynced, renamed to final_path (the directory
-// synced): the file appears whole or not at all. The pieces are written one
-// after the other (a segment's header and its records, without joining them).
+// write(2) the pieces one after the other (a segment's header and its
+// records, without joining them) to a fresh file `tmp`, fsync, close, rename
+// to `final_path`, fsync the directory: the file appears whole or not at
+// all. On failure removes `tmp` and throws io_error(final_path, reason)
+// (ENOSPC, EFBIG under `ulimit -f`, EIO, ...).
 void write_file_durably(const std::string& tmp, const std::string& final_path,
                         std::initializer_list<std::string_view> pieces);
 inline void write_file_durably(const std::string& tmp, const std::string& final_path,
