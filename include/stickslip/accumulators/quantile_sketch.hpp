@@ -44,12 +44,10 @@ class quantile_sketch {
   // a buffer of codes can be added later (time_statistics keeps a block's
   // codes in one array, so that its samples cost a store each).
   static constexpr std::uint32_t sign_bit = 0x80000000u;
+  // Without a branch, so that loops over many samples vectorize: |x| as x's
+  // bits without the sign (key(x)), the sign bit moved to sign_bit, and 0
+  // unless |x| >= zero_threshold (also for NaN, which the engines never give).
   [[nodiscard]] static std::uint32_t code(double x) noexcept {
-    if (!(std::abs(x) >= zero_threshold)) return 0;  // also NaN, which the engines never give
-    return key(x) | (x < 0.0 ? sign_bit : 0u);
-  }
-  // code(x) without a branch (for loops that should vectorize).
-  [[nodiscard]] static std::uint32_t code_branchless(double x) noexcept {
     const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
     const std::uint64_t magnitude = bits & ~(std::uint64_t{1} << 63);
     const auto k = static_cast<std::uint32_t>(magnitude >> (52 - mantissa_bits));

@@ -47,14 +47,14 @@ void add_row(double* __restrict mean, double* __restrict m2, const double* __res
   }
 }
 
-// quantile_sketch::code of x[j] and z[j] into c[2 j], c[2 j + 1], without
-// a branch, so that the loop vectorizes: the same codes.
+// quantile_sketch::code of x[j] and z[j] into c[2 j], c[2 j + 1] (code has
+// no branch, so the loop vectorizes).
 STICKSLIP_ROW_CLONES
 void add_code_row(std::uint32_t* __restrict c, const double* __restrict x,
                   const double* __restrict z, std::size_t n) noexcept {
   for (std::size_t j = 0; j < n; ++j) {
-    c[2 * j] = quantile_sketch::code_branchless(x[j]);
-    c[2 * j + 1] = quantile_sketch::code_branchless(z[j]);
+    c[2 * j] = quantile_sketch::code(x[j]);
+    c[2 * j + 1] = quantile_sketch::code(z[j]);
   }
 }
 
