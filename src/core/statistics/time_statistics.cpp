@@ -14,8 +14,20 @@ namespace {
 // 8 or 4 lanes instead of SSE2's 2. Each element's operations are the same
 // (+, -, x, no fused multiply-add: the core is built with -ffp-contract=off),
 // so every version gives the same bits. Only where the toolchain makes such
-// clones (x86-64 ELF with ifunc); elsewhere the baseline alone.
-#if defined(__x86_64__) && defined(__ELF__) && defined(__has_attribute)
+// clones (x86-64 ELF with ifunc), and not under a sanitizer: the clones'
+// resolver runs while the program is relocated, before a sanitizer's
+// runtime is ready, and its instrumented code crashes there (TSan did);
+// elsewhere the baseline alone.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+#define STICKSLIP_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer) || \
+    __has_feature(memory_sanitizer)
+#define STICKSLIP_SANITIZED 1
+#endif
+#endif
+#if defined(__x86_64__) && defined(__ELF__) && defined(__has_attribute) && \
+    !defined(STICKSLIP_SANITIZED)
 #if __has_attribute(target_clones)
 #define STICKSLIP_ROW_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
 #endif
