@@ -2,16 +2,22 @@
 // point's blocks merged in order, stored as one record, restore the merge
 // with the same bits as merging the blocks one by one; a whole run's journal
 // keeps at most a segment per point however many units it ran; a damaged prefix is
-// reported and its point recomputed, never misread.
+// reported and its point recomputed, never misread; a run's last checkpoint
+// is written when one is due or the run was stopped, and not otherwise.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "stickslip/error.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/run/runner.hpp"
+#include "stickslip/run/stop.hpp"
 #include "stickslip/serialize.hpp"
 
 using namespace stickslip;
@@ -109,8 +115,19 @@ TEST(JournalPrefixes, ADamagedPrefixIsReportedAndItsPointRecomputed) {
   const auto dir = fresh("damaged");
   run::run_plan plan;
   plan.dir = dir.string();
+  // One segment with every point's whole prefix: no checkpoint during the
+  // run, and a stop after its last unit, whose checkpoint is always written.
+  plan.checkpoint_interval = std::chrono::duration<double>(3600);
+  run::stop_token stop;
+  plan.stop = &stop;
+  plan.progress = [&](std::uint64_t done, std::uint64_t total, double) {
+    if (done == total) stop.request(SIGINT);
+  };
   run::thread_runner runner(1);
-  (void)run::run_journaled(s, plan, io::run_metadata{"cmd", "cfg", "v", "g", "t"}, runner);
+  EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"cmd", "cfg", "v", "g", "t"}, runner),
+               error);
+  plan.stop = nullptr;
+  plan.progress = nullptr;
   fs::path seg;
   for (const auto& e : fs::directory_iterator(dir / io::journal_directory))
     if (e.path().filename().string().starts_with("seg-")) seg = e.path();
@@ -134,4 +151,63 @@ TEST(JournalPrefixes, ADamagedPrefixIsReportedAndItsPointRecomputed) {
   for (std::size_t p = 0; p < point_count(s); ++p)
     EXPECT_EQ(bits(again.results->points[p].stats), whole[p]);
   fs::remove_all(dir);
+}
+
+std::size_t segment_count(const fs::path& dir) {
+  std::size_t n = 0;
+  for (const auto& e : fs::directory_iterator(dir / io::journal_directory))
+    n += e.path().filename().string().starts_with("seg-");
+  return n;
+}
+
+// The end of a run follows the checkpoint rule (journal_writer::due): a run
+// shorter than its interval writes no segment (its outputs are written next;
+// a failure there loses at most the interval's units), one stopped by a
+// signal writes its finished units whatever the interval.
+TEST(JournalPrefixes, TheLastCheckpointIsWrittenWhenDueOrStopped) {
+  const auto s = many_blocks();
+  run::thread_runner runner(2);
+  {
+    const auto dir = fresh("not-due");
+    run::run_plan plan;
+    plan.dir = dir.string();
+    plan.checkpoint_interval = std::chrono::duration<double>(3600);
+    const auto out = run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner);
+    ASSERT_TRUE(out.results);
+    EXPECT_EQ(out.computed_units, unit_count(s));
+    EXPECT_EQ(segment_count(dir), 0u) << "a checkpoint that was not due";
+    const auto whole = merged_in_order(s);
+    for (std::size_t p = 0; p < point_count(s); ++p)
+      EXPECT_EQ(bits(out.results->points[p].stats), whole[p]);
+    fs::remove_all(dir);
+  }
+  {
+    const auto dir = fresh("stopped");
+    run::run_plan plan;
+    plan.dir = dir.string();
+    plan.checkpoint_interval = std::chrono::duration<double>(3600);
+    run::stop_token stop;
+    plan.stop = &stop;
+    plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
+      if (done >= 30) stop.request(SIGINT);
+    };
+    EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner),
+                 error);
+    EXPECT_GE(segment_count(dir), 1u) << "a stopped run kept nothing";
+    const auto j = io::read_journal(dir.string(), &s);
+    std::uint64_t kept = 0;
+    for (const auto& [p, prefix] : j.prefixes) kept += prefix.blocks;
+    EXPECT_GE(kept + j.units.size(), 30u);
+    stop.reset();
+    plan.stop = nullptr;
+    plan.progress = nullptr;
+    plan.resume = true;
+    const auto again = run::run_journaled(s, plan, io::run_metadata{}, runner);
+    EXPECT_EQ(again.resumed_units, kept + j.units.size());
+    EXPECT_EQ(again.resumed_units + again.computed_units, unit_count(s));
+    const auto whole = merged_in_order(s);
+    for (std::size_t p = 0; p < point_count(s); ++p)
+      EXPECT_EQ(bits(again.results->points[p].stats), whole[p]);
+    fs::remove_all(dir);
+  }
 }
