@@ -169,6 +169,10 @@ class point_statistics {
   // Exact merge (see mean_variance). Precondition: same binning.
   point_statistics& operator+=(const point_statistics& o);
   void record_convergence();
+  // After the last realization (ordered_merger, when a point is complete):
+  // frees the room to grow and computes what the outputs read once
+  // (time_statistics::finish). Changes no value.
+  void finish() { observed.finish(); }
 
   // The accumulators; each one has a row in statistics_schema.cpp.
   mean_variance stick_fraction;        // R

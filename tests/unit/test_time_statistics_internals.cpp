@@ -5,6 +5,12 @@
 //     sign_bit for x < 0) for every class of double (±0, subnormals, the zero
 //     threshold and its neighbours, ±inf, NaN, and random bit patterns): the
 //     sketches' bins cannot change;
+//   - count(), kept as samples are added, is the sum of the bins after
+//     add, +=, set_raw and a copy;
+//   - quantiles() with more levels than its fixed room for ranks (17) and
+//     in no order equals quantile() level by level;
+//   - time_statistics::finish() changes no value, and adds and merges after
+//     it give what they give without it;
 //   - time_statistics::quantiles() equals the sketches' own quantiles after
 //     every kind of change (add, +=, set_raw): a cached value is never stale.
 #include <gtest/gtest.h>
@@ -62,6 +68,48 @@ TEST(QuantileSketchCode, EqualsItsDefinitionForEveryKindOfDouble) {
   EXPECT_GT(negative, xs.size() / 8);
 }
 
+// count() is kept as samples are added: it must stay the sum of the bins
+// after add, +=, set_raw and a copy.
+std::uint64_t bin_sum(const quantile_sketch& s) {
+  std::uint64_t n = s.zero();
+  for (const auto& st : {s.negative(), s.positive()})
+    for (auto c : st.counts) n += c;
+  return n;
+}
+
+TEST(QuantileSketchCount, IsTheSumOfTheBinsAfterEveryChange) {
+  quantile_sketch a, b;
+  for (int i = -300; i < 500; ++i) a.add(i % 7 == 0 ? 0.0 : 1e-3 * i);
+  EXPECT_EQ(a.count(), 800u);
+  EXPECT_EQ(a.count(), bin_sum(a));
+  for (int i = 0; i < 123; ++i) b.add(-1e5 * i);
+  a += b;
+  EXPECT_EQ(a.count(), 923u);
+  EXPECT_EQ(a.count(), bin_sum(a));
+  quantile_sketch c;
+  c.set_raw(a.negative(), a.zero(), a.positive());
+  EXPECT_EQ(c.count(), 923u);
+  EXPECT_EQ(c, a);
+  const quantile_sketch d = c;
+  EXPECT_EQ(d.count(), 923u);
+  c.set_raw({}, 0, {});
+  EXPECT_EQ(c.count(), 0u);
+  EXPECT_TRUE(std::isnan(c.quantile(0.5)));
+}
+
+TEST(QuantileSketchBlock, ManyLevelsInAnyOrderAreTheLevelByLevelQuantiles) {
+  quantile_sketch s;
+  for (int i = -500; i < 700; ++i) s.add(0.01 * i * std::abs(i));
+  std::vector<double> levels;
+  for (int i = 0; i <= 20; ++i) levels.push_back(i / 20.0);  // 21 levels, ascending
+  std::vector<double> shuffled(levels.rbegin(), levels.rend());  // and descending
+  for (const auto& q : {levels, shuffled}) {
+    std::vector<double> out(q.size());
+    s.quantiles(q.data(), q.size(), out.data());
+    for (std::size_t i = 0; i < q.size(); ++i) ASSERT_EQ(out[i], s.quantile(q[i])) << q[i];
+  }
+}
+
 observed_states states(std::size_t n, double shift) {
   observed_states s(n);
   for (std::size_t j = 0; j < n; ++j) {
@@ -110,6 +158,35 @@ TEST(TimeStatisticsQuantiles, TheCacheFollowsEveryChange) {
   a.set_raw(b.realizations(), at, b.level_counts());  // after set_raw
   expect_fresh(a);
   EXPECT_EQ(a, b);
+}
+
+// finish() (a complete point's accumulator: room freed, quantiles computed)
+// changes no value, and an accumulator after it still adds and merges as
+// one that was never finished.
+TEST(TimeStatisticsFinish, ChangesNoValueAndAddsStillWork) {
+  const std::vector<double> times = {0.0, 0.5, 1.0, 2.0, 3.5, 5.0, 7.0};
+  time_statistics a(times, 2), plain(times, 2), more(times, 2);
+  for (int r = 0; r < 150; ++r) {  // past buffered_realizations: settled and buffered codes
+    a.add(states(times.size(), 0.05 * r));
+    plain.add(states(times.size(), 0.05 * r));
+  }
+  a.finish();
+  EXPECT_EQ(a, plain);
+  expect_fresh(a);
+  for (std::size_t j = 0; j < times.size(); ++j) {
+    double x[5], y[5];
+    a.quantiles(j, &time_point_statistics::velocity_quantiles, x);
+    plain.quantiles(j, &time_point_statistics::velocity_quantiles, y);
+    for (int i = 0; i < 5; ++i) ASSERT_EQ(x[i], y[i]);
+  }
+  for (int r = 0; r < 20; ++r) more.add(states(times.size(), 40.0 + r));  // beyond the range
+  a += more, plain += more;
+  a.add(states(times.size(), -60.0)), plain.add(states(times.size(), -60.0));
+  EXPECT_EQ(a, plain);
+  expect_fresh(a);
+  time_statistics none;
+  none.finish();  // not selected: nothing to do
+  EXPECT_FALSE(none.selected());
 }
 
 }  // namespace

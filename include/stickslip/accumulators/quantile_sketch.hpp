@@ -55,14 +55,22 @@ class quantile_sketch {
     return std::abs(x) >= zero_threshold ? (k | sign) : 0u;
   }
   void add_code(std::uint32_t c) {
+    ++total_;
     if (c == 0)
       ++zero_;
     else
       bump(c & sign_bit ? negative_ : positive_, c & ~sign_bit);
   }
   quantile_sketch& operator+=(const quantile_sketch& o);
+  // Frees the room the stores keep to grow into (a finished point's
+  // sketches take no more samples; an add after it grows them again).
+  void shrink_to_fit() {
+    negative_ = trimmed(negative_);
+    positive_ = trimmed(positive_);
+  }
 
-  [[nodiscard]] std::uint64_t count() const noexcept;
+  // The samples added (kept as they are added: the outputs ask every sketch).
+  [[nodiscard]] std::uint64_t count() const noexcept { return total_; }
   // The sample quantile x_(k), k = max(1, ceil(q n)) (the lower one of the
   // sorted samples), to within relative_accuracy |x_(k)| (zero_threshold near
   // 0): the middle of its bin. NaN without samples. Precondition: 0 <= q <= 1.
@@ -90,11 +98,7 @@ class quantile_sketch {
   [[nodiscard]] store negative() const { return trimmed(negative_); }
   [[nodiscard]] store positive() const { return trimmed(positive_); }
   [[nodiscard]] std::uint64_t zero() const noexcept { return zero_; }
-  void set_raw(store negative, std::uint64_t zero, store positive) {
-    negative_ = std::move(negative);
-    zero_ = zero;
-    positive_ = std::move(positive);
-  }
+  void set_raw(store negative, std::uint64_t zero, store positive);
   // The same counts (whatever room either keeps to grow into).
   friend bool operator==(const quantile_sketch& a, const quantile_sketch& b) {
     return a.zero_ == b.zero_ && a.negative() == b.negative() && a.positive() == b.positive();
@@ -108,12 +112,17 @@ class quantile_sketch {
   static void cover(store& s, std::uint32_t lo, std::uint32_t hi);
   // a += b, bin by bin.
   static void merge(store& a, const store& b);
+  // Makes room in s for the keys [lo, hi] unless it has it.
+  static void reserve(store& s, std::uint32_t lo, std::uint32_t hi) {
+    if (s.counts.empty() || lo < s.first || hi - s.first >= s.counts.size()) cover(s, lo, hi);
+  }
   static void bump(store& s, std::uint32_t k) {
-    if (s.counts.empty() || k < s.first || k - s.first >= s.counts.size()) cover(s, k, k);
+    reserve(s, k, k);
     ++s.counts[k - s.first];
   }
   store negative_, positive_;
   std::uint64_t zero_ = 0;
+  std::uint64_t total_ = 0;  // count(): zero_ and every store's counts
 };
 
 }  // namespace stickslip

@@ -92,6 +92,12 @@ class time_statistics {
   // every time and both sketches at the first call after a change, and kept
   // (the writers read them once each; the same caveat as at()).
   void quantiles(std::size_t j, quantile_sketch time_point_statistics::*sketch, double* out) const;
+  // For an accumulator that takes no more realizations (a finished point):
+  // settles the codes, frees the buffer and the sketches' room to grow
+  // (about half their memory), and computes the quantiles, while the other
+  // threads still run, rather than all at once when the outputs are
+  // written. Changes no value; an add or a merge after it still works.
+  void finish();
   [[nodiscard]] std::uint64_t level_count(std::size_t j, std::size_t level) const noexcept {
     return level_counts_[j * levels_ + level];
   }
@@ -163,6 +169,7 @@ class time_statistics {
   void refresh() const;  // at_ gets the rows
   void settle() const;   // and the sketches the buffered codes
   void add_codes(const code_buffer& codes) const;
+  void compute_quantiles() const;  // quantiles_, for every time and both sketches
   std::vector<double> times_;
   std::size_t levels_ = 0;
   std::uint64_t realizations_ = 0;

@@ -60,7 +60,7 @@ void quantile_sketch::merge(store& a, const store& b) {
   if (lo == hi) return;
   const auto k_lo = b.first + static_cast<std::uint32_t>(lo);
   const auto k_hi = b.first + static_cast<std::uint32_t>(hi - 1);
-  if (a.counts.empty() || k_lo < a.first || k_hi - a.first >= a.counts.size()) cover(a, k_lo, k_hi);
+  reserve(a, k_lo, k_hi);
   for (std::size_t i = lo; i < hi; ++i) a.counts[b.first + i - a.first] += b.counts[i];
 }
 
@@ -68,11 +68,15 @@ quantile_sketch& quantile_sketch::operator+=(const quantile_sketch& o) {
   merge(negative_, o.negative_);
   merge(positive_, o.positive_);
   zero_ += o.zero_;
+  total_ += o.total_;
   return *this;
 }
 
-std::uint64_t quantile_sketch::count() const noexcept {
-  return store_total(negative_) + zero_ + store_total(positive_);
+void quantile_sketch::set_raw(store negative, std::uint64_t zero, store positive) {
+  negative_ = std::move(negative);
+  zero_ = zero;
+  positive_ = std::move(positive);
+  total_ = store_total(negative_) + zero_ + store_total(positive_);
 }
 
 double quantile_sketch::quantile(double q) const {
@@ -87,15 +91,20 @@ void quantile_sketch::quantiles(const double* q, std::size_t n, double* out) con
     std::fill(out, out + n, std::numeric_limits<double>::quiet_NaN());
     return;
   }
-  // k = max(1, ceil(q n)): the k-th smallest sample.
-  auto rank = [&](std::size_t m) {
+  // k = max(1, ceil(q n)): the k-th smallest sample, computed once per level
+  auto rank_of = [&](std::size_t m) {
     return std::clamp<std::uint64_t>(
         static_cast<std::uint64_t>(std::ceil(q[m] * static_cast<double>(total))), 1, total);
   };
+  constexpr std::size_t few = 16;
+  std::uint64_t fixed[few];
+  std::vector<std::uint64_t> many(n > few ? n : 0);
+  std::uint64_t* const rank = n > few ? many.data() : fixed;
+  for (std::size_t i = 0; i < n; ++i) rank[i] = rank_of(i);
   bool ascending = true;
-  for (std::size_t i = 1; i < n; ++i) ascending = ascending && rank(i) >= rank(i - 1);
+  for (std::size_t i = 1; i < n; ++i) ascending = ascending && rank[i] >= rank[i - 1];
   if (!ascending) {
-    for (std::size_t i = 0; i < n; ++i) out[i] = ranked(rank(i));
+    for (std::size_t i = 0; i < n; ++i) out[i] = ranked(rank[i]);
     return;
   }
   // Ascending ranks (the usual levels 5 .. 95 %) in one walk over the bins:
@@ -103,16 +112,20 @@ void quantile_sketch::quantiles(const double* q, std::size_t n, double* out) con
   auto middle = [](std::uint32_t key) { return 0.5 * (lower(key) + upper(key)); };
   std::size_t i = 0;
   std::uint64_t below = 0;  // samples in the bins walked so far
-  auto bin = [&](std::uint64_t c, double value) {
+  // (A bin without samples answers no rank: every rank <= below was
+  // answered by an earlier bin, so the walk needs no test of the count.)
+  auto bin = [&](std::uint64_t c, auto value) {
     below += c;
-    while (i < n && rank(i) <= below) out[i++] = value;
+    while (i < n && rank[i] <= below) out[i++] = value();
   };
+  const std::uint32_t* neg = negative_.counts.data();
   for (std::size_t b = negative_.counts.size(); b-- > 0 && i < n;)
-    if (negative_.counts[b]) bin(negative_.counts[b], -middle(negative_.first + static_cast<std::uint32_t>(b)));
-  if (zero_ && i < n) bin(zero_, 0.0);
+    bin(neg[b], [&] { return -middle(negative_.first + static_cast<std::uint32_t>(b)); });
+  if (i < n) bin(zero_, [] { return 0.0; });
+  const std::uint32_t* pos = positive_.counts.data();
   for (std::size_t b = 0; b < positive_.counts.size() && i < n; ++b)
-    if (positive_.counts[b]) bin(positive_.counts[b], middle(positive_.first + static_cast<std::uint32_t>(b)));
-  for (; i < n; ++i) out[i] = ranked(rank(i));  // not reached: the bins hold every rank
+    bin(pos[b], [&] { return middle(positive_.first + static_cast<std::uint32_t>(b)); });
+  for (; i < n; ++i) out[i] = ranked(rank[i]);  // not reached: the bins hold every rank
 }
 
 // Counted from the most negative (the negative store from its largest |x|

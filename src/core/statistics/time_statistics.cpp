@@ -165,17 +165,31 @@ time_statistics& time_statistics::operator+=(const time_statistics& o) {
   return *this;
 }
 
+void time_statistics::compute_quantiles() const {
+  constexpr std::size_t q = std::size(observed_quantile_levels);
+  settle();
+  quantiles_.resize(times_.size() * 2 * q);
+  for (std::size_t i = 0; i < times_.size(); ++i) {
+    at_[i].position_quantiles.quantiles(observed_quantile_levels, q, &quantiles_[2 * q * i]);
+    at_[i].velocity_quantiles.quantiles(observed_quantile_levels, q, &quantiles_[2 * q * i + q]);
+  }
+}
+
+void time_statistics::finish() {
+  if (!selected()) return;
+  settle();
+  code_buffer().swap(codes_);
+  for (auto& a : at_) {
+    a.position_quantiles.shrink_to_fit();
+    a.velocity_quantiles.shrink_to_fit();
+  }
+  if (quantiles_.empty()) compute_quantiles();
+}
+
 void time_statistics::quantiles(std::size_t j, quantile_sketch time_point_statistics::*sketch,
                                 double* out) const {
   constexpr std::size_t q = std::size(observed_quantile_levels);
-  if (quantiles_.empty()) {
-    settle();
-    quantiles_.resize(times_.size() * 2 * q);
-    for (std::size_t i = 0; i < times_.size(); ++i) {
-      at_[i].position_quantiles.quantiles(observed_quantile_levels, q, &quantiles_[2 * q * i]);
-      at_[i].velocity_quantiles.quantiles(observed_quantile_levels, q, &quantiles_[2 * q * i + q]);
-    }
-  }
+  if (quantiles_.empty()) compute_quantiles();
   const std::size_t which = sketch == &time_point_statistics::position_quantiles ? 0 : 1;
   std::copy_n(&quantiles_[2 * q * j + which * q], q, out);
 }

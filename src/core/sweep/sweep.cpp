@@ -63,9 +63,11 @@ void ordered_merger::add(const work_unit& u, block_result r) {
     ++merged_;
     if (++next_block_[u.point] >= nb) {
       finished_[u.point].store(1, std::memory_order_relaxed);
+      dst.finish();
       break;
     }
     if (stop) {
+      dst.finish();
       // The blocks this point no longer needs count as done; any of them
       // computed ahead (pending now or arriving later) are dropped.
       merged_ += nb - next_block_[u.point];
@@ -85,7 +87,10 @@ void ordered_merger::restore(merged_prefix p) {
   // The stop rule as add() applied it after the prefix's last block.
   const bool stop = p.blocks < nb && meets_target(*spec_, points_[p.point]);
   if (stop) merged_ += nb - p.blocks;
-  if (stop || p.blocks >= nb) finished_[p.point].store(1, std::memory_order_relaxed);
+  if (stop || p.blocks >= nb) {
+    finished_[p.point].store(1, std::memory_order_relaxed);
+    points_[p.point].finish();
+  }
 }
 
 bool ordered_merger::complete() const noexcept { return merged_ == unit_count(*spec_); }
