@@ -11,7 +11,7 @@ core=(
   libnetcdf-c++4-dev libnetcdf-dev netcdf-bin libhdf5-dev hdf5-tools
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  libsleef-dev libxsimd-dev xtl-dev libhwy-dev libboost-dev
+  libsleef-dev libxsimd-dev xtl-dev libhwy-dev libboost-dev zlib1g-dev
   clang libclang-rt-14-dev
   gnuplot-nox python3 python3-numpy python3-netcdf4
   python3-dev pybind11-dev python3-pandas python3-xarray python3-matplotlib python3-tqdm

@@ -1,7 +1,7 @@
 #include "stickslip/serial_bytes.hpp"
 
-#include <array>
 #include <fmt/format.h>
+#include <zlib.h>
 
 #include "stickslip/parameters.hpp"
 #include "stickslip/statistics_schema.hpp"
@@ -32,19 +32,14 @@ std::uint64_t layout_id() noexcept {
   return id;
 }
 
+// zlib's CRC-32: the polynomial, reflection and complements the journal has
+// always used (so journals written before read the same), several times
+// faster than the byte-table loop it replaces (150 MB/s: 60 ms of every
+// 9 MB checkpoint of a 101-observe-time grid, under the merge's lock).
 std::uint32_t crc32(std::string_view data, std::uint32_t crc) noexcept {
-  static constexpr auto table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t i = 0; i < 256; ++i) {
-      std::uint32_t c = i;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[i] = c;
-    }
-    return t;
-  }();
-  crc = ~crc;
-  for (char ch : data) crc = table[(crc ^ static_cast<std::uint8_t>(ch)) & 0xFFu] ^ (crc >> 8);
-  return ~crc;
+  if (data.empty()) return crc;  // (zlib answers a null buffer with its initial value)
+  return static_cast<std::uint32_t>(
+      ::crc32_z(crc, reinterpret_cast<const Bytef*>(data.data()), data.size()));
 }
 
 }  // namespace stickslip
