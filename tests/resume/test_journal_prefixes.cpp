@@ -53,6 +53,20 @@ std::vector<bytes> merged_in_order(const sweep_spec& s) {
 
 }  // namespace
 
+// Runs `s` on `plan` (a copy) with no checkpoint due during the run (a
+// 3600 s interval) and a SIGINT once `units` are merged: the run throws, and
+// the journal holds what the stop's checkpoint wrote.
+void run_stopped_after(const sweep_spec& s, run::run_plan plan, run::runner& r,
+                       std::uint64_t units) {
+  plan.checkpoint_interval = std::chrono::duration<double>(3600);
+  run::stop_token stop;
+  plan.stop = &stop;
+  plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
+    if (done >= units) stop.request(SIGINT);
+  };
+  EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, r), error);
+}
+
 TEST(JournalPrefixes, RestoredPrefixContinuesWithTheSameBits) {
   const auto s = many_blocks();
   const auto whole = merged_in_order(s);
@@ -115,19 +129,10 @@ TEST(JournalPrefixes, ADamagedPrefixIsReportedAndItsPointRecomputed) {
   const auto dir = fresh("damaged");
   run::run_plan plan;
   plan.dir = dir.string();
-  // One segment with every point's whole prefix: no checkpoint during the
-  // run, and a stop after its last unit, whose checkpoint is always written.
-  plan.checkpoint_interval = std::chrono::duration<double>(3600);
-  run::stop_token stop;
-  plan.stop = &stop;
-  plan.progress = [&](std::uint64_t done, std::uint64_t total, double) {
-    if (done == total) stop.request(SIGINT);
-  };
   run::thread_runner runner(1);
-  EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"cmd", "cfg", "v", "g", "t"}, runner),
-               error);
-  plan.stop = nullptr;
-  plan.progress = nullptr;
+  // One segment with every point's whole prefix: the stop's checkpoint
+  // after the last unit.
+  run_stopped_after(s, plan, runner, unit_count(s));
   fs::path seg;
   for (const auto& e : fs::directory_iterator(dir / io::journal_directory))
     if (e.path().filename().string().starts_with("seg-")) seg = e.path();
@@ -185,22 +190,12 @@ TEST(JournalPrefixes, TheLastCheckpointIsWrittenWhenDueOrStopped) {
     const auto dir = fresh("stopped");
     run::run_plan plan;
     plan.dir = dir.string();
-    plan.checkpoint_interval = std::chrono::duration<double>(3600);
-    run::stop_token stop;
-    plan.stop = &stop;
-    plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
-      if (done >= 30) stop.request(SIGINT);
-    };
-    EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner),
-                 error);
+    run_stopped_after(s, plan, runner, 30);
     EXPECT_GE(segment_count(dir), 1u) << "a stopped run kept nothing";
     const auto j = io::read_journal(dir.string(), &s);
     std::uint64_t kept = 0;
     for (const auto& [p, prefix] : j.prefixes) kept += prefix.blocks;
     EXPECT_GE(kept + j.units.size(), 30u);
-    stop.reset();
-    plan.stop = nullptr;
-    plan.progress = nullptr;
     plan.resume = true;
     const auto again = run::run_journaled(s, plan, io::run_metadata{}, runner);
     EXPECT_EQ(again.resumed_units, kept + j.units.size());
