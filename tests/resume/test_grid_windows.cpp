@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stickslip/error.hpp"
+#include "stickslip/io/journal.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/run/result_memory.hpp"
@@ -164,5 +165,30 @@ TEST(GridWindows, TheEstimateCoversWhatTheResultsHold) {
   const double estimate = run::estimated_result_bytes(s, 1, 120);
   EXPECT_LE(held, estimate);
   EXPECT_GE(held, 0.5 * estimate);
+  fs::remove_all(dir);
+}
+
+// A finished window's points are journaled when the window ends, checkpoint
+// due or not: a later window's checkpoints do not hold them. Only the last
+// window follows the checkpoint rule (no checkpoint due here: an interval of
+// an hour), so the journal holds every earlier window's points whole.
+TEST(GridWindows, EveryWindowButTheLastIsJournaledWhenItEnds) {
+  const auto s = grid();
+  const auto dir = fresh("window-ends");
+  run::run_plan plan;
+  plan.dir = dir.string();
+  plan.window_points = 3;  // one slab (3 points) a window: 5 windows
+  plan.checkpoint_interval = std::chrono::duration<double>(3600);
+  run::thread_runner runner(2);
+  const auto out = run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner);
+  ASSERT_TRUE(out.results);
+  const auto j = io::read_journal(dir.string(), &s);
+  EXPECT_EQ(j.damaged, 0u);
+  for (std::size_t p = 0; p < 12; ++p) {  // the first four windows
+    ASSERT_TRUE(j.prefixes.count(p)) << "point " << p << " of a finished window not journaled";
+    EXPECT_EQ(j.prefixes.at(p).blocks, blocks_per_point(s)) << "point " << p;
+  }
+  for (std::size_t p = 12; p < point_count(s); ++p)  // the last window: no checkpoint due
+    EXPECT_FALSE(j.prefixes.count(p)) << "point " << p;
   fs::remove_all(dir);
 }
