@@ -217,7 +217,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     // fsynced); a failure from here to the outputs loses at most the units
     // finished since the last segment, as a kill at any other moment does.
     const bool last_window = wi + 1 == windows.size();
-    if (journal_prefixes && (stopped() || !last_window || journal.due()))
+    if (journal_prefixes && (stopped() || !last_window || !plan.outputs_follow || journal.due()))
       checkpoint.write(nullptr, nullptr);
     merged_before += merger.merged_units();
     if (stopped() || plan.slice) continue;
@@ -348,7 +348,9 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
     }
   }
   try {
-    auto out = run_journaled(spec, plan, fresh, r);
+    run_plan then_outputs = plan;
+    then_outputs.outputs_follow = true;
+    auto out = run_journaled(spec, then_outputs, fresh, r);
     if (out.results) write_outputs(out, plan.dir, keep_journal, plan.outputs);
     return out;
   } catch (const error& e) {

@@ -177,6 +177,7 @@ TEST(JournalPrefixes, TheLastCheckpointIsWrittenWhenDueOrStopped) {
     run::run_plan plan;
     plan.dir = dir.string();
     plan.checkpoint_interval = std::chrono::duration<double>(3600);
+    plan.outputs_follow = true;  // as sweep_into, which writes the outputs next
     const auto out = run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner);
     ASSERT_TRUE(out.results);
     EXPECT_EQ(out.computed_units, unit_count(s));

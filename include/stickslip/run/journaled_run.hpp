@@ -32,6 +32,11 @@ struct run_plan {
   std::string dir;                  // the output directory; the journal is DIR/.journal
   std::optional<shard> slice;       // --shard i/n: run and journal only this slice
   bool resume = false;              // continue the journal in DIR (refused without it)
+  // The caller writes the outputs right after the run (sweep_into): the
+  // run's last checkpoint is then written only when one is due. Otherwise
+  // (reproduce's sweeps, Python) it is always written: the journal is the
+  // finished run's only copy until its outputs are written later.
+  bool outputs_follow = false;
   // --overwrite: finished outputs in DIR may be replaced. Without it, a
   // resume into a DIR without a journal but with finished outputs does
   // nothing when they are this spec's and is refused when they are not
