@@ -207,11 +207,13 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     hooks.wanted = [&](const work_unit& u) { return !stopped() && to_run(whole(u)); };
     r.run(w.spec, merger, hooks);
     // The window's last checkpoint: always when stopped (the finished units
-    // are what an interrupted run keeps) and after every window but the
-    // last (a later window's checkpoints do not hold this one's points, so
-    // its units since the last segment would stay unjournaled however long
-    // the run went on); after the last window only when one is due, as
-    // during the run. Writing every point's merged statistics once more just
+    // are what an interrupted run keeps), after every window but the last
+    // (a later window's checkpoints do not hold this one's points, so its
+    // units since the last segment would stay unjournaled however long the
+    // run went on), and when the caller writes no outputs at once
+    // (!outputs_follow: the journal is the finished run's only copy); else,
+    // after the last window of sweep_into, only when one is due, as during
+    // the run. Writing every point's merged statistics once more just
     // before the outputs hold them cost a 101-observe-time paper grid a
     // third of a second on one core (18.7 MB serialized, checksummed and
     // fsynced); a failure from here to the outputs loses at most the units

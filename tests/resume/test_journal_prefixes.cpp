@@ -53,6 +53,7 @@ std::vector<bytes> merged_in_order(const sweep_spec& s) {
 
 }  // namespace
 
+namespace {
 // Runs `s` on `plan` (a copy) with no checkpoint due during the run (a
 // 3600 s interval) and a SIGINT once `units` are merged: the run throws, and
 // the journal holds what the stop's checkpoint wrote.
@@ -66,6 +67,7 @@ void run_stopped_after(const sweep_spec& s, run::run_plan plan, run::runner& r,
   };
   EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, r), error);
 }
+}  // namespace
 
 TEST(JournalPrefixes, RestoredPrefixContinuesWithTheSameBits) {
   const auto s = many_blocks();
@@ -158,12 +160,14 @@ TEST(JournalPrefixes, ADamagedPrefixIsReportedAndItsPointRecomputed) {
   fs::remove_all(dir);
 }
 
+namespace {
 std::size_t segment_count(const fs::path& dir) {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(dir / io::journal_directory))
     n += e.path().filename().string().starts_with("seg-");
   return n;
 }
+}  // namespace
 
 // The end of a run follows the checkpoint rule (journal_writer::due): a run
 // shorter than its interval writes no segment (its outputs are written next;
