@@ -31,11 +31,13 @@ quantile_sketch::store quantile_sketch::trimmed(const store& s) {
                                      s.counts.begin() + static_cast<std::ptrdiff_t>(hi))};
 }
 
-// Grows with room for a quarter of the size held (at least 32 bins) beyond
+// Grows with room for the size held (at least 128 bins, 8 octaves) beyond
 // the key asked for, so that a stream of adds moves the counts a number of
-// times logarithmic in the range, and the room stays small.
+// times logarithmic in the range. The room is freed when the sketch takes
+// no more samples (shrink_to_fit at a point's finish), so only the sketches
+// of points in progress hold it.
 void quantile_sketch::cover(store& s, std::uint32_t lo, std::uint32_t hi) {
-  constexpr std::uint32_t initial = 32;
+  constexpr std::uint32_t initial = 128;
   if (s.counts.empty()) {
     s.first = lo >= min_key() + initial / 2 ? lo - initial / 2 : min_key();
     s.counts.assign(std::max<std::uint32_t>(initial, hi - s.first + 1), 0);
@@ -43,7 +45,7 @@ void quantile_sketch::cover(store& s, std::uint32_t lo, std::uint32_t hi) {
   }
   const auto size = static_cast<std::uint32_t>(s.counts.size());
   std::uint32_t first = s.first, end = s.first + size;  // [first, end)
-  const std::uint32_t room = std::max<std::uint32_t>(initial, size / 4);
+  const std::uint32_t room = std::max<std::uint32_t>(initial, size);
   if (lo < first)
     first = static_cast<std::uint32_t>(std::max<std::int64_t>(
         std::int64_t{min_key()}, std::int64_t{lo} - room));
