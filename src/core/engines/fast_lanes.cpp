@@ -927,30 +927,23 @@ class lane_engine {
       const std::size_t n = o.size();
       double *position = o.position(), *velocity = o.velocity(), *belt = o.belt_velocity();
       double *start_at = o.energy(), *centre_at = o.level(), *stick = o.sticking();
-      // the last, partial vector through a padded copy (a stick at t = 0)
-      HWY_ALIGN double tail[7][N];
-      for (std::size_t j = 0; j < n; j += N) {
-        const std::size_t r = std::min<std::size_t>(N, n - j);
-        const double* in[6] = {start_at + j, times + j, position + j, velocity + j, belt + j,
-                               centre_at + j};
-        const double* sticking_in = stick + j;
-        if (r < N) {
-          for (std::size_t f = 0; f < 6; ++f) {
-            std::fill_n(tail[f], N, 0.0);
-            std::copy_n(in[f], r, tail[f]);
-            in[f] = tail[f];
-          }
-          std::fill_n(tail[6], N, 1.0);
-          std::copy_n(sticking_in, r, tail[6]);
-          sticking_in = tail[6];
-        }
-        const vec t = hn::LoadU(d, in[0]), tj = hn::LoadU(d, in[1]);
-        const vec x = hn::LoadU(d, in[2]), z = hn::LoadU(d, in[3]);
-        const vec v = hn::LoadU(d, in[4]), centre = hn::LoadU(d, in[5]);
-        const auto sticking = hn::Eq(hn::LoadU(d, sticking_in), one);
-        vec xj = vphysics::stick_position(x, v, t, tj), zj = v;
+      // One vector of times: the round start t, the time t_j, the start
+      // state x, x', v, the centre and whether sticking; out: x, x', the
+      // energy and the level at t_j.
+      struct inputs {
+        vec t, tj, x, z, v, centre, sticking;
+      };
+      auto load = [&](std::size_t j) {
+        return inputs{hn::LoadU(d, start_at + j), hn::LoadU(d, times + j),
+                      hn::LoadU(d, position + j), hn::LoadU(d, velocity + j),
+                      hn::LoadU(d, belt + j),     hn::LoadU(d, centre_at + j),
+                      hn::LoadU(d, stick + j)};
+      };
+      auto evaluate = [&](const inputs& in, vec out[4]) {
+        const auto sticking = hn::Eq(in.sticking, one);
+        vec xj = vphysics::stick_position(in.x, in.v, in.t, in.tj), zj = in.v;
         if (!hn::AllTrue(d, sticking)) {
-          vec u = Mul(W, Sub(tj, t));
+          vec u = Mul(W, Sub(in.tj, in.t));
           if (!hn::AllFalse(d, hn::Gt(hn::Abs(u), Set(d, fm::max_direct_phase)))) {
             HWY_ALIGN double ph[N];
             hn::Store(u, d, ph);
@@ -958,25 +951,49 @@ class lane_engine {
             u = hn::Load(d, ph);
           }
           const vec sn = sk::sin(d, u), cs = sk::cos(d, u);
-          const vec y = Sub(x, centre);
-          const vphysics::slip_orbit<vec> orbit{centre, y, Mul(W, y), zero};
-          xj = IfThenElse(sticking, xj, vphysics::rotated_position(orbit, z, W, cs, sn));
-          zj = IfThenElse(sticking, zj, vphysics::rotated_velocity(orbit, z, cs, sn));
+          const vec y = Sub(in.x, in.centre);
+          const vphysics::slip_orbit<vec> orbit{in.centre, y, Mul(W, y), zero};
+          xj = IfThenElse(sticking, xj, vphysics::rotated_position(orbit, in.z, W, cs, sn));
+          zj = IfThenElse(sticking, zj, vphysics::rotated_velocity(orbit, in.z, cs, sn));
         }
+        out[0] = xj, out[1] = zj;
         // record_next: m x'^2 / 2 + k x^2 / 2 as ((m / 2) x') x' + ((k / 2) x) x
-        const vec energy = hn::Add(Mul(Mul(half_m, zj), zj), Mul(Mul(half_k, xj), xj));
-        const vec level = IfThenElse(hn::Eq(v, L0), zero, IfThenElse(hn::Eq(v, L1), one,
-                                                                      Set(d, 2.0)));
-        if (r == N) {
-          hn::StoreU(xj, d, position + j), hn::StoreU(zj, d, velocity + j);
-          hn::StoreU(energy, d, start_at + j), hn::StoreU(level, d, centre_at + j);
-        } else {
-          HWY_ALIGN double out[4][N];
-          hn::Store(xj, d, out[0]), hn::Store(zj, d, out[1]);
-          hn::Store(energy, d, out[2]), hn::Store(level, d, out[3]);
-          std::copy_n(out[0], r, position + j), std::copy_n(out[1], r, velocity + j);
-          std::copy_n(out[2], r, start_at + j), std::copy_n(out[3], r, centre_at + j);
+        out[2] = hn::Add(Mul(Mul(half_m, zj), zj), Mul(Mul(half_k, xj), xj));
+        out[3] = IfThenElse(hn::Eq(in.v, L0), zero, IfThenElse(hn::Eq(in.v, L1), one, Set(d, 2.0)));
+      };
+      double* const to[4] = {position, velocity, start_at, centre_at};
+      const std::size_t whole = n - n % N;  // the times in whole vectors
+      vec out[4];
+      if (n < N) {  // fewer times than lanes: through a padded copy (a stick at t = 0)
+        HWY_ALIGN double pad[7][N];
+        const double* from[7] = {start_at, times, position, velocity, belt, centre_at, stick};
+        for (std::size_t f = 0; f < 7; ++f) {
+          std::fill_n(pad[f], N, f == 6 ? 1.0 : 0.0);
+          std::copy_n(from[f], n, pad[f]);
         }
+        evaluate(inputs{hn::Load(d, pad[0]), hn::Load(d, pad[1]), hn::Load(d, pad[2]),
+                        hn::Load(d, pad[3]), hn::Load(d, pad[4]), hn::Load(d, pad[5]),
+                        hn::Load(d, pad[6])},
+                 out);
+        HWY_ALIGN double kept[N];
+        for (std::size_t f = 0; f < 4; ++f) {
+          hn::Store(out[f], d, kept);
+          std::copy_n(kept, n, to[f]);
+        }
+        return;
+      }
+      // The last, partial vector as the whole vector that ends at n: its
+      // inputs read before the loop overwrites the times it shares with the
+      // last whole vector, and only its last n % N lanes stored.
+      const inputs last = load(n - N);
+      for (std::size_t j = 0; j < whole; j += N) {
+        evaluate(load(j), out);
+        for (std::size_t f = 0; f < 4; ++f) hn::StoreU(out[f], d, to[f] + j);
+      }
+      if (whole < n) {
+        evaluate(last, out);
+        const auto tail = hn::Not(hn::FirstN(d, N - (n - whole)));
+        for (std::size_t f = 0; f < 4; ++f) hn::BlendedStore(out[f], tail, d, to[f] + (n - N));
       }
     }
   }
