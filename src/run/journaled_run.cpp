@@ -158,6 +158,15 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   std::optional<work_meter> work;
   if (plan.progress) work.emplace(spec, to_run);
   const auto stopped = [&] { return plan.stop && plan.stop->requested(); };
+  // What the run does on a stop is decided on one reading per window (the
+  // last window's checkpoint, whether to throw, and the count the message
+  // gives): a stop that arrives after the last window's reading finds every
+  // unit computed and merged, and the outputs are written as after a stop
+  // during the writing. (Read twice, a stop between the readings threw "N
+  // finished units are journaled" with the last window's checkpoint
+  // skipped, so N counted units the journal did not hold.)
+  bool stop_seen = false;
+  const auto stop_now = [&] { return stop_seen = stop_seen || stopped(); };
 
   // A large grid runs window by window (grid_windows): only one window's
   // accumulators are held in full; a finished window's points keep what the
@@ -170,7 +179,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   auto windows = grid_windows(spec, plan, r);
   for (std::size_t wi = 0; wi < windows.size(); ++wi) {
     auto& w = windows[wi];
-    if (stopped()) {  // the later windows' journaled units count as finished
+    if (stop_now()) {  // the later windows' journaled units count as finished
       for (const auto& [point, prefix] : loaded.prefixes) merged_before += prefix.blocks;
       merged_before += loaded.units.size();
       break;
@@ -219,10 +228,11 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     // fsynced); a failure from here to the outputs loses at most the units
     // finished since the last segment, as a kill at any other moment does.
     const bool last_window = wi + 1 == windows.size();
-    if (journal_prefixes && (stopped() || !last_window || !plan.outputs_follow || journal.due()))
+    const bool stop = stop_now();
+    if (journal_prefixes && (stop || !last_window || !plan.outputs_follow || journal.due()))
       checkpoint.write(nullptr, nullptr);
     merged_before += merger.merged_units();
-    if (stopped() || plan.slice) continue;
+    if (stop || plan.slice) continue;
     if (!merger.complete())
       throw error(exit_code::internal, "the run ended with units missing from the merge");
     auto part = make_result_set(w.spec, std::move(merger));
@@ -236,7 +246,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   }
   journal.flush();
   out.elapsed_this_run = seconds_since(t0);
-  if (stopped()) {
+  if (stop_seen) {
     const int sig = plan.stop->reason();
     throw error(static_cast<exit_code>(128 + sig),
                 fmt::format("interrupted by signal {}: {} finished units are journaled in {}; "
@@ -258,9 +268,9 @@ void write_outputs(const run_outcome& out, const std::string& dir, bool keep_jou
   } catch (const error& e) {
     if (e.code() != exit_code::io_failure) throw;
     throw error(e.code(), std::string(e.what()) +
-                              "; the units of the journal's last checkpoint stay in it: rerun with "
-                              "--resume to write the outputs (units finished after that "
-                              "checkpoint are computed again)");
+                              "; the units of the journal's last checkpoint, if any, stay in "
+                              "it: rerun with --resume to write the outputs (units finished "
+                              "after that checkpoint are computed again)");
   }
   if (!keep_journal) io::remove_journal(dir);
 }

@@ -170,10 +170,10 @@ def test_resume_refusal_names_the_keywords(tmp_path):
     ("interrupted by signal 2: 3 finished units are journaled in d/.journal; continue with the "
      "same command and --resume", "interrupted by signal 2: 3 finished units are journaled in "
      "d/.journal; continue with the same call and resume=True"),
-    ("x; the units of the journal's last checkpoint stay in it: rerun with --resume to write "
-     "the outputs (units finished after that checkpoint are computed again)",
-     "x; the units of the journal's last checkpoint stay in it: rerun with resume=True to write "
-     "the outputs (units finished after that checkpoint are computed again)"),
+    ("x; the units of the journal's last checkpoint, if any, stay in it: rerun with --resume to "
+     "write the outputs (units finished after that checkpoint are computed again)",
+     "x; the units of the journal's last checkpoint, if any, stay in it: rerun with resume=True "
+     "to write the outputs (units finished after that checkpoint are computed again)"),
     ("output directory 'd' is in use by stickslip sweep: one writer at a time; wait for it to "
      "finish (or stop it), or choose another -o DIR", "output directory 'd' is in use by "
      "stickslip sweep: one writer at a time; wait for it to finish (or stop it), or choose "

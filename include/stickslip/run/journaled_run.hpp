@@ -100,7 +100,9 @@ struct run_outcome {
                                         const io::run_metadata& fresh, runner& r);
 
 // io::write_all(results, metadata, dir), then removes the journal unless
-// keep_journal. An io_failure says that the units stay in the journal.
+// keep_journal. An io_failure says that the units of the journal's last
+// checkpoint, if any, stay in it (a sweep_into run skips its last
+// checkpoint when none is due: run_plan::outputs_follow).
 void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal,
                    const io::output_options& options = {});
 
