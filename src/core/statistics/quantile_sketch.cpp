@@ -31,13 +31,15 @@ quantile_sketch::store quantile_sketch::trimmed(const store& s) {
                                      s.counts.begin() + static_cast<std::ptrdiff_t>(hi))};
 }
 
-// Grows with room for the size held (at least 128 bins, 8 octaves) beyond
+// Grows with room for the size held (at least 32 bins, 2 octaves) beyond
 // the key asked for, so that a stream of adds moves the counts a number of
-// times logarithmic in the range. The room is freed when the sketch takes
-// no more samples (shrink_to_fit at a point's finish), so only the sketches
-// of points in progress hold it.
+// times logarithmic in the range (doubling: a quarter moved a point's stores
+// about 12 times each). The room is freed when the sketch takes no more
+// samples (shrink_to_fit at a point's finish), so only the sketches of
+// points in progress hold it; a store starts small (32 bins), since a work
+// unit of 64 realizations or more fills sketches of its own.
 void quantile_sketch::cover(store& s, std::uint32_t lo, std::uint32_t hi) {
-  constexpr std::uint32_t initial = 128;
+  constexpr std::uint32_t initial = 32;
   if (s.counts.empty()) {
     s.first = lo >= min_key() + initial / 2 ? lo - initial / 2 : min_key();
     s.counts.assign(std::max<std::uint32_t>(initial, hi - s.first + 1), 0);
