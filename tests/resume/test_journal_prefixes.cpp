@@ -51,9 +51,6 @@ std::vector<bytes> merged_in_order(const sweep_spec& s) {
   return out;
 }
 
-}  // namespace
-
-namespace {
 // Runs `s` on `plan` (a copy) with no checkpoint due during the run (a
 // 3600 s interval) and a SIGINT once `units` are merged: the run throws, and
 // the journal holds what the stop's checkpoint wrote.

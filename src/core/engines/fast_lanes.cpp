@@ -985,13 +985,14 @@ class lane_engine {
       // The last, partial vector as the whole vector that ends at n: its
       // inputs read before the loop overwrites the times it shares with the
       // last whole vector, and only its last n % N lanes stored.
-      const inputs last = load(n - N);
+      std::optional<inputs> last;
+      if (whole < n) last = load(n - N);
       for (std::size_t j = 0; j < whole; j += N) {
         evaluate(load(j), out);
         for (std::size_t f = 0; f < 4; ++f) hn::StoreU(out[f], d, to[f] + j);
       }
-      if (whole < n) {
-        evaluate(last, out);
+      if (last) {
+        evaluate(*last, out);
         const auto tail = hn::Not(hn::FirstN(d, N - (n - whole)));
         for (std::size_t f = 0; f < 4; ++f) hn::BlendedStore(out[f], tail, d, to[f] + (n - N));
       }
