@@ -3,16 +3,16 @@
 // binary serialization (MPI messages, the journal), and every writer (NetCDF,
 // JSON, CSV); the Python layer reads it too. A statistic of a value the
 // realization record already holds is one row in the table below plus its
-// accumulator member in point_statistics (statistics.hpp), and its tests; a
+// accumulator member in point_accumulators (point_accumulators.hpp), and its tests; a
 // new per-realization value also needs its field in realization_record and
 // the observer line that computes it. The order of the rows is the order of
 // the serialized accumulators and of the output columns.
 // The estimates derived from these accumulators (likelihood-ratio
 // derivatives, control variates, CRN slopes) are the rows of estimates.hpp.
 // Outside the table, each written by hand: the causal score of R
-// (point_statistics::stick_fraction_causal_score; its estimate is a row of
+// (point_accumulators::stick_fraction_causal_score; its estimate is a row of
 // estimates.hpp), the observe-time
-// statistics (point_statistics::observed, accumulators/time_statistics.hpp)
+// statistics (point_accumulators::observed, accumulators/time_statistics.hpp)
 // and the convergence trace.
 //
 // Five kinds of rows:
@@ -39,7 +39,8 @@
 #include <string_view>
 #include <vector>
 
-#include "stickslip/statistics.hpp"
+#include "stickslip/parameters.hpp"
+#include "stickslip/point_accumulators.hpp"
 
 namespace stickslip {
 
@@ -76,17 +77,17 @@ struct quantity_info {
   sampling sampled;
   // The value of one realization, for the per_realization* samplings (else nullptr).
   double (*value)(const realization_record& r, double window) noexcept;
-  mean_variance point_statistics::*moments;
-  histogram point_statistics::*density;  // nullptr when range == none
+  mean_variance point_accumulators::*moments;
+  histogram point_accumulators::*density;  // nullptr when range == none
   histogram_range range;
   // Moments against the belt switch count (score derivative d mean/dlambda
   // and control-variate mean, accumulators/score_moments.hpp); nullptr for
   // the pooled and conditional quantities (not one value per realization).
-  score_moments point_statistics::*score = nullptr;
+  score_moments point_accumulators::*score = nullptr;
   // The same against the scores of a two-level belt's rates r1, r2.
-  std::array<score_moments, 2> point_statistics::*rate_score = nullptr;
+  std::array<score_moments, 2> point_accumulators::*rate_score = nullptr;
   // The same against the scores of a generator's entries q_ij (n x n).
-  std::vector<score_moments> point_statistics::*generator_score = nullptr;
+  std::vector<score_moments> point_accumulators::*generator_score = nullptr;
 };
 
 struct counter_info {
@@ -97,9 +98,9 @@ struct counter_info {
   const char* description;
   // How much one realization adds.
   std::uint64_t (*increment)(const realization_record& r) noexcept;
-  std::uint64_t& (*of)(point_statistics& s) noexcept;
-  [[nodiscard]] std::uint64_t value(const point_statistics& s) const noexcept {
-    return of(const_cast<point_statistics&>(s));
+  std::uint64_t& (*of)(point_accumulators& s) noexcept;
+  [[nodiscard]] std::uint64_t value(const point_accumulators& s) const noexcept {
+    return of(const_cast<point_accumulators&>(s));
   }
 };
 
@@ -111,7 +112,7 @@ struct level_quantity_info {
   const char* units;
   const char* long_name;
   const char* description;
-  std::vector<mean_variance> point_statistics::*moments;  // one per level
+  std::vector<mean_variance> point_accumulators::*moments;  // one per level
 };
 
 // A joint histogram of two binned quantities sampled per stick (indices into
@@ -123,7 +124,7 @@ struct joint_histogram_info {
   const char* description;
   std::size_t x, y;           // rows of quantity_table
   sampling x_sampled, y_sampled;
-  histogram2d point_statistics::*counts;
+  histogram2d point_accumulators::*counts;
 };
 
 // A duration law with right censoring (the survival group, --statistics
@@ -136,11 +137,11 @@ struct survival_info {
   const char* episodes;     // which episodes are counted
   sampling sampled;         // per_stick or per_counted_slip
   double survival_spec::*upper;  // the end of the grid
-  survival_counts point_statistics::*counts;
+  survival_counts point_accumulators::*counts;
 };
 
 namespace detail::schema {
-using ps = point_statistics;
+using ps = point_accumulators;
 using rec = const realization_record&;
 
 inline constexpr std::array<quantity_info, 9> quantity_table{{
@@ -319,14 +320,14 @@ static_assert(
 // docs/precision.md); NaN where the point has no such rates, the family
 // statistics were off, or a burn-in cut the window (the scores need the
 // time at each level over all of [0, t_a]).
-[[nodiscard]] estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
+[[nodiscard]] estimate belt_rate_derivative(const point_accumulators& s, const quantity_info& q,
                                             std::size_t j) noexcept;
 // d mean/dq_ij (i != j, 0-based levels) of a quantity with generator scores,
 // by the likelihood ratio of the belt's generator (belt_generator_scores,
 // docs/precision.md); NaN where the point's belt has no generator of its
 // own, q_ij = 0, i = j, the family statistics were off, or a burn-in cut
 // the window.
-[[nodiscard]] estimate belt_generator_derivative(const point_statistics& s,
+[[nodiscard]] estimate belt_generator_derivative(const point_accumulators& s,
                                                  const quantity_info& q, std::size_t i,
                                                  std::size_t j) noexcept;
 

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "stickslip/record_schema.hpp"
+#include "stickslip/statistics.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 namespace stickslip::testing_support {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "stickslip/record_schema.hpp"
+#include "stickslip/statistics.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 namespace stickslip {

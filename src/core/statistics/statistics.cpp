@@ -14,11 +14,11 @@ namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
 point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
-                                   bool family, bool stationary_start_, bool means_only_)
-    : expected_switches(p.switch_rate * p.window),
-      stationary_start(stationary_start_),
-      family_statistics(family),
-      means_only(means_only_) {
+                                   bool family, bool stationary_start_, bool means_only_) {
+  expected_switches = p.switch_rate * p.window;
+  stationary_start = stationary_start_;
+  family_statistics = family;
+  means_only = means_only_;
   if (p.belt_rates.size() == 2) belt_rates = {p.belt_rates[0], p.belt_rates[1]};
   if (!p.belt_generator.empty()) {
     generator = p.belt_generator;

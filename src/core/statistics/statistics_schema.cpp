@@ -74,13 +74,13 @@ const quantity_info* find_mean_statistic(std::string_view name) noexcept {
   return nullptr;
 }
 
-estimate belt_rate_derivative(const point_statistics& s, const quantity_info& q,
+estimate belt_rate_derivative(const point_accumulators& s, const quantity_info& q,
                               std::size_t j) noexcept {
   if (!q.rate_score || !(s.belt_rates[j] > 0.0)) return {};
   return score_derivative((s.*q.rate_score)[j], s.*q.moments, s.belt_rates[j]);
 }
 
-estimate belt_generator_derivative(const point_statistics& s, const quantity_info& q,
+estimate belt_generator_derivative(const point_accumulators& s, const quantity_info& q,
                                    std::size_t i, std::size_t j) noexcept {
   if (!q.generator_score) return {};
   const auto& m = s.*q.generator_score;
