@@ -169,6 +169,33 @@ inline constexpr auto parameter_names = [] {
   return names;
 }();
 
+// The order of grid axes where nothing else orders them (a TOML [grid]
+// without `order`), every row once: the leading axes first (the paper's
+// grid, lambda then mu: the CLI and the writers put them first too), then
+// the refinements of mu, the damping, and the rest; belt levels vI and
+// rates rI come after every row, in the order of their names.
+inline constexpr const char* default_axis_order[] = {"lambda", "mu", "mu_s", "mu_k", "c",
+                                                     "m",      "k",  "g",    "V",    "ta"};
+inline constexpr std::size_t leading_axis_count = 2;
+static_assert(
+    [] {
+      if (std::size(default_axis_order) != std::size(scalar_parameters)) return false;
+      for (const auto& row : scalar_parameters) {
+        int seen = 0;
+        for (const char* s : default_axis_order) seen += std::string_view(s) == row.symbol;
+        if (seen != 1) return false;
+      }
+      return true;
+    }(),
+    "default_axis_order names every scalar parameter once");
+// The rank of an axis in default_axis_order (vI, rI and unknown names after
+// every row).
+[[nodiscard]] constexpr std::size_t axis_rank(std::string_view symbol) noexcept {
+  for (std::size_t i = 0; i < std::size(default_axis_order); ++i)
+    if (symbol == default_axis_order[i]) return i;
+  return std::size(default_axis_order);
+}
+
 // Access by symbol. Besides the names above (and their long aliases), a
 // belt level is "v1".."vN" and the rate of leaving a level of a two-level
 // belt is "r1", "r2". Reading gives the resolved value (mu_s of a model
@@ -195,6 +222,19 @@ const parameter_info& info_for(const std::string& symbol);
 // How the command line and messages name a parameter: "--mu-s" for mu_s; a
 // belt level or rate by its symbol ("v1", "r2"), which has no flag.
 [[nodiscard]] std::string flag_of(std::string_view symbol);
+
+// Every name a parameter can have, for messages: "m, k, ..., mu_k, v1..vN
+// (belt levels), r1, r2 (belt rates)".
+[[nodiscard]] std::string allowed_parameter_names();
+// The symbols a row that sets others also sets: for mu, the rows whose
+// unset value resolves to it (mu_s, mu_k); empty for any other symbol.
+[[nodiscard]] std::vector<std::string> refinements_of(std::string_view symbol);
+// Why a grid axis or an uncertain law over `symbol` would change nothing on
+// top of `base`, because the base overrides it: V under given belt levels,
+// lambda under given belt rates or a generator, mu when a refinement of it
+// (mu_s, mu_k) is given. Empty when it has an effect.
+[[nodiscard]] std::string overridden_by_base(const model_parameters& base,
+                                             std::string_view symbol);
 
 // One assignment of a number to a parameter, as a flag, a TOML key or a
 // Python keyword gives it.

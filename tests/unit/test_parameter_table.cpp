@@ -91,6 +91,47 @@ TEST(ParameterTable, TomlGivesTheModelOfTheSameAssignments) {
   EXPECT_EQ(io::parse_sweep_toml(io::to_toml(s), "again.toml").base, expected);
 }
 
+// mu's refinements and the rules of an axis or law without effect come from
+// the table (the rows whose unset value resolves to mu), written once for
+// grid axes and uncertain laws alike.
+TEST(ParameterTable, MusRefinementsAndTheOverridesOfTheBaseComeFromTheRows) {
+  EXPECT_THAT(refinements_of("mu"), ::testing::ElementsAre("mu_s", "mu_k"));
+  EXPECT_THAT(refinements_of("friction-coefficient"), ::testing::ElementsAre("mu_s", "mu_k"));
+  for (const char* other : {"mu_s", "mu_k", "lambda", "k", "v1"})
+    EXPECT_TRUE(refinements_of(other).empty()) << other;
+  model_parameters base;
+  for (const auto& row : scalar_parameters) EXPECT_EQ(overridden_by_base(base, row.symbol), "");
+  set_parameter(base, "mu_k", 4.0);
+  EXPECT_EQ(overridden_by_base(base, "mu"),
+            "mu sets mu_s and mu_k both, and one of them is given");
+  EXPECT_EQ(overridden_by_base(base, "mu_s"), "");
+  base.belt_levels = {1.0, -0.5};
+  EXPECT_EQ(overridden_by_base(base, "V"), "the belt levels are given");
+  base.belt_rates = {1.0, 2.0};
+  EXPECT_EQ(overridden_by_base(base, "lambda"), "the belt rates are given");
+  EXPECT_EQ(overridden_by_base(base, "switch-rate"), "the belt rates are given");
+}
+
+// A TOML [grid] without `order` sweeps in default_axis_order (lambda, mu
+// first); the command line puts lambda and mu first and keeps the rest as
+// given; both from the one list.
+TEST(ParameterTable, GridAxesFollowTheOneDefaultOrder) {
+  const auto s = io::parse_sweep_toml(
+      "[grid]\nk = [4, 40]\nc = [0, 0.1]\nmu = [1, 2]\nlambda = [1, 2]\nv1 = [1, 2]\n",
+      "grid.toml");
+  std::vector<std::string> names;
+  for (const auto& ax : s.axes) names.push_back(ax.name);
+  EXPECT_THAT(names, ::testing::ElementsAre("lambda", "mu", "c", "k", "v1"));
+  EXPECT_EQ(axis_rank("lambda"), 0u);
+  EXPECT_EQ(axis_rank("mu"), 1u);
+  EXPECT_EQ(axis_rank("v3"), std::size(scalar_parameters));
+  std::vector<axis> cli{{"k", {4.0}}, {"mu", {1.0}}, {"c", {0.0}}, {"lambda", {1.0}}};
+  io::order_added_axes(cli);
+  names.clear();
+  for (const auto& ax : cli) names.push_back(ax.name);
+  EXPECT_THAT(names, ::testing::ElementsAre("lambda", "mu", "k", "c"));
+}
+
 TEST(ParameterTable, TheStreamKeyOfThePaperModelIsItsSevenValues) {
   model_parameters a, b;
   set_parameter(b, "mu_s", a.friction_coefficient);

@@ -1,6 +1,7 @@
 #include "stickslip/parameters.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -25,13 +26,6 @@ std::size_t indexed(std::string_view symbol, char prefix) {
   const auto [ptr, ec] = std::from_chars(symbol.data() + 1, end, i);
   if (ec != std::errc{} || ptr != end || symbol[1] == '0') return 0;
   return i;
-}
-
-// "m, k, ..., mu_k, v1..vN (belt levels), r1, r2 (belt rates)"
-std::string allowed_names() {
-  std::string names;
-  for (const auto& row : scalar_parameters) names += std::string(row.symbol) + ", ";
-  return names + "v1..vN (belt levels), r1, r2 (belt rates)";
 }
 
 // "mu_s (static friction)": a row as messages name it.
@@ -205,7 +199,7 @@ const parameter_info& info_for(const std::string& symbol) {
   if (const auto* row = row_of(symbol)) return *row;
   if (indexed(symbol, 'v') > 0) return belt_level_info;
   if (indexed(symbol, 'r') > 0) return belt_rate_info;
-  throw invalid_value("parameter name", symbol, allowed_names());
+  throw invalid_value("parameter name", symbol, allowed_parameter_names());
 }
 
 bool is_parameter_symbol(std::string_view symbol) {
@@ -232,6 +226,34 @@ std::string flag_of(std::string_view symbol) {
 bool assigned_first(std::string_view symbol) {
   const auto* row = row_of(symbol);
   return row && row->sets_others;
+}
+
+std::string allowed_parameter_names() {
+  std::string names;
+  for (const auto& row : scalar_parameters) names += std::string(row.symbol) + ", ";
+  return names + "v1..vN (belt levels), r1, r2 (belt rates)";
+}
+
+std::vector<std::string> refinements_of(std::string_view symbol) {
+  std::vector<std::string> out;
+  const auto* row = row_of(symbol);
+  if (row && row->sets_others)
+    for (const auto& other : scalar_parameters)
+      if (other.domain == parameter_domain::positive_or_unset) out.emplace_back(other.symbol);
+  return out;
+}
+
+std::string overridden_by_base(const model_parameters& base, std::string_view symbol) {
+  const std::string sym = canonical_symbol(symbol);
+  if (sym == "V" && !base.belt_levels.empty()) return "the belt levels are given";
+  if (sym == "lambda" && (!base.belt_rates.empty() || !base.belt_generator.empty()))
+    return "the belt rates are given";
+  const auto refinements = refinements_of(sym);
+  for (const auto& r : refinements)
+    if (base.*row_of(r)->field > 0.0)
+      return fmt::format("{} sets {} both, and one of them is given", sym,
+                         fmt::join(refinements, " and "));
+  return {};
 }
 
 model_parameters assign(model_parameters base, std::vector<parameter_assignment> assignments) {

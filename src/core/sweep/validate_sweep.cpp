@@ -4,6 +4,7 @@
 #include "stickslip/sweep.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,13 +38,8 @@ void check_distinct(const axis& ax) {
 // An axis over a parameter that the base overrides would change nothing:
 // refuse it rather than compute identical points.
 void check_has_effect(const model_parameters& base, const std::string& sym) {
-  const char* why = nullptr;
-  if (sym == "V" && !base.belt_levels.empty()) why = "the belt levels are given";
-  if (sym == "lambda" && (!base.belt_rates.empty() || !base.belt_generator.empty()))
-    why = "the belt rates are given";
-  if (sym == "mu" && (base.static_friction > 0.0 || base.kinetic_friction > 0.0))
-    why = "mu sets mu_s and mu_k both, and one of them is given";
-  if (why) throw invalid_value("grid axis", sym, fmt::format("an axis that has an effect: {}", why));
+  if (const auto why = overridden_by_base(base, sym); !why.empty())
+    throw invalid_value("grid axis", sym, fmt::format("an axis that has an effect: {}", why));
 }
 
 // Friction coefficients and belt levels and rates constrain each other
@@ -203,13 +199,15 @@ void validate(const sweep_spec& s) {
   }
   check_coupled_axes(s, first);
   validate_sensitivity(s);
-  for (const auto& ax : s.axes)
+  for (const auto& ax : s.axes) {
+    const auto refinements = refinements_of(canonical_symbol(ax.name));
     for (const auto& other : s.axes)
-      if (canonical_symbol(ax.name) == "mu" &&
-          (canonical_symbol(other.name) == "mu_s" || canonical_symbol(other.name) == "mu_k"))
+      if (std::find(refinements.begin(), refinements.end(), canonical_symbol(other.name)) !=
+          refinements.end())
         throw invalid_value("grid axis", ax.name,
-                            "not together with a " + other.name +
-                                " axis: mu sets mu_s and mu_k both");
+                            fmt::format("not together with a {} axis: {} sets {} both", other.name,
+                                        canonical_symbol(ax.name), fmt::join(refinements, " and ")));
+  }
   if (s.realizations < 1)
     throw invalid_parameter("realizations", static_cast<double>(s.realizations), ">= 1");
   if (is_sensitivity(s) && s.target_halfwidth != 0.0 &&

@@ -82,7 +82,8 @@ std::vector<std::string> symbols_set_by_laws(std::span<const uncertain_parameter
   std::vector<std::string> out;
   for (const auto& u : laws) {
     out.push_back(u.symbol);
-    if (u.symbol == "mu") out.insert(out.end(), {"mu_s", "mu_k"});
+    const auto refinements = refinements_of(u.symbol);
+    out.insert(out.end(), refinements.begin(), refinements.end());
   }
   return out;
 }

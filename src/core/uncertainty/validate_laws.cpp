@@ -5,6 +5,7 @@
 // the model at the extreme values a draw can take (the quantiles of the
 // smallest and largest open uniform).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -63,14 +64,10 @@ void check_domain(const uncertain_parameter& u) {
 }
 
 // Symbols whose law would be overwritten or would override a value given
-// otherwise (the same rules as a grid axis, sweep/validate_sweep.cpp check_has_effect).
+// otherwise (overridden_by_base, the rule of a grid axis too), and belt
+// levels or rates the belt does not have.
 void check_has_effect(const model_parameters& base, const uncertain_parameter& u) {
-  const char* why = nullptr;
-  if (u.symbol == "V" && !base.belt_levels.empty()) why = "the belt levels are given";
-  if (u.symbol == "lambda" && (!base.belt_rates.empty() || !base.belt_generator.empty()))
-    why = "the belt rates are given";
-  if (u.symbol == "mu" && (base.static_friction > 0.0 || base.kinetic_friction > 0.0))
-    why = "mu sets mu_s and mu_k both, and one of them is given";
+  std::string why = overridden_by_base(base, u.symbol);
   if (u.symbol[0] == 'v' && u.symbol != "V") {
     const std::size_t i = std::stoul(u.symbol.substr(1));
     if (i > base.levels().size())
@@ -79,7 +76,7 @@ void check_has_effect(const model_parameters& base, const uncertain_parameter& u
   if (u.symbol[0] == 'r' && (base.levels().size() != 2 || !base.belt_generator.empty()))
     why = "r1, r2 are the rates of a two-level belt without a generator matrix";
   if (u.symbol[0] == 'r' && u.symbol != "r1" && u.symbol != "r2") why = "only r1 and r2 exist";
-  if (why) throw invalid_law(u, fmt::format("has no effect on the model: {}", why));
+  if (!why.empty()) throw invalid_law(u, fmt::format("has no effect on the model: {}", why));
 }
 
 // mu_k <= mu_s for every draw: the largest mu_k a draw can give against the
@@ -161,9 +158,8 @@ void validate_laws(const model_parameters& base, std::span<const uncertain_param
   for (const auto& u : laws) {
     if (!is_parameter_symbol(u.symbol))
       throw error(exit_code::invalid_input,
-                  fmt::format("{}: {}: unknown parameter; allowed: m, k, g, mu, V, lambda, ta, "
-                              "c, mu_s, mu_k, belt levels v1..vN, two-level rates r1, r2",
-                              u.symbol, to_string(u.law)));
+                  fmt::format("{}: {}: unknown parameter; allowed: {}", u.symbol,
+                              to_string(u.law), allowed_parameter_names()));
     if (u.symbol != canonical_symbol(u.symbol))
       throw invalid_law(u, fmt::format("names {} by its long name; use the symbol {}", u.symbol,
                                        canonical_symbol(u.symbol)));
@@ -172,13 +168,14 @@ void validate_laws(const model_parameters& base, std::span<const uncertain_param
     if (axes.contains(u.symbol))
       throw invalid_law(u, "is given for a parameter that is also a grid axis; give either a "
                            "law or a grid");
-    if (u.symbol == "mu")
-      for (const char* other : {"mu_s", "mu_k"})
-        if (axes.contains(other) ||
-            std::any_of(laws.begin(), laws.end(), [&](const auto& o) { return o.symbol == other; }))
-          throw invalid_law(u, fmt::format("is given together with {}: mu sets mu_s and mu_k "
-                                           "both; give mu_s and mu_k instead",
-                                           flag_of(other)));
+    const auto refinements = refinements_of(u.symbol);
+    for (const auto& other : refinements)
+      if (axes.contains(other) ||
+          std::any_of(laws.begin(), laws.end(), [&](const auto& o) { return o.symbol == other; }))
+        throw invalid_law(u, fmt::format("is given together with {}: {} sets {} both; give {} "
+                                         "instead",
+                                         flag_of(other), u.symbol, fmt::join(refinements, " and "),
+                                         fmt::join(refinements, " and ")));
     check_has_effect(base, u);
     check_domain(u);
   }

@@ -212,7 +212,8 @@ grid_domain grid_domain_of(std::string_view symbol) {
 }
 
 void order_added_axes(std::vector<axis>& axes) {
-  const auto rank = [](const axis& a) { return a.name == "lambda" ? 0 : a.name == "mu" ? 1 : 2; };
+  // The leading axes (lambda, mu) first, in that order; the rest as given.
+  const auto rank = [](const axis& a) { return std::min(axis_rank(a.name), leading_axis_count); };
   std::stable_sort(axes.begin(), axes.end(),
                    [&](const axis& a, const axis& b) { return rank(a) < rank(b); });
 }

@@ -21,12 +21,6 @@
 namespace stickslip::io {
 namespace {
 
-// Axis order when [grid] has no `order` key (TOML tables are unordered):
-// lambda, mu, then the other symbols in this order, then belt levels vI and
-// rates rI in the order of their names.
-constexpr const char* default_axis_order[] = {"lambda", "mu", "mu_s", "mu_k", "c",
-                                              "m",      "k",  "g",    "V",    "ta"};
-
 struct context {
   std::string_view origin;
 
@@ -338,6 +332,8 @@ void read_grid(const context& cx, const toml::table& t, const sweep_spec& spec,
     if (order.size() != found.size())
       cx.wrong("grid.order", *order_node, "every swept parameter of [grid] listed");
   } else {
+    // TOML tables are unordered: default_axis_order (parameters.hpp), then
+    // belt levels vI and rates rI in the order of their names.
     for (const char* s : default_axis_order) order.emplace_back(s);
     std::vector<std::string> indexed;
     for (const auto& a : found)

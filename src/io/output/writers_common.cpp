@@ -15,8 +15,9 @@ std::vector<std::string> swept_symbols(const sweep_spec& s) {
 
 bool defines_model(const model_parameters& p, std::string_view symbol) {
   const std::string sym = canonical_symbol(symbol);
-  if (sym == "mu")
-    return p.mu_s() == p.friction_coefficient && p.mu_k() == p.friction_coefficient;
+  // mu only where every refinement of it (mu_s, mu_k) resolves to it.
+  for (const auto& r : refinements_of(sym))
+    if (parameter_value(p, r) != parameter_value(p, sym)) return false;
   if (sym == "V") return p.belt_levels.empty();
   if (sym == "lambda") return has_poisson_switching(p);
   return true;
@@ -41,10 +42,13 @@ const model_parameters& resolved_base(const result_set& rs) {
 std::vector<std::string> point_parameter_symbols(const result_set& rs) {
   const auto omitted = meaningless_parameters(rs);
   std::vector<std::string> out;
-  for (const char* sym : {"lambda", "mu"})
-    if (std::find(omitted.begin(), omitted.end(), sym) == omitted.end()) out.emplace_back(sym);
+  // The leading axes (lambda, mu) always, unless meaningless; then the
+  // other swept ones in the grid's order.
+  for (std::size_t i = 0; i < leading_axis_count; ++i)
+    if (std::find(omitted.begin(), omitted.end(), default_axis_order[i]) == omitted.end())
+      out.emplace_back(default_axis_order[i]);
   for (auto& sym : swept_symbols(rs.spec))
-    if (sym != "lambda" && sym != "mu") out.push_back(sym);
+    if (axis_rank(sym) >= leading_axis_count) out.push_back(sym);
   return out;
 }
 
