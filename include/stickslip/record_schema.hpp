@@ -9,10 +9,11 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <variant>
 
-#include "stickslip/statistics.hpp"
+#include "stickslip/point_accumulators.hpp"
 
 namespace stickslip {
 
@@ -132,6 +133,13 @@ inline constexpr std::array<record_field, 19> record_table{{
     {"switch_time_sum", "", "s", "sum of the belt switch times in [0, t_a]",
      record_role::internal, &detail::record_rows::ec::switch_time_sum},
 }};
+
+// A 64-bit identity of a record layout: FNV-1a over each field's name and
+// its member's type (and whether it is one of the event counts), in order.
+// The serialized layout's identity (serial_bytes.hpp, layout_id) includes
+// record_table's, so journal records laid out by another table are refused
+// instead of misread.
+[[nodiscard]] std::uint64_t record_layout_id(std::span<const record_field> fields) noexcept;
 
 // The rows of one role, in table order.
 template <class F>

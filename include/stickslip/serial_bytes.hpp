@@ -26,8 +26,9 @@ namespace stickslip {
 // versions: a journal from another version is recomputed, never misread.
 inline constexpr std::uint32_t serial_format_version = 11;
 
-// FNV-1a over statistics_schema_id() and the parameter names, in order:
-// the lists serialize.hpp lays out by iterating them.
+// FNV-1a over statistics_schema_id(), the parameter names and
+// record_layout_id(record_table), in order: the lists serialize.hpp lays out
+// by iterating them.
 [[nodiscard]] std::uint64_t layout_id() noexcept;
 
 // A byte string holds the encoded bytes (std::string: contiguous, cheap to move).

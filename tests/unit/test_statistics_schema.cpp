@@ -217,5 +217,30 @@ TEST(StatisticsSchema, EveryRowMergesLikeFillingEverything) {
   }
 }
 
+// The record layout's identity (part of the serialized layout id) tells
+// apart tables that lay out a record's bytes differently: another name,
+// another type of member, another order. The same table gives the same id.
+TEST(RecordSchema, LayoutIdChangesWithANameATypeOrTheOrder) {
+  auto table = record_table;
+  const std::uint64_t id = record_layout_id(table);
+  EXPECT_EQ(record_layout_id(table), id);
+  auto renamed = table;
+  renamed[4].name = "stick_count";
+  EXPECT_NE(record_layout_id(renamed), id);
+  auto retyped = table;  // sticks (u32) read as a double member of the same name
+  ASSERT_EQ(std::string(retyped[4].name), "sticks");
+  retyped[4].member = &realization_record::stick_fraction;
+  EXPECT_NE(record_layout_id(retyped), id);
+  auto moved = table;  // belt_switches (u64) as a member of the record, not of its events
+  ASSERT_EQ(std::string(moved[14].name), "belt_switches");
+  moved[14].member = &realization_record::realization;
+  EXPECT_NE(record_layout_id(moved), id);
+  auto swapped = table;
+  std::swap(swapped[4], swapped[5]);
+  EXPECT_NE(record_layout_id(swapped), id);
+  auto shorter = std::span<const record_field>(table).first(table.size() - 1);
+  EXPECT_NE(record_layout_id(shorter), id);
+}
+
 }  // namespace
 }  // namespace stickslip

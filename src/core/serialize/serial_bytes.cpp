@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <zlib.h>
 
+#include "fnv1a.hpp"
 #include "stickslip/parameters.hpp"
+#include "stickslip/record_schema.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 namespace stickslip {
@@ -14,20 +16,12 @@ error detail::corrupt(std::string_view what) {
 
 std::uint64_t layout_id() noexcept {
   static const std::uint64_t id = [] {
-    std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
-    const auto byte = [&h](unsigned char c) {
-      h ^= c;
-      h *= 0x100000001b3ULL;
-    };
-    const auto schema = statistics_schema_id();
-    for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(schema >> (8 * i)));
-    for (const char* name : recorded_parameter_names) {
-      for (const char* c = name; *c; ++c) byte(static_cast<unsigned char>(*c));
-      byte(0);
-    }
-    for (const char* c = "belt_levels|belt_rates|belt_generator"; *c; ++c)
-      byte(static_cast<unsigned char>(*c));
-    return h;
+    detail::fnv1a f;
+    f.u64(statistics_schema_id());
+    for (const char* name : recorded_parameter_names) f.add(name);
+    f.bytes("belt_levels|belt_rates|belt_generator");
+    f.u64(record_layout_id(record_table));
+    return f.h;
   }();
   return id;
 }

@@ -5,6 +5,7 @@
 #include <bit>
 #include <fmt/format.h>
 
+#include "fnv1a.hpp"
 #include "stickslip/fast_math.hpp"
 #include "stickslip/version.hpp"
 
@@ -23,16 +24,11 @@ bool same_results(const sweep_spec& a, const sweep_spec& b) {
 }
 
 std::uint64_t fingerprint(const sweep_spec& s) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
   // The build is part of the identity: another version, revision or SIMD
   // target may round differently, and its units must not be mixed in.
   const std::string build = std::string(stickslip::version) + '|' + stickslip::git_revision +
                             '|' + detail::fm::target_name();
-  for (char c : build + serialize(results_relevant(s))) {
-    h ^= static_cast<std::uint8_t>(c);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
+  return detail::fnv1a_of(build + serialize(results_relevant(s)));
 }
 
 std::string first_difference(const sweep_spec& a, const sweep_spec& b) {

@@ -7,26 +7,16 @@
 #include <cmath>
 #include <string_view>
 
+#include "fnv1a.hpp"
+
 namespace stickslip {
 namespace {
-
-struct fnv1a {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  void add(std::string_view s) {
-    for (char c : s) byte(static_cast<unsigned char>(c));
-    byte(0);  // separator: "ab","c" differs from "a","bc"
-  }
-  void byte(unsigned char c) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-};
 
 }  // namespace
 
 std::uint64_t statistics_schema_id() noexcept {
   static const std::uint64_t id = [] {
-    fnv1a f;
+    detail::fnv1a f;
     for (const auto& q : quantity_table) {
       f.add("quantity");
       f.add(q.name);

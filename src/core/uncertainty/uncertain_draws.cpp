@@ -3,6 +3,7 @@
 
 #include <bit>
 
+#include "fnv1a.hpp"
 #include "stickslip/random_stream.hpp"
 
 namespace stickslip {
@@ -16,14 +17,7 @@ constexpr std::uint64_t mix(std::uint64_t z) noexcept {
 }
 
 // FNV-1a of a text (the canonical law text and its symbol).
-constexpr std::uint64_t text_hash(std::string_view s) noexcept {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const char c : s) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
+constexpr std::uint64_t text_hash(std::string_view s) noexcept { return detail::fnv1a_of(s); }
 
 }  // namespace
 
