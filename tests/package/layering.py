@@ -10,10 +10,16 @@
    the model while the model's header included parameters.hpp: the two
    could be neither understood nor tested apart. A cycle is broken by
    moving what both sides need into a header of its own (motion_mode.hpp,
-   phase_reduction.hpp, sweep_spec.hpp). The one cycle left is listed in
-   KNOWN_COMPONENT_CYCLES with the reason; the test fails on any other,
-   and on the listed one once it is gone (delete its entry then).
-3. No tracker issue numbers in code, tests, benchmarks, scripts or their
+   phase_reduction.hpp, sweep_spec.hpp, point_accumulators.hpp). A cycle
+   that must stay is listed in KNOWN_COMPONENT_CYCLES with the reason (none
+   is); the test fails on any other, and on a listed one once it is gone
+   (delete its entry then).
+3. Each library includes only the libraries below it (docs/architecture.md):
+   core <- precision <- io <- run, study (run and study side by side). A
+   header or source of the core (include/stickslip/ outside io/, run/,
+   study/ and precision/; src/core) that reached into src/run for the thread
+   pool made the core depend on the run layer in all but name.
+4. No tracker issue numbers in code, tests, benchmarks, scripts or their
    comments, nor in README.md and docs/ ("issue" and a number): code and
    docs name the concept (or a commit, for a dated comparison), and a
    reader of the source or the manual has no tracker.
@@ -177,6 +183,48 @@ def issue_numbers(top):
     return hits
 
 
+# What each library may include: itself and the libraries below it.
+ALLOWED = {
+    "core": {"core"},
+    "precision": {"core", "precision"},
+    "io": {"core", "precision", "io"},
+    "run": {"core", "precision", "io", "run"},
+    "study": {"core", "precision", "io", "study"},
+}
+
+
+def library_of(top, path):
+    """The library a header or source belongs to, or None (tests, apps, ...)."""
+    rel = os.path.relpath(path, top).split(os.sep)
+    if rel[0] == "src" and len(rel) > 2 and rel[1] in ALLOWED:
+        return rel[1]
+    if rel[:2] == ["include", "stickslip"]:
+        return rel[2] if len(rel) > 3 and rel[2] in ALLOWED else "core"
+    return None
+
+
+def upward_includes(top, resolve):
+    """Includes of a library's files that reach a library above it."""
+    hits = []
+    for sub in ("include", "src"):
+        for d, _, names in os.walk(os.path.join(top, sub)):
+            for n in sorted(names):
+                if not n.endswith(HEADER + (".cpp",)):
+                    continue
+                p = os.path.normpath(os.path.join(d, n))
+                lib = library_of(top, p)
+                if lib is None:
+                    continue
+                with open(p, encoding="utf-8") as f:
+                    for name in INCLUDE.findall(f.read()):
+                        r = resolve(p, name)
+                        target = library_of(top, r) if r else None
+                        if target and target not in ALLOWED[lib]:
+                            hits.append(f"{os.path.relpath(p, top)} ({lib}) includes "
+                                        f"{os.path.relpath(r, top)} ({target})")
+    return hits
+
+
 def main():
     top = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else ".")
     graph, resolve = headers(top)
@@ -197,6 +245,9 @@ def main():
         if key not in seen:
             print("known component cycle gone, delete its entry: " + ", ".join(key))
             bad += 1
+    for h in upward_includes(top, resolve):
+        print("include of a library above: " + h)
+        bad += 1
     for h in issue_numbers(top):
         print("issue number in code or docs: " + h)
         bad += 1

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "../../run/work_pool.hpp"
+#include "sweep/work_pool.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 
 namespace stickslip {

@@ -1,6 +1,9 @@
-// The thread pool of a run: threads that share one range of work items and
-// hand results to a single consumer. Model-free; the sweep's run_units
-// (sweep.hpp) runs its units through it.
+// The thread pool of a sweep: threads that share one range of work items
+// and hand results to a single consumer. Model-free; the sweep's run_units
+// (sweep.hpp) runs its units through it. Private to the core, where
+// run_sweep is: the precision drivers and the paper study run sweeps through
+// it and sit below or beside the run layer, and a library includes only
+// the libraries below it (tests/package/layering.py).
 #pragma once
 #include <algorithm>
 #include <atomic>
