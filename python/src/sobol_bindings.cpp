@@ -11,12 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "bindings.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
 
-namespace py = pybind11;
-
-namespace stickslip {
+namespace stickslip::python {
 namespace {
 
 using column = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -86,4 +85,4 @@ void register_sobol(py::module_& m) {
         "Sobol' indices and 95 % intervals of pick-freeze outputs (uncertainty/sobol.hpp)");
 }
 
-}  // namespace stickslip
+}  // namespace stickslip::python
