@@ -1,0 +1,71 @@
+// The helpers of results.nc's variables (results_nc.hpp).
+#include "results_nc.hpp"
+
+namespace stickslip::io::detail::results_nc {
+
+void describe(const nc::NcVar& v, const std::string& units, const std::string& long_name,
+              const std::string& description) {
+  v.putAtt("units", units);
+  v.putAtt("long_name", long_name);
+  if (!description.empty()) v.putAtt("description", description);
+}
+
+std::vector<int> level_numbers(std::size_t n) {
+  std::vector<int> numbers(n);
+  for (std::size_t i = 0; i < n; ++i) numbers[i] = static_cast<int>(i + 1);
+  return numbers;
+}
+
+std::vector<nc::NcDim> with(std::vector<nc::NcDim> dims, const nc::NcDim& last) {
+  dims.push_back(last);
+  return dims;
+}
+
+void compress(nc::NcVar& v, const std::vector<nc::NcDim>& dims) {
+  std::vector<std::size_t> shape;
+  for (const auto& d : dims) shape.push_back(d.getSize());
+  std::size_t values = 1;
+  for (auto n : shape) values *= n;
+  if (dims.empty() || values < 4096) return;
+  auto chunks = chunk_shape(shape, netcdf_chunk_values);
+  v.setChunking(nc::NcVar::nc_CHUNKED, chunks);
+  v.setCompression(true, true, 1);
+}
+
+void release_chunks(const nc::NcVar& v) {
+  constexpr std::size_t cached_values = std::size_t{1} << 15;
+  std::size_t values = 1;
+  for (const auto& d : v.getDims()) values *= d.getSize();
+  if (values <= cached_values) return;
+  nc::NcVar::ChunkMode mode{};
+  std::vector<std::size_t> sizes;
+  v.getChunkingParameters(mode, sizes);
+  if (mode == nc::NcVar::nc_CHUNKED) v.setChunkCache(0, 0, 1.0f);
+}
+
+nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
+                     const std::string& units, const std::string& long_name,
+                     const std::string& description, bool fill, bool deflate) {
+  auto v = f.addVar(name, nc::ncDouble, dims);
+  if (deflate) compress(v, dims);
+  if (fill) v.setFill(true, nan);
+  describe(v, units, long_name, description);
+  return v;
+}
+
+nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
+                    const std::string& long_name, const std::string& description) {
+  auto v = f.addVar(name, nc::ncInt64, dims);
+  compress(v, dims);
+  describe(v, "1", long_name, description);
+  return v;
+}
+
+std::string parameter_long_name(const parameter_info& info, const std::string& symbol) {
+  std::string n = info.long_name;
+  std::replace(n.begin(), n.end(), '-', ' ');
+  return n + " " + symbol;
+}
+
+
+}  // namespace stickslip::io::detail::results_nc
