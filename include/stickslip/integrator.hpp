@@ -34,6 +34,7 @@
 
 #include "stickslip/event_physics.hpp"
 #include "stickslip/fast_math.hpp"
+#include "stickslip/engines/point_engine.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/error.hpp"
@@ -121,6 +122,7 @@ template <class Switches, class Observer>
 event_counts simulate(const model_parameters& p, const initial_conditions& ic,
                       Switches& switches, Observer& obs,
                       std::int64_t max_events = default_max_events) {
+  detail::count_integration(integrator::paper);
   using detail::two_pi;
   const double a = p.band_half_width();
   const double w = p.natural_frequency();

@@ -6,11 +6,14 @@
 // simulate_block_reference; replay and the lane engine's rerun after
 // max_events run the reference engine for every model, the paper's
 // included. Points with laws and sensitivity designs run their own engines,
-// and a draw of the paper's model there runs simulate.
+// and a draw of the paper's model there runs simulate. Inside the engines,
+// the realizations each integrator ran (simulate, simulate_model), counted
+// by the integrators themselves, say which one did the work.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -37,6 +40,22 @@ std::array<std::uint64_t, all_engines.size()> runs_of(const auto& run) {
   for (std::size_t i = 0; i < all_engines.size(); ++i)
     after[i] = detail::engine_runs(all_engines[i]) - before[i];
   return after;
+}
+
+// The realizations each integrator ran during `run`: {paper, model}.
+struct integrated {
+  std::uint64_t paper = 0, model = 0;
+  friend bool operator==(const integrated&, const integrated&) = default;
+};
+std::ostream& operator<<(std::ostream& os, const integrated& n) {
+  return os << "{simulate: " << n.paper << ", simulate_model: " << n.model << "}";
+}
+integrated integrations_of(const auto& run) {
+  const integrated before{detail::integrations(integrator::paper),
+                          detail::integrations(integrator::model)};
+  run();
+  return {detail::integrations(integrator::paper) - before.paper,
+          detail::integrations(integrator::model) - before.model};
 }
 
 // Exactly `count` runs of `engine` and none of any other.
@@ -101,18 +120,32 @@ TEST(EngineChoice, EachModelAndEngineSetting) {
 
       expect_only(runs_of([&] { (void)simulate_block(s, work_unit{0, 1}); }), expected, 1,
                   what + ", simulate_block");
+      // Inside the engine: the lanes run no scalar integrator; the reference
+      // engine runs simulate_model for every realization, also of the
+      // paper's model, and never simulate.
+      const integrated block_runs = expected == point_engine::lanes ? integrated{} : integrated{0, 4};
+      EXPECT_EQ(integrations_of([&] { (void)simulate_block(s, work_unit{0, 1}); }), block_runs)
+          << what << ", simulate_block";
       // simulate_units hands a run of blocks to the lane engine at once.
       const std::vector<work_unit> units{{0, 0}, {0, 1}, {0, 2}};
       expect_only(runs_of([&] { (void)simulate_units(s, units); }), expected,
                   expected == point_engine::lanes ? 1 : 3, what + ", simulate_units");
       expect_only(runs_of([&] { (void)simulate_block_reference(s, work_unit{0, 0}); }), reference,
                   1, what + ", simulate_block_reference");
+      EXPECT_EQ(integrations_of([&] { (void)simulate_units(s, units); }),
+                (expected == point_engine::lanes ? integrated{} : integrated{0, 12}))
+          << what << ", simulate_units";
+      EXPECT_EQ(integrations_of([&] { (void)simulate_block_reference(s, work_unit{0, 0}); }),
+                (integrated{0, 4}))
+          << what << ", simulate_block_reference";
     }
     replay_request r;
     r.parameters = m.parameters;
     r.seed = 3;
     r.realization = 2;
     expect_only(runs_of([&] { (void)replay(r); }), reference, 1, std::string(m.name) + ", replay");
+    EXPECT_EQ(integrations_of([&] { (void)replay(r); }), (integrated{0, 1}))
+        << m.name << ", replay";
   }
 }
 
@@ -135,9 +168,14 @@ TEST(EngineChoice, TheLaneRerunUsesTheReferenceEngine) {
     s.max_events = 3;
     const point_engine reference = point_engine::reference;
     const auto reruns = detail::lane_reference_reruns();
+    integrated inside;
     const auto runs = runs_of([&] {
-      EXPECT_THROW((void)simulate_block(s, work_unit{0, 0}), error) << m.name;
+      inside = integrations_of([&] {
+        EXPECT_THROW((void)simulate_block(s, work_unit{0, 0}), error) << m.name;
+      });
     });
+    EXPECT_EQ(inside.paper, 0u) << m.name;  // the rerun runs simulate_model, which throws
+    EXPECT_GE(inside.model, 1u) << m.name;
     EXPECT_EQ(detail::lane_reference_reruns(), reruns + 1) << m.name;
     EXPECT_EQ(runs[static_cast<std::size_t>(point_engine::lanes)], 1u) << m.name;
     EXPECT_EQ(runs[static_cast<std::size_t>(reference)], 1u) << m.name;
@@ -155,6 +193,15 @@ TEST(EngineChoice, LawsAndSensitivityDesignsRunTheirOwnEngines) {
     EXPECT_EQ(engine_for(s, point_parameters(s, 0)), point_engine::uncertain);
     expect_only(runs_of([&] { (void)simulate_units(s, {{0, 0}, {0, 1}}); }),
                 point_engine::uncertain, 2, "laws");
+    // mu drawn on the paper's base: every draw is a paper model, run by
+    // simulate (draw_engine); a law of mu_k makes every draw a family model.
+    EXPECT_EQ(integrations_of([&] { (void)simulate_units(s, {{0, 0}, {0, 1}}); }),
+              (integrated{8, 0}));
+    sweep_spec family = s;
+    family.uncertain = {{"mu_k", parse_law("uniform(2,4)", "mu_k")}};
+    validate(family);
+    EXPECT_EQ(integrations_of([&] { (void)simulate_units(family, {{0, 0}}); }),
+              (integrated{0, 4}));
     sensitivity_choice design;
     design.samples = 8;
     design.block_size = 4;
@@ -162,6 +209,9 @@ TEST(EngineChoice, LawsAndSensitivityDesignsRunTheirOwnEngines) {
     EXPECT_EQ(engine_for(s, point_parameters(s, 0)), point_engine::sensitivity);
     expect_only(runs_of([&] { (void)simulate_block(s, work_unit{0, 0}); }),
                 point_engine::sensitivity, 1, "sensitivity");
+    // 4 rows of d + 3 = 4 realizations each, every draw of mu a paper model.
+    EXPECT_EQ(integrations_of([&] { (void)simulate_block(s, work_unit{0, 0}); }),
+              (integrated{16, 0}));
   }
 }
 

@@ -47,6 +47,7 @@ template <class LevelSwitches, class Observer>
 event_counts simulate_model(const oscillator_model& model, const model_initial_state& ic,
                             LevelSwitches& switches, Observer& obs,
                             std::int64_t max_events = default_max_events) {
+  detail::count_integration(integrator::model);
   const double as = model.static_band_half_width();
   const double ak = model.kinetic_offset();
   const double w = model.natural_frequency();
