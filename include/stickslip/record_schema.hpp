@@ -78,8 +78,9 @@ inline bool first_stick(const realization_record& r) noexcept { return has_first
 
 // In the order of the journal's record layout (so that the table reproduces
 // its bytes). A new row goes at the end: a last column of records.csv, a
-// last field of the journal's records (bump serial_format_version,
-// serial_bytes.hpp, so that older journals are recomputed, not misread).
+// last field of the journal's records. Nothing else to bump: the layout id
+// of every journal and message (layout_id, serial_bytes.hpp) hashes this
+// table (record_layout_id), so older journals are recomputed, not misread.
 inline constexpr std::array<record_field, 19> record_table{{
     {"realization", "r", "1", "index of the realization at its grid point, from 0",
      record_role::identity, &detail::record_rows::rr::realization},

@@ -22,8 +22,10 @@
 namespace stickslip {
 
 // Bumped whenever the layout of any message (serialize.hpp) or journal
-// record changes (CHANGELOG.md notes the recent bumps). Readers refuse other
-// versions: a journal from another version is recomputed, never misread.
+// record changes in a way the tables do not say (CHANGELOG.md notes the
+// recent bumps); a change of the statistics schema, the parameter table or
+// the record table changes layout_id instead. Readers refuse both: a journal
+// from another version or layout is recomputed, never misread.
 inline constexpr std::uint32_t serial_format_version = 11;
 
 // FNV-1a over statistics_schema_id(), the parameter names and
