@@ -34,7 +34,7 @@
 
 #include "stickslip/event_physics.hpp"
 #include "stickslip/fast_math.hpp"
-#include "stickslip/engines/point_engine.hpp"
+#include "stickslip/engines/integration_counts.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/observer.hpp"
 #include "stickslip/error.hpp"

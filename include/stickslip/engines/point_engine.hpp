@@ -37,20 +37,7 @@ inline constexpr std::size_t point_engine_count =
 // chain to build per realization), else the reference engine.
 [[nodiscard]] point_engine draw_engine(const model_parameters& drawn);
 
-// The integrators that run one realization: simulate (integrator.hpp, the
-// paper's model) and simulate_model (model/model_engine.hpp, every model).
-// The lane engine runs neither (only its rerun after max_events does).
-enum class integrator : unsigned char { paper, model };
-
 namespace detail {
-// How many realizations each integrator has run, counted inside the
-// integrator itself, so that a choice made anywhere above it (a site that
-// picks another integrator inside a counted engine) is seen. Counted per
-// thread and added to a process-wide total when the thread ends:
-// integrations() is that total plus the calling thread's count, exact once
-// the other threads that ran have been joined (a sweep's always are).
-void count_integration(integrator i) noexcept;
-[[nodiscard]] std::uint64_t integrations(integrator i) noexcept;
 // How many times each engine has been entered, process-wide: a block (or a
 // run of blocks) of the sweep, a lane trace, a replay. Tests use it to hold
 // every site to engine_for (engines/engine_choice.hpp).

@@ -31,6 +31,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "stickslip/engines/integration_counts.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/integrator.hpp"

@@ -29,24 +29,6 @@ std::uint64_t detail::engine_runs(point_engine e) noexcept {
   return g_engine_runs[static_cast<std::size_t>(e)].load(std::memory_order_relaxed);
 }
 
-namespace {
-std::atomic<std::uint64_t> g_integrations[2] = {};  // by integrator
-// This thread's counts, added to g_integrations when it ends (an atomic
-// per realization would make the threads of a sweep share one cache line).
-struct thread_integrations {
-  std::uint64_t n[2] = {};
-  ~thread_integrations() {
-    for (std::size_t i = 0; i < 2; ++i) g_integrations[i].fetch_add(n[i], std::memory_order_relaxed);
-  }
-};
-thread_local thread_integrations t_integrations;
-}  // namespace
-void detail::count_integration(integrator i) noexcept { ++t_integrations.n[static_cast<std::size_t>(i)]; }
-std::uint64_t detail::integrations(integrator i) noexcept {
-  const auto k = static_cast<std::size_t>(i);
-  return g_integrations[k].load(std::memory_order_relaxed) + t_integrations.n[k];
-}
-
 point_engine draw_engine(const model_parameters& drawn) {
   return drawn.is_paper_model() ? point_engine::paper_integrator : point_engine::reference;
 }

@@ -1,11 +1,10 @@
-// The codec of a realization's raw record (statistics.hpp): its fields in the
+// The codec of a realization's raw record (point_accumulators.hpp): its fields in the
 // order of the record table (record_schema.hpp), each in its own width (the
 // belt start as a signed byte, a flag as a byte), then the drawn values.
 #include <fmt/format.h>
 
 #include <type_traits>
 
-#include "fnv1a.hpp"
 #include "serialize/codecs.hpp"
 #include "stickslip/record_schema.hpp"
 
@@ -24,23 +23,6 @@ void get_field(reader& r, int& v, const char* name) { v = static_cast<std::int8_
 void get_field(reader& r, bool& v, const char* name) { v = r.boolean(name); }
 
 }  // namespace
-
-}  // namespace stickslip::serial
-
-namespace stickslip {
-
-std::uint64_t record_layout_id(std::span<const record_field> fields) noexcept {
-  detail::fnv1a f;
-  for (const auto& field : fields) {
-    f.add(field.name);
-    f.byte(static_cast<unsigned char>(field.member.index()));  // the member's type and struct
-  }
-  return f.h;
-}
-
-}  // namespace stickslip
-
-namespace stickslip::serial {
 
 std::size_t record_bytes() noexcept {
   static const std::size_t n = [] {
