@@ -4,10 +4,11 @@
 // The bytes are serial_bytes.hpp's: little-endian, doubles as their bit
 // patterns, so a round trip is bit-exact. Every message starts with a 4-byte
 // tag, the format version and the layout id (layout_id(): the list of
-// statistics a block result holds and of model parameters a spec holds);
-// vectors carry their length. Both lists are laid out by iterating
-// them (statistics_schema.hpp, recorded_parameter_names in parameters.hpp),
-// so adding a statistic or a parameter changes the layout id, and data
+// statistics a block result holds, of model parameters a spec holds and of
+// the fields of a record); vectors carry their length. The three lists are
+// laid out by iterating them (statistics_schema.hpp, recorded_parameter_names
+// in parameters.hpp, record_table in record_schema.hpp), so adding a
+// statistic, a parameter or a record field changes the layout id, and data
 // written without it is refused, never misread.
 // Deserialization never trusts its input: every length is checked against
 // the bytes that remain, every count against a sane bound, and histogram

@@ -328,7 +328,7 @@ TEST(Serialize, AnotherFormatVersionOrStatisticsSchemaIsRefusedByName) {
   expect_refused(v1, "format version 1 (this program reads version " + std::to_string(serial_format_version) + ")");
   auto other_schema = bytes;
   other_schema[8] ^= 0x01;  // first byte of the u64 layout id
-  expect_refused(other_schema, "another list of statistics or model parameters");
+  expect_refused(other_schema, "another list of statistics, model parameters or record fields");
 }
 
 TEST(Journal, AJournalOfFormatVersion1IsReportedAndRecomputed) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "stickslip/record_schema.hpp"
+#include "stickslip/serial_bytes.hpp"
 #include "stickslip/statistics.hpp"
 #include "stickslip/statistics_schema.hpp"
 
@@ -240,6 +241,16 @@ TEST(RecordSchema, LayoutIdChangesWithANameATypeOrTheOrder) {
   EXPECT_NE(record_layout_id(swapped), id);
   auto shorter = std::span<const record_field>(table).first(table.size() - 1);
   EXPECT_NE(record_layout_id(shorter), id);
+}
+
+// The serialized layout's identity (every journal and message carries it)
+// is pinned: a change of the statistics schema, the parameter names or the
+// record table changes it, on purpose and with a CHANGELOG entry. It covers
+// the record table: without its part the id would be the one builds before
+// wrote (0x53970b7da65d6768, read from such a journal's header).
+TEST(RecordSchema, TheSerializedLayoutIdIsPinnedAndCoversTheRecordTable) {
+  EXPECT_EQ(layout_id(), 0x9d33d218398d0c04ULL) << std::hex << "0x" << layout_id();
+  EXPECT_NE(layout_id(), 0x53970b7da65d6768ULL);
 }
 
 }  // namespace
