@@ -188,8 +188,8 @@ static_assert(
       return true;
     }(),
     "default_axis_order names every scalar parameter once");
-// The rank of an axis in default_axis_order (vI, rI and unknown names after
-// every row).
+// The rank of a canonical symbol in default_axis_order (vI, rI, long aliases
+// and unknown names after every row).
 [[nodiscard]] constexpr std::size_t axis_rank(std::string_view symbol) noexcept {
   for (std::size_t i = 0; i < std::size(default_axis_order); ++i)
     if (symbol == default_axis_order[i]) return i;

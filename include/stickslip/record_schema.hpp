@@ -1,5 +1,5 @@
 // The one list of the fields of a realization's record (realization_record,
-// statistics.hpp). Everything that writes a record iterates over it, in this
+// point_accumulators.hpp). Everything that writes a record iterates over it, in this
 // order: the record columns of records.csv, the "statistics" object of
 // `simulate --format json`, the `record` dict of Python's Realization, and
 // the journal's record layout. A new per-realization value is its field in

@@ -14,9 +14,9 @@
 //   W_c  power dissipated by damping,  (1/t_a) int c x'^2 dt
 // Per grid point: mergeable accumulators of these, with densities and a
 // convergence trace. Memory is independent of the number of realizations.
-// Every accumulator of point_statistics has a row in the statistics schema
-// (statistics_schema.hpp), which says how it is sampled, binned, merged,
-// serialized and written.
+// The accumulators are point_accumulators (point_accumulators.hpp); each has
+// a row in the statistics schema (statistics_schema.hpp), which says how it
+// is sampled, binned, merged, serialized and written.
 #pragma once
 #include <array>
 #include <cmath>
@@ -61,7 +61,6 @@ struct realization_samples {
   // state_sampler.hpp), one per time; nullptr without observe times.
   const stickslip::observed_states* observed_states = nullptr;
 };
-
 
 // Whether the belt switches at the Poisson rate lambda (two levels left at
 // the same rate lambda: no belt_rates, no belt_generator), so that the

@@ -114,7 +114,7 @@ struct sweep_spec {
   // The optional groups of statistics (statistics_groups.hpp; `default` is
   // always on): part of the results' identity, like every field above.
   statistics_selection statistics;
-  // The survival group's grid, shared by all points (statistics.hpp); used
+  // The survival group's grid, shared by all points (point_accumulators.hpp); used
   // only with statistics.survival. Its automatic (0) ends are resolved by
   // resolve_survival_grid before a run (validate() requires them).
   survival_spec survival;

@@ -15,10 +15,9 @@
    is); the test fails on any other, and on a listed one once it is gone
    (delete its entry then).
 3. Each library includes only the libraries below it (docs/architecture.md):
-   core <- precision <- io <- run, study (run and study side by side). A
-   header or source of the core (include/stickslip/ outside io/, run/,
-   study/ and precision/; src/core) that reached into src/run for the thread
-   pool made the core depend on the run layer in all but name.
+   core <- precision <- io <- run, study (run and study side by side). The
+   core is include/stickslip/ outside io/, run/, study/ and precision/, and
+   src/core.
 4. No tracker issue numbers in code, tests, benchmarks, scripts or their
    comments, nor in README.md and docs/ ("issue" and a number): code and
    docs name the concept (or a commit, for a dated comparison), and a

@@ -287,9 +287,8 @@ void set_parameter(model_parameters& p, std::string_view name, double value) {
   const std::string s = canonical_symbol(name);
   if (const auto* row = row_of(s)) {
     p.*row->field = value;
-    if (row->sets_others)  // mu: the values it sets are no longer given separately
-      for (const auto& other : scalar_parameters)
-        if (other.domain == parameter_domain::positive_or_unset) p.*other.field = 0.0;
+    // mu: the values it sets are no longer given separately
+    for (const auto& other : refinements_of(row->symbol)) p.*row_of(other)->field = 0.0;
   }
   else if (const std::size_t i = indexed(s, 'v'); i > 0) {
     if (p.belt_levels.empty()) p.belt_levels = p.levels();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "stickslip/statistics.hpp"
 #include "stickslip/statistics_schema.hpp"
 
 namespace stickslip::serial {

@@ -10,9 +10,6 @@
 #include "fnv1a.hpp"
 
 namespace stickslip {
-namespace {
-
-}  // namespace
 
 std::uint64_t statistics_schema_id() noexcept {
   static const std::uint64_t id = [] {

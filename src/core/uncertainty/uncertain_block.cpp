@@ -5,6 +5,7 @@
 
 #include "stickslip/engines/point_engine.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/statistics.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/uncertainty/uncertain_realization.hpp"
 
