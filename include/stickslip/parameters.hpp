@@ -226,8 +226,14 @@ const parameter_info& info_for(const std::string& symbol);
 // Every name a parameter can have, for messages: "m, k, ..., mu_k, v1..vN
 // (belt levels), r1, r2 (belt rates)".
 [[nodiscard]] std::string allowed_parameter_names();
-// The symbols a row that sets others also sets: for mu, the rows whose
-// unset value resolves to it (mu_s, mu_k); empty for any other symbol.
+// Whether `row` refines `of`: `of` sets others (mu) and `row`'s unset value
+// resolves to it (mu_s, mu_k). The one rule behind refinements_of, and what
+// set_parameter clears when `of` is written.
+[[nodiscard]] constexpr bool refines(const parameter_info& row, const parameter_info& of) noexcept {
+  return of.sets_others && row.domain == parameter_domain::positive_or_unset;
+}
+// The symbols a row that sets others also sets (the rows that refine it):
+// for mu, mu_s and mu_k; empty for any other symbol.
 [[nodiscard]] std::vector<std::string> refinements_of(std::string_view symbol);
 // Why a grid axis or an uncertain law over `symbol` would change nothing on
 // top of `base`, because the base overrides it: V under given belt levels,

@@ -126,15 +126,17 @@ struct point_accumulators {
   bool stationary_start = true;  // the start level drawn from the stationary law
   std::vector<mean_variance> level_fraction;  // P_j, one per belt level
   histogram2d stick_duration_onset;            // (D_i, X_i) of every stick
-  bool family_statistics = true;               // point_statistics::add fills the five above
-  bool means_only = false;                     // point_statistics::add fills per-realization moments only
+  // Whether point_statistics::add fills the five above; whether it fills
+  // only the moments of the per-realization quantities.
+  bool family_statistics = true;
+  bool means_only = false;
   // The survival group (point_statistics::select_survival): D_i and H_i ended or censored.
   survival_counts stick_survival, slip_survival;
   // The ensemble at the observe times (point_statistics::select_observe_times;
   // sweep_spec::observe_times): empty (not selected) by default.
   time_statistics observed;
   std::uint64_t realizations = 0;
-  std::uint64_t no_stick = 0;              // realizations without a D_1 (no stick starts in [T, t_a))
+  std::uint64_t no_stick = 0;  // realizations without a D_1 (no stick starts in [T, t_a))
   std::uint64_t first_stick_censored = 0;  // D_1 cut off by t_a
   event_counts events;
   std::vector<convergence_point> convergence;

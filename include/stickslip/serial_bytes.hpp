@@ -124,7 +124,8 @@ class byte_reader {
     const auto layout = u64("layout id");
     if (layout != layout_id())
       throw corrupt(fmt::format("layout {:016x} (this program's is {:016x}): written by a "
-                                "build with another list of statistics, model parameters or record fields",
+                                "build with another list of statistics, model parameters or "
+                                "record fields",
                                 layout, layout_id()));
   }
   [[nodiscard]] std::size_t remaining() const noexcept { return in_.size() - pos_; }

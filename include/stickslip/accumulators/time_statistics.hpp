@@ -94,10 +94,11 @@ class time_statistics {
   void quantiles(std::size_t j, quantile_sketch time_point_statistics::*sketch, double* out) const;
   // For an accumulator that takes no more realizations (a finished point):
   // settles the codes, frees the buffer and the sketches' room to grow
-  // (most of a small store, about half or more of one that grew), and computes the quantiles when the point
-  // finishes (the sweep calls it under its merge's lock, while the other
-  // threads compute their units), rather than all at once when the outputs
-  // are written. Changes no value; an add or a merge after it still works.
+  // (most of a small store, about half or more of one that grew), and
+  // computes the quantiles when the point finishes (the sweep calls it under
+  // its merge's lock, while the other threads compute their units), rather
+  // than all at once when the outputs are written. Changes no value; an add
+  // or a merge after it still works.
   void finish();
   [[nodiscard]] std::uint64_t level_count(std::size_t j, std::size_t level) const noexcept {
     return level_counts_[j * levels_ + level];

@@ -237,9 +237,9 @@ std::string allowed_parameter_names() {
 std::vector<std::string> refinements_of(std::string_view symbol) {
   std::vector<std::string> out;
   const auto* row = row_of(symbol);
-  if (row && row->sets_others)
+  if (row)
     for (const auto& other : scalar_parameters)
-      if (other.domain == parameter_domain::positive_or_unset) out.emplace_back(other.symbol);
+      if (refines(other, *row)) out.emplace_back(other.symbol);
   return out;
 }
 
@@ -288,7 +288,8 @@ void set_parameter(model_parameters& p, std::string_view name, double value) {
   if (const auto* row = row_of(s)) {
     p.*row->field = value;
     // mu: the values it sets are no longer given separately
-    for (const auto& other : refinements_of(row->symbol)) p.*row_of(other)->field = 0.0;
+    for (const auto& other : scalar_parameters)
+      if (refines(other, *row)) p.*other.field = 0.0;
   }
   else if (const std::size_t i = indexed(s, 'v'); i > 0) {
     if (p.belt_levels.empty()) p.belt_levels = p.levels();

@@ -171,11 +171,12 @@ void validate_laws(const model_parameters& base, std::span<const uncertain_param
     const auto refinements = refinements_of(u.symbol);
     for (const auto& other : refinements)
       if (axes.contains(other) ||
-          std::any_of(laws.begin(), laws.end(), [&](const auto& o) { return o.symbol == other; }))
+          std::any_of(laws.begin(), laws.end(), [&](const auto& o) { return o.symbol == other; })) {
+        const auto both = fmt::format("{}", fmt::join(refinements, " and "));
         throw invalid_law(u, fmt::format("is given together with {}: {} sets {} both; give {} "
                                          "instead",
-                                         flag_of(other), u.symbol, fmt::join(refinements, " and "),
-                                         fmt::join(refinements, " and ")));
+                                         flag_of(other), u.symbol, both, both));
+      }
     check_has_effect(base, u);
     check_domain(u);
   }

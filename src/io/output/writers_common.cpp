@@ -16,8 +16,9 @@ std::vector<std::string> swept_symbols(const sweep_spec& s) {
 bool defines_model(const model_parameters& p, std::string_view symbol) {
   const std::string sym = canonical_symbol(symbol);
   // mu only where every refinement of it (mu_s, mu_k) resolves to it.
-  for (const auto& r : refinements_of(sym))
-    if (parameter_value(p, r) != parameter_value(p, sym)) return false;
+  const parameter_info& info = info_for(sym);
+  for (const auto& row : scalar_parameters)
+    if (refines(row, info) && resolved_value(p, row) != resolved_value(p, info)) return false;
   if (sym == "V") return p.belt_levels.empty();
   if (sym == "lambda") return has_poisson_switching(p);
   return true;
