@@ -78,10 +78,8 @@ struct root_angle_args {
 }
 [[nodiscard]] inline double root_angle_from_raw(double raw, double wy, double v, double sigma,
                                                 double sqrt_disc) noexcept {
-  const double r = physics::root_ordinate(sigma, sqrt_disc);
-  if (raw >= 0.0) return raw;
-  if ((sigma * v <= 0.0 || wy * r > 0.0) && raw > -0.5 * std::numbers::pi) return 0.0;
-  return raw + two_pi;
+  return physics::root_angle_from_raw(raw, wy, v, sigma, physics::root_ordinate(sigma, sqrt_disc),
+                                      physics::scalar_constants);
 }
 [[nodiscard]] inline double root_angle(double wy, double z, double v, double sigma,
                                        double sqrt_disc) noexcept {
@@ -110,7 +108,7 @@ struct root_angle_args {
 // Split in two, like the mirror return, so that the lane engine can take the
 // atan2 with its own target's kernel (the same bits).
 [[nodiscard]] inline double reversal_arc_from_alpha(double alpha, double sigma) noexcept {
-  return sigma > 0 ? two_pi - 2.0 * alpha : 2.0 * alpha;
+  return physics::reversal_arc_from_alpha(alpha, sigma, physics::scalar_constants);
 }
 [[nodiscard]] inline double reversal_arc_angle(double wy, double v, double sigma) noexcept {
   return reversal_arc_from_alpha(fm::atan2(std::abs(wy), v), sigma);
@@ -139,7 +137,7 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   const auto start = detail::physics::mode_at_start(x, z, v, a);
   mode m = start.kind;
   double sigma = start.sigma;  // friction direction while slipping
-  bool grazing = start.grazing;  // on the grazing orbit after a stick break
+  bool grazing = start.on_outward_edge;  // on the grazing orbit (physics::leave_edge)
   bool after_reversal = start.after_reversal;
   bool mirror = false;       // slip started by a belt switch that ended a stick
 

@@ -17,8 +17,11 @@
 // and the contact rule itself on hand-made states.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <random>
 #include <vector>
 
 #include "regression/recorded.hpp"
@@ -144,6 +147,90 @@ TEST(StickShorterThanTimeResolution, ContactRuleOnHandMadeStates) {
   c = resolve_contact(1000.0, -1.5, 1.0, 1.0, 1.0);
   EXPECT_EQ(c.outcome, contact_outcome::reversal);
   EXPECT_EQ(c.x, -1.5);
+}
+
+// The same rule about a band centre b != 0 (damped models: b = -c v / k)
+// and at a resting level (v = 0: no outward edge), a = 1, b = 0.25.
+TEST(StickShorterThanTimeResolution, ContactRuleAboutABandCentreAndAtRest) {
+  using detail::physics::contact_outcome;
+  using detail::physics::resolve_contact;
+  const double b = 0.25;
+  // on the outward edge x = b + a: a grazing touch, leaving from the edge
+  auto c = resolve_contact(3.0, 1.25, 1.0, 2.0, 1.0, b);
+  EXPECT_EQ(c.outcome, contact_outcome::grazing);
+  EXPECT_EQ(c.x, 1.25);
+  EXPECT_EQ(c.sigma, 1.0);
+  // at rest (sgn v = -1) the edge b - a would be the outward one for v < 0:
+  // it sticks, the band has no outward edge at v = 0
+  EXPECT_EQ(resolve_contact(3.0, -0.75, -1.0, -2.0, 1.0, b).outcome, contact_outcome::grazing);
+  EXPECT_EQ(resolve_contact(3.0, -0.75, -1.0, 0.0, 1.0, b).outcome, contact_outcome::stick);
+  // inside the band about b (not about 0): a stick where it touched
+  c = resolve_contact(3.0, -0.6, 1.0, 2.0, 1.0, b);
+  EXPECT_EQ(c.outcome, contact_outcome::stick);
+  EXPECT_EQ(c.x, -0.6);
+  // x - b = -1.1 < -a from sigma = +1: a reversal, x unchanged
+  c = resolve_contact(3.0, -0.85, 1.0, 2.0, 1.0, b);
+  EXPECT_EQ(c.outcome, contact_outcome::reversal);
+  EXPECT_EQ(c.x, -0.85);
+  EXPECT_EQ(c.sigma, -1.0);
+  // from sigma = -1 the band's side is x - b <= a: stuck at the clamped
+  // inward edge b - a
+  c = resolve_contact(3.0, -0.85, -1.0, 2.0, 1.0, b);
+  EXPECT_EQ(c.outcome, contact_outcome::stick);
+  EXPECT_EQ(c.x, -0.75);
+  // the mode at t = 0 about b: the outward edge leaves it, except at rest
+  using detail::physics::mode_at_start;
+  EXPECT_TRUE(mode_at_start(1.25, 2.0, 2.0, 1.0, b).on_outward_edge);
+  EXPECT_TRUE(mode_at_start(-0.75, -2.0, -2.0, 1.0, b).on_outward_edge);
+  EXPECT_EQ(mode_at_start(-0.75, 0.0, 0.0, 1.0, b).kind, mode::stick);
+  EXPECT_EQ(mode_at_start(-0.85, 2.0, 2.0, 1.0, b).sigma, -1.0);  // a reversal: sgn(x - b)
+  EXPECT_TRUE(mode_at_start(-0.85, 2.0, 2.0, 1.0, b).after_reversal);
+  // the departure from the edge: grazing with mu_s = mu_k, away otherwise
+  EXPECT_TRUE(detail::physics::leave_edge(-2.0, true).grazing);
+  EXPECT_TRUE(detail::physics::leave_edge(-2.0, false).after_reversal);
+  EXPECT_EQ(detail::physics::leave_edge(-2.0, false).sigma, -1.0);
+}
+
+// decide_contact divides for the break time only where the gap to the edge
+// is below |v| t 2^-49 (or t < 2^-900): elsewhere the break is strictly
+// after t. Oracle: the undivided rule, t + gap / |v| <= t, on states whose
+// gaps straddle the bound by a few ulps of t, over t from 2^-1000 to 2^40.
+TEST(StickShorterThanTimeResolution, TheGatedBreakTimeCheckIsTheDirectOne) {
+  using detail::physics::contact_outcome;
+  using detail::physics::resolve_contact;
+  std::mt19937_64 gen(20261128);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t by_rounding = 0, kept = 0, on_edge = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double a = std::ldexp(1.0 + unit(gen), static_cast<int>(unit(gen) * 20) - 10);
+    const double speed = std::ldexp(1.0 + unit(gen), static_cast<int>(unit(gen) * 30) - 15);
+    // mostly t within 2^+-60 of a / |v|, where a gap can both round into
+    // the edge's ulp and not; else anywhere in [2^-1000, 2^40]
+    const double t = unit(gen) < 0.8
+                         ? std::ldexp(a / speed * (1.0 + unit(gen)), static_cast<int>(unit(gen) * 120) - 60)
+                         : std::ldexp(1.0 + unit(gen), -1000 + static_cast<int>(unit(gen) * 1040));
+    const double v = unit(gen) < 0.5 ? speed : -speed;
+    const double s = v > 0 ? 1.0 : -1.0;
+    const double b = unit(gen) < 0.5 ? 0.0 : s * a * unit(gen);
+    // a gap of 2^-58 .. 2^-44 times |v| t (ulps of t around the bound)
+    const double gap = speed * t * std::ldexp(1.0 + unit(gen), -58 + static_cast<int>(unit(gen) * 14));
+    if (gap >= a) continue;  // beyond the band: a reversal (above)
+    const double x = b + s * (a - gap);
+    const auto c = resolve_contact(t, x, s, v, a, b);
+    // the undivided rule on the state the rule sees (x clamped to the band)
+    const double xc = std::clamp(x, b - a, b + a);
+    const double g = a - s * (xc - b);
+    const bool no_length = g <= 0.0 || t + g / speed <= t;
+    ASSERT_EQ(c.outcome, no_length ? contact_outcome::grazing : contact_outcome::stick)
+        << "t " << t << " a " << a << " v " << v << " b " << b << " x " << x;
+    (g <= 0.0 ? on_edge : no_length ? by_rounding : kept) += 1;
+  }
+  // every branch, often: on the edge, a break that rounds to t, a stick
+  std::printf("on the edge %zu, break rounds to t %zu, stick kept %zu\n", on_edge, by_rounding,
+              kept);
+  EXPECT_GT(on_edge, 10000u);
+  EXPECT_GT(by_rounding, 10000u);
+  EXPECT_GT(kept, 10000u);
 }
 
 }  // namespace

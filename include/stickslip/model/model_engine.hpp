@@ -25,6 +25,9 @@
 //   later extremum of x' is smaller in size), so no contact is sought until
 //   the next switch (`grazing`). With mu_s > mu_k the slip leaves at once and
 //   its return is found like any other.
+// These decisions (the mode at t = 0, the contact at x' = v, the departure
+// from the edge) are event_physics.hpp's, with the band centre b: the same
+// code as simulate() and the lane engine.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -34,6 +37,7 @@
 #include "stickslip/engines/integration_counts.hpp"
 #include "stickslip/episode.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/event_physics.hpp"
 #include "stickslip/integrator.hpp"
 #include "stickslip/model/belt_chain.hpp"
 #include "stickslip/model/damped_slip.hpp"
@@ -86,57 +90,53 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
                             (w2 * (std::abs(x) + ak) + 2.0 * gamma * std::abs(z));
   };
   auto sign_of = [](double u) { return u > 0 ? 1.0 : -1.0; };
-  auto on_outward_edge = [&] { return v != 0.0 && as - sign_of(v) * (x - b) <= 0.0; };
   // Slip away from the outward band edge at x' = v (after a break, or a
-  // contact there): sigma = sgn(v), x'' = sgn(v) (mu_k - mu_s) g exactly.
+  // touch of the edge): physics::leave_edge, with x'' = sgn(v) (mu_k - mu_s) g
+  // exactly.
   auto leave_edge = [&] {
+    const auto departure = detail::physics::leave_edge(v, equal_friction);
     m = mode::slip;
-    sigma = sign_of(v);
-    grazing = equal_friction;
-    after_reversal = !equal_friction;
+    sigma = departure.sigma;
+    grazing = departure.grazing;
+    after_reversal = departure.after_reversal;
     mirror = false;
     acceleration = sigma * edge_acceleration_size;
     acceleration_rounding = 0.0;
   };
-  // A stick from a contact here would have no length: on the outward edge,
-  // or so near it that the stick's break time (the stick branch's t_edge)
-  // rounds to t. Such a touch of x' = v is not a stick: the mass leaves the
-  // edge at once, from the state the break would leave
-  // (physics::resolve_contact, the same rule for the paper's engines).
-  auto stick_has_no_length = [&] {
-    return on_outward_edge() ||
-           (v != 0.0 && t + (as - sign_of(v) * (x - b)) / std::abs(v) <= t);
-  };
-  auto leave_edge_at_once = [&] {
-    x = b + sign_of(v) * as;
-    leave_edge();
-  };
-  // Resolve the mode at relative velocity zero (x' == v), arriving with from_sigma.
-  auto resolve_at_contact = [&](double from_sigma) {
-    const bool inside = from_sigma > 0 ? x - b >= -as : x - b <= as;
-    if (inside) {
-      x = std::clamp(x, b - as, b + as);
-      m = mode::stick;
-    } else {
-      m = mode::slip;
-      sigma = -from_sigma;
-      after_reversal = true;
-      set_generic_acceleration();
+  // Relative rest x' = v reached by a slip of direction from_sigma
+  // (physics::resolve_contact, the decision of the paper's engines and the
+  // lanes): a stick, a touch of the outward edge that leaves it, or a
+  // reversal (sigma = -from_sigma).
+  using detail::physics::contact_outcome;
+  auto contact_at = [&](double from_sigma) {
+    const auto c = detail::physics::resolve_contact(t, x, from_sigma, v, as, b);
+    x = c.x;
+    switch (c.outcome) {
+      case contact_outcome::stick:
+        m = mode::stick;
+        break;
+      case contact_outcome::grazing:
+        leave_edge();
+        break;
+      case contact_outcome::reversal:
+        m = mode::slip;
+        sigma = c.sigma;
+        after_reversal = true;
+        set_generic_acceleration();
+        break;
     }
+    return c.outcome;
   };
 
-  if (z == v && std::abs(x - b) <= as && !on_outward_edge()) {
+  const auto start = detail::physics::mode_at_start(x, z, v, as, b);
+  if (start.kind == mode::stick) {
     m = mode::stick;
-  } else if (z == v && std::abs(x - b) <= as) {  // a zero-length stick at the outward edge
+  } else if (start.on_outward_edge) {
     leave_edge();
-  } else if (z == v) {
-    m = mode::slip;
-    sigma = sign_of(x - b);
-    after_reversal = true;
-    set_generic_acceleration();
   } else {
     m = mode::slip;
-    sigma = v > z ? 1.0 : -1.0;
+    sigma = start.sigma;
+    after_reversal = start.after_reversal;
     set_generic_acceleration();
   }
 
@@ -280,10 +280,7 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
       take_switch();
       grazing = after_reversal = mirror = false;
       if (z == v) {  // measure zero: landed exactly on relative rest
-        resolve_at_contact(x - b > 0 ? -1.0 : 1.0);
-        if (m == mode::stick && stick_has_no_length()) {
-          leave_edge_at_once();
-        } else if (m == mode::stick) {
+        if (contact_at(x - b > 0 ? -1.0 : 1.0) == contact_outcome::stick) {
           ++counts.stick_onsets;
           obs.on_event(event{event_kind::stick_onset, t, x, z, v});
           close_episode(t, mode::stick);
@@ -299,18 +296,13 @@ event_counts simulate_model(const oscillator_model& model, const model_initial_s
     x = x_root;
     z = v;
     t = t_root;
-    const double from_sigma = sigma;
     after_reversal = mirror = false;
-    resolve_at_contact(from_sigma);
-    if (m == mode::stick) {
-      if (stick_has_no_length()) {  // a zero-length stick: slip on from the edge
-        leave_edge_at_once();
-        continue;
-      }
+    const contact_outcome outcome = contact_at(sigma);
+    if (outcome == contact_outcome::stick) {
       ++counts.stick_onsets;
       obs.on_event(event{event_kind::stick_onset, t, x, z, v});
       close_episode(t, mode::stick);
-    } else {
+    } else if (outcome == contact_outcome::reversal) {
       ++counts.slip_reversals;
       obs.on_event(event{event_kind::slip_reversal, t, x, z, v});
     }

@@ -22,14 +22,17 @@
 // In the common round (every lane busy) step 1
 // is a vector step as well: count the event, check the max_events bound.
 // The closed-form steps of an event (stick end, slip orbit, rotation, root
-// position and angle arguments, mirror return) are the templates of
-// event_physics.hpp that `simulate` (include/stickslip/integrator.hpp)
-// calls with doubles, here called with vectors; the scalar paths share
-// simulate's decisions (physics::mode_at_start, physics::resolve_contact) and
-// root-angle helpers. What the vector step repeats in mask form (the contact
-// resolution, the choice among the root angles, the next state of each
-// branch) is held to `simulate` by tests/unit/test_fast_path_episodes.cpp,
-// every episode and event field by bit pattern.
+// position and angle arguments, mirror return) and its decisions (the
+// contact at x' = v: decide_contact; the phase run to the root:
+// root_angle_from_raw, reversal_arc_from_alpha) are the templates of
+// event_physics.hpp that `simulate` (include/stickslip/integrator.hpp) and
+// `simulate_model` (model/model_engine.hpp) call with doubles, here called
+// with vectors and masks; the scalar paths call the scalar decisions
+// themselves (physics::mode_at_start, resolve_contact, leave_edge). What
+// the vector step still writes in mask form is the next state of each
+// branch (which of the computed outcomes a lane takes), held to `simulate`
+// by tests/unit/test_fast_path_episodes.cpp, every episode and event field
+// by bit pattern.
 //
 // Lanes take realizations in order; a finished realization waits in a small
 // ring until all earlier ones are finished, and is then added to the block's
@@ -360,16 +363,15 @@ class lane_engine {
     const double x = ic.position, z = ic.velocity;
     time_[l] = 0.0, position_[l] = x, velocity_[l] = z, belt_velocity_[l] = v;
     next_switch_time_[l] = next_switch(l);
-    auto m = physics::mode_at_start(x, z, v, a);
-    if (Family && v == 0.0 && m.grazing) m = {mode::stick, 1.0, false, false};  // no outward edge at 0
+    const auto m = physics::mode_at_start(x, z, v, a);
     const bool stick = m.kind == mode::stick;
     slip_centre_sign_[l] = m.sigma;
     sticking_[l] = stick ? 1.0 : 0.0;
-    // simulate_model's leave_edge: with mu_s > mu_k a start on the outward
-    // edge slips away at once (after_reversal), with mu_s = mu_k it grazes.
-    const bool edge_leaves = Family && !equal_friction_ && m.grazing;
-    grazing_[l] = m.grazing && !edge_leaves ? 1.0 : 0.0;
-    after_reversal_[l] = m.after_reversal || edge_leaves ? 1.0 : 0.0;
+    // a start on the outward edge leaves it (physics::leave_edge)
+    const auto departure = physics::leave_edge(v, !Family || equal_friction_);
+    grazing_[l] = m.on_outward_edge && departure.grazing ? 1.0 : 0.0;
+    after_reversal_[l] =
+        m.after_reversal || (m.on_outward_edge && departure.after_reversal) ? 1.0 : 0.0;
     mirror_[l] = 0.0;
     episode_kind_[l] = stick ? mode::stick : mode::slip;
     episode_start_[l] = 0.0;
@@ -495,11 +497,7 @@ class lane_engine {
     const auto c =
         physics::resolve_contact(time_[l], position_[l], from_sigma, belt_velocity_[l], a_);
     position_[l] = c.x;
-    auto outcome = c.outcome;
-    // a level 0 has no outward edge (simulate_model): its band edge sticks
-    if (Family && outcome == physics::contact_outcome::grazing && belt_velocity_[l] == 0.0)
-      outcome = physics::contact_outcome::stick;
-    switch (outcome) {
+    switch (c.outcome) {
       case physics::contact_outcome::reversal:
         slip_centre_sign_[l] = c.sigma;
         after_reversal_[l] = 1.0;
@@ -508,13 +506,12 @@ class lane_engine {
           emit(l, event_kind::slip_reversal);
         }
         return;
-      case physics::contact_outcome::grazing:  // zero-length stick: leave_edge
-        slip_centre_sign_[l] = c.sigma;
-        if (Family && !equal_friction_)
-          after_reversal_[l] = 1.0;
-        else
-          grazing_[l] = 1.0;
+      case physics::contact_outcome::grazing: {  // zero-length stick: leave the edge
+        const auto departure = physics::leave_edge(belt_velocity_[l], !Family || equal_friction_);
+        slip_centre_sign_[l] = departure.sigma;
+        (departure.grazing ? grazing_ : after_reversal_)[l] = 1.0;
         return;
+      }
       case physics::contact_outcome::stick:
         sticking_[l] = 1.0;
         stick_onsets_[l] += 1.0;
@@ -551,7 +548,12 @@ class lane_engine {
     const vec EDGE_GRAZES = Family && !equal_friction_ ? zero : one;
     const vec EDGE_SLIPS_AWAY = Family && !equal_friction_ ? one : zero;
     const vec SWITCH_MIRRORS = Family && !opposite_levels_ ? zero : one;
-    const vec NEAR = Set(d, 0x1p-49), TINY = Set(d, 0x1p-900);
+    const auto set = [&](double c) { return Set(d, c); };
+    const physics::decision_constants<double>& sc = physics::scalar_constants;
+    const vphysics::decision_constants<vec> DC{
+        set(sc.zero), set(sc.one),    set(sc.minus_one),     set(sc.two), set(sc.pi),
+        set(sc.two_pi), set(sc.minus_half_pi), set(sc.near), set(sc.tiny)};
+    const auto any_lane = [&](mask m) { return !hn::AllFalse(d, m); };
     vec t[K], x[K], z[K], v[K], t_switch[K], sig[K], s[K], t_edge[K], sq[K];
     vphysics::slip_orbit<vec> o[K];
     // the lane's mode (sticking_, grazing_, mirror_, after_reversal_), whether
@@ -608,20 +610,12 @@ class lane_engine {
     bool any_rotation = false;
     K_LOOP {
       const vec raw = sk::atan2_finish(d, at[k], ay[k], ax[k]);
-      const mask neg_ok =
-          hn::And(hn::Or(hn::Le(Mul(sig[k], v[k]), zero), hn::Gt(Mul(o[k].wy, r[k]), zero)),
-                  hn::Gt(raw, Set(d, -0.5 * std::numbers::pi)));
-      const vec dtheta_general = IfThenElse(hn::Ge(raw, zero), raw,
-                                    IfThenElse(neg_ok, zero, Add(raw, Set(d, two_pi))));
-      const vec dtheta_mirror =
-          vphysics::mirror_return_from_atan(at[k], Set(d, std::numbers::pi), Set(d, 2.0));
+      const vec dtheta_general =
+          vphysics::root_angle_from_raw(raw, o[k].wy, v[k], sig[k], r[k], DC);
+      const vec dtheta_mirror = vphysics::mirror_return_from_atan(at[k], DC.pi, DC.two);
       vec dtheta = IfThenElse(mirror[k], dtheta_mirror, dtheta_general);
-      {  // reversal_arc_from_alpha
-        const vec two_raw = Mul(Set(d, 2.0), raw);
-        const vec dtheta_reversal =
-            IfThenElse(hn::Gt(sig[k], zero), Sub(Set(d, two_pi), two_raw), two_raw);
-        dtheta = IfThenElse(after_reversal[k], dtheta_reversal, dtheta);
-      }
+      dtheta = IfThenElse(after_reversal[k], vphysics::reversal_arc_from_alpha(raw, sig[k], DC),
+                          dtheta);
       t_root[k] = IfThenElse(has_root[k], vphysics::time_after_phase(t[k], dtheta, W), Set(d, inf));
       slip_to_ta[k] = hn::Ge(Min(t_root[k], t_switch[k]), TA);
       slip_to_switch[k] = hn::AndNot(slip_to_ta[k], hn::Le(t_switch[k], t_root[k]));
@@ -657,42 +651,23 @@ class lane_engine {
       // slip: the root, and its resolution
       const vec x_root =
           IfThenElse(mirror[k], x[k], vphysics::root_position(o[k], sig[k], sq[k], W));
-      const mask inside = hn::MaskFromVec(IfThenElse(hn::Gt(sig[k], zero),
-                                                   hn::VecFromMask(d, hn::Ge(x_root, mA)),
-                                                   hn::VecFromMask(d, hn::Le(x_root, A))));
-      const vec x_clamped = Min(Max(x_root, mA), A);
-      // physics::resolve_contact: on the outward edge, or so near it that the
-      // stick's break time rounds to the contact time (no stick: a grazing
-      // touch). The division runs only when some lane is that near: a lane
-      // whose gap exceeds |v| t 2^-49 breaks strictly after t (and a t below
-      // 2^-900, where that bound underflows, always checks).
-      const vec gap = Sub(A, Mul(s[k], x_clamped));
-      const vec speed = Family ? hn::Abs(v[k]) : VV;
-      mask on_edge = hn::Le(gap, zero);
-      const mask near = hn::And(
-          hn::AndNot(sticking[k], slip_to_root[k]),
-          hn::Or(hn::Le(gap, Mul(speed, Mul(t_root[k], NEAR))), hn::Lt(t_root[k], TINY)));
-      if (!hn::AllFalse(d, hn::AndNot(on_edge, near)))
-        on_edge = hn::Or(on_edge, hn::And(near, hn::Le(vphysics::stick_edge_time(
-                                                           t_root[k], A, s[k], x_clamped, speed),
-                                                       t_root[k])));
-      if constexpr (Family) on_edge = hn::AndNot(hn::Eq(v[k], zero), on_edge);  // none at 0
-      const mask onset = hn::AndNot(on_edge, inside);
-      const mask edge = hn::And(on_edge, inside);
+      // the contact at the root (physics::resolve_contact, lane-wise)
+      const auto contact =
+          vphysics::decide_contact<Family>(t_root[k], x_root, sig[k], v[k], A,
+                                           vphysics::band_at_zero{},
+                                           hn::AndNot(sticking[k], slip_to_root[k]), DC, any_lane);
+      const mask onset = contact.stick, edge = contact.grazing;
       const mask slip_switch = slip_to_switch[k], slip_root = slip_to_root[k];
 
       // new state, slip lanes
       const vec v_after_switch = Family ? IfThenElse(hn::Eq(v[k], V1), V2, V1) : hn::Neg(v[k]);
-      vec nx = IfThenElse(slip_root,
-                          IfThenElse(inside, IfThenElse(edge, Mul(s[k], A), x_clamped), x_root),
-                          x_rotated[k]);
+      vec nx = IfThenElse(slip_root, contact.x, x_rotated[k]);
       vec nz = IfThenElse(slip_root, v[k], z_rotated[k]);
       vec nt = IfThenElse(slip_root, t_root[k], IfThenElse(slip_switch, t_switch[k], TA));
       vec nv = IfThenElse(slip_switch, v_after_switch, v[k]);
       vec nsig = IfThenElse(
           slip_switch, IfThenElse(hn::Gt(v_after_switch, z_rotated[k]), one, m_one),
-          IfThenElse(slip_root, IfThenElse(inside, IfThenElse(edge, s[k], sig[k]), hn::Neg(sig[k])),
-                     sig[k]));
+          IfThenElse(slip_root, contact.sigma, sig[k]));
       vec next_sticking = IfThenElse(hn::And(slip_root, onset), one, zero);
       vec next_grazing =
           IfThenElse(slip_switch, zero,
@@ -700,7 +675,7 @@ class lane_engine {
                                 IfThenElse(grazing[k], one, zero)));
       vec next_mirror =
           IfThenElse(hn::Or(slip_switch, slip_root), zero, IfThenElse(mirror[k], one, zero));
-      vec next_after_reversal = IfThenElse(hn::AndNot(inside, slip_root), one, zero);
+      vec next_after_reversal = IfThenElse(hn::And(contact.reversal, slip_root), one, zero);
       if constexpr (Family)
         next_after_reversal =
             IfThenElse(hn::And(slip_root, edge), EDGE_SLIPS_AWAY, next_after_reversal);
