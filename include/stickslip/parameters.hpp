@@ -126,6 +126,9 @@ struct parameter_info {
   // Assigned before the others (CLI, TOML and Python alike): mu sets mu_s
   // and mu_k both, which may then refine it whatever their written order.
   bool sets_others = false;
+  // The Python keyword where the symbol is one of Python's reserved words
+  // (lambda: "lam"); null: the symbol itself.
+  const char* python_keyword = nullptr;
 };
 
 // The scalar parameters, the paper's seven first, in the order of the output
@@ -142,7 +145,7 @@ inline constexpr parameter_info scalar_parameters[] = {
     {"V", "belt-speed", "belt speed magnitude (levels +V, -V)", "m/s",
      &model_parameters::belt_speed, parameter_domain::positive, 4},
     {"lambda", "switch-rate", "Poisson rate of belt direction switches (both levels)", "1/s",
-     &model_parameters::switch_rate, parameter_domain::positive, 5},
+     &model_parameters::switch_rate, parameter_domain::positive, 5, false, "lam"},
     {"ta", "window", "analysis window t_a", "s", &model_parameters::window,
      parameter_domain::positive, 6},
     {"c", "damping", "viscous damping coefficient", "N s/m", &model_parameters::damping,

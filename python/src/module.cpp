@@ -55,6 +55,7 @@ PYBIND11_MODULE(_stickslip, m) {
     for (const auto& row : scalar_parameters) {
       py::dict d;
       d["symbol"] = row.symbol;
+      d["keyword"] = row.python_keyword ? row.python_keyword : row.symbol;
       d["long_name"] = row.long_name;
       d["description"] = row.description;
       d["units"] = row.units;

@@ -1,11 +1,13 @@
 """The model parameters as keyword arguments, named as the command line's
 flags: the paper's symbols (--m, --k, --g, --mu, --V, --lambda, --ta), with
-`lam` (or its aliases `switch_rate` and `lambda_`, PEP 8's spelling) for
-lambda, which is a Python keyword; the model
+`lam` for lambda, which is a Python keyword (or `lambda_`, PEP 8's
+spelling); each also under its long name, as the command line's alias
+flag (stiffness for k, switch_rate for lam, damping for c); the model
 family's scalars (--c, --mu-s, --mu-k), the belt (--belt-levels,
 --belt-rates, --belt-generator), and a belt level vI or a rate rI of a
 two-level belt by its symbol (as a sweep axis of a TOML config)."""
 import functools
+import keyword
 import numbers
 import os
 import re
@@ -15,15 +17,22 @@ import numpy as np
 from . import _stickslip
 
 # symbol used by the library -> (keyword, default, unit, meaning): the rows
-# of the library's parameter table (parameters.hpp, scalar_parameters); a
-# symbol that is a Python keyword (lambda) is spelled "lam".
+# of the library's parameter table (parameters.hpp, scalar_parameters),
+# whose `keyword` is the symbol, or its spelling where the symbol is one of
+# Python's keywords (lambda: lam).
+_TABLE = _stickslip.parameter_table()
 PARAMETERS = {
-    row["symbol"]: ("lam" if row["symbol"] == "lambda" else row["symbol"],
-                    "mu" if row["unset_means_mu"] else row["default"], row["units"],
-                    row["description"])
-    for row in _stickslip.parameter_table()
+    row["symbol"]: (row["keyword"], "mu" if row["unset_means_mu"] else row["default"],
+                    row["units"], row["description"])
+    for row in _TABLE
 }
-ALIASES = {"switch_rate": "lam", "lambda_": "lam", "damping": "c"}
+# alias -> keyword, from the same rows: each long name, as the command line's
+# alias flag (--switch-rate: switch_rate), and PEP 8's spelling of a symbol
+# that is a Python keyword (lambda_).
+ALIASES = {
+    **{row["long_name"].replace("-", "_"): row["keyword"] for row in _TABLE},
+    **{row["symbol"] + "_": row["keyword"] for row in _TABLE if keyword.iskeyword(row["symbol"])},
+}
 BELT = {
     "belt_levels": ("v1,v2,...", "m/s", "belt velocity levels: n >= 2 distinct values, any sign, "
                     "0 allowed (default +V, -V)"),

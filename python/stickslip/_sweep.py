@@ -5,8 +5,8 @@ import tempfile
 import xarray as xr
 
 from . import _stickslip
-from ._parameters import (belt_arguments, belt_start_text, describe, error, extension, flag,
-                          max_events_of, model_arguments, number, sequence, text, whole)
+from ._parameters import (PARAMETERS, belt_arguments, belt_start_text, describe, error, extension,
+                          flag, max_events_of, model_arguments, number, sequence, text, whole)
 from ._parameters import path as _path  # `path` is open()'s argument
 
 
@@ -23,14 +23,16 @@ def _axes_and_base(params):
 
 
 def _python_names(ds):
-    """The Dataset as Python shows it: the lambda dimension is named `lam`,
-    the keyword's name (`lambda` is a Python keyword, so ds.sel(lambda=...)
-    cannot be written), with `lambda` kept as a coordinate along it; nothing
-    else differs from results.nc."""
-    if "lambda" not in ds.dims or "lam" in ds.variables:
-        return ds
-    lam = ds["lambda"]
-    return ds.assign_coords(lam=("lambda", lam.values, dict(lam.attrs))).swap_dims({"lambda": "lam"})
+    """The Dataset as Python shows it: a dimension whose symbol is a Python
+    keyword is named by the parameter's keyword (lambda: `lam`, since
+    ds.sel(lambda=...) cannot be written), with the symbol kept as a
+    coordinate along it; nothing else differs from results.nc."""
+    for sym, (kw, *_rest) in PARAMETERS.items():
+        if kw == sym or sym not in ds.dims or kw in ds.variables:
+            continue
+        coord = ds[sym]
+        ds = ds.assign_coords({kw: (sym, coord.values, dict(coord.attrs))}).swap_dims({sym: kw})
+    return ds
 
 
 def _statistics_names(statistics):

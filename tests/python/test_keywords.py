@@ -1,8 +1,9 @@
 """Python's keywords, not the command line's flags: belt_start follows the
 argument rules (an int level or "stationary"), a path is a str or an
 os.PathLike, every message names the Python keyword (switch_times,
-belt_start, output, overwrite=True, resume=True), and lambda_ is a
-documented alias of lam."""
+belt_start, output, overwrite=True, resume=True), lambda_ is a
+documented alias of lam, and every parameter is also taken under its long
+name (the command line's alias flag)."""
 import pathlib
 
 import numpy as np
@@ -200,6 +201,30 @@ def test_lambda_underscore_is_lam():
     assert "lam" in ds.dims and list(ds["lambda"].values) == [1.0, 3.0]
     with pytest.raises(TypeError, match="given twice"):
         stickslip.simulate(lam=1, lambda_=2)
+
+
+# --- the long names: the command line's alias flags, from the parameter table --
+
+LONG_NAMES = {"m": "mass", "k": "stiffness", "g": "gravity", "mu": "friction_coefficient",
+              "V": "belt_speed", "lam": "switch_rate", "ta": "window", "c": "damping",
+              "mu_s": "static_friction", "mu_k": "kinetic_friction"}
+
+
+def test_each_parameter_is_also_taken_under_its_long_name():
+    # the keywords and the long names as the paper and the CLI's --help
+    # spell them, written here by hand: the table's rows must give them
+    assert sorted(kw for kw, *_ in stickslip._parameters.PARAMETERS.values()) == sorted(LONG_NAMES)
+    values = {"m": 2.0, "k": 30.0, "g": 9.0, "mu": 4.0, "V": 0.5, "lam": 2.0, "ta": 3.0,
+              "c": 0.3, "mu_s": 5.0, "mu_k": 3.0}
+    a = stickslip.simulate(seed=4, **values)
+    b = stickslip.simulate(seed=4, **{LONG_NAMES[kw]: v for kw, v in values.items()})
+    assert a.parameters == b.parameters
+    assert a.episodes.equals(b.episodes)
+    for kw, long_name in LONG_NAMES.items():
+        with pytest.raises(TypeError, match="given twice"):
+            stickslip.simulate(**{kw: values[kw], long_name: values[kw]})
+    ds = stickslip.sweep(stiffness=[20, 40], realizations=10, ta=2)
+    assert list(ds["k"].values) == [20.0, 40.0]
 
 
 def test_lambda_underscore_is_documented():
