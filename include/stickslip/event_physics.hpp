@@ -22,7 +22,9 @@
 namespace stickslip::detail::physics {
 
 // The scalar forms of the vector operations the templates use: a decision
-// is a bool, a selection the conditional operator.
+// is a bool, a selection the conditional operator. (Min and Max differ from
+// Highway's on x86 only for a NaN operand, which validated inputs never
+// give.)
 [[nodiscard]] inline double Neg(double x) noexcept { return -x; }
 [[nodiscard]] inline double Abs(double x) noexcept { return std::abs(x); }
 [[nodiscard]] inline double Min(double x, double y) noexcept { return std::min(x, y); }

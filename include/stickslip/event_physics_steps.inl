@@ -1,7 +1,8 @@
-// The closed-form steps of one event as templates over the number type: the
-// body of event_physics.hpp. No include guard and no namespace on
-// purpose: event_physics.hpp includes it into stickslip::detail::physics
-// (doubles, for `simulate`), and src/core/engines/fast_lanes.cpp includes it once more
+// The closed-form steps and the decisions of one event as templates over the
+// number type: the body of event_physics.hpp. No include guard and no
+// namespace on purpose: event_physics.hpp includes it into
+// stickslip::detail::physics (doubles and bools, for `simulate` and
+// `simulate_model`), and src/core/engines/fast_lanes.cpp includes it once more
 // inside each SIMD target's namespace, so that the vector instantiations are
 // compiled for that target (Highway's vector operators can only be inlined
 // into code of their own target). One text, so one order of operations, so
@@ -24,7 +25,7 @@ template <class Num>
 template <class Num>
 struct decision_constants {
   Num zero, one, minus_one, two, pi, two_pi, minus_half_pi;
-  // resolve_contact's bound for a stick whose break may round to its onset:
+  // decide_contact's bound for a stick whose break may round to its onset:
   // a gap over |v| t near (2^-49, far above half an ulp of t) cannot; below
   // t = tiny (2^-900) that bound underflows and the gap is always checked.
   Num near, tiny;
@@ -52,7 +53,8 @@ struct contact_decision {
 };
 // The band's centre b: a number, or band_at_zero for b = 0 (the paper's
 // model and the undamped family), which costs no operation (x - 0 and 0 + y
-// are x and y, bit for bit, for the nonzero y they are used with).
+// are x and y, bit for bit, for the nonzero y they are used with: -a and
+// s a, nonzero since validation holds a_s >= 1e-60).
 struct band_at_zero {};
 template <class Num>
 [[nodiscard]] inline Num minus_centre(Num x, Num b) noexcept {

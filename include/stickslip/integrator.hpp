@@ -66,8 +66,9 @@ inline constexpr double two_pi = 2.0 * std::numbers::pi;
 // root's half of the region (w y r > 0); there a small negative atan2 can only
 // be rounding at the root itself and means 0. (It replaces acos(v/B) and
 // atan2(w y, x') with fmod, and is better conditioned near grazing, B ~ |v|.)
-// The two halves of root_angle, so that the lane engine can evaluate the
-// atan2 of several realizations in one vector call between them.
+// The two halves of root_angle: the lane engine evaluates the atan2 of
+// several realizations in one vector call between the same two halves,
+// instantiated for vectors (event_physics_steps.inl).
 struct root_angle_args {
   double y, x;  // atan2(y, x)
 };
@@ -105,8 +106,9 @@ struct root_angle_args {
 // atan2(|w y|, v): the same angle without the cancellation of acos near 1
 // (reversals just outside the band edge) and with the shared kernel, not
 // libm. Precondition: wy != 0 (B^2 - v^2 = (w y)^2 > 0).
-// Split in two, like the mirror return, so that the lane engine can take the
-// atan2 with its own target's kernel (the same bits).
+// Split in two, like the mirror return: the lane engine takes the atan2 with
+// its own target's kernel and the same second half, for vectors (the same
+// bits).
 [[nodiscard]] inline double reversal_arc_from_alpha(double alpha, double sigma) noexcept {
   return physics::reversal_arc_from_alpha(alpha, sigma, physics::scalar_constants);
 }
@@ -137,7 +139,8 @@ event_counts simulate(const model_parameters& p, const initial_conditions& ic,
   const auto start = detail::physics::mode_at_start(x, z, v, a);
   mode m = start.kind;
   double sigma = start.sigma;  // friction direction while slipping
-  bool grazing = start.on_outward_edge;  // on the grazing orbit (physics::leave_edge)
+  // on the grazing orbit: physics::leave_edge with mu_s = mu_k, the paper's
+  bool grazing = start.on_outward_edge;
   bool after_reversal = start.after_reversal;
   bool mirror = false;       // slip started by a belt switch that ended a stick
 

@@ -214,8 +214,10 @@ def test_each_parameter_is_also_taken_under_its_long_name():
     # the keywords and the long names as the paper and the CLI's --help
     # spell them, written here by hand: the table's rows must give them
     assert sorted(kw for kw, *_ in stickslip._parameters.PARAMETERS.values()) == sorted(LONG_NAMES)
-    values = {"m": 2.0, "k": 30.0, "g": 9.0, "mu": 4.0, "V": 0.5, "lam": 2.0, "ta": 3.0,
-              "c": 0.3, "mu_s": 5.0, "mu_k": 3.0}
+    assert stickslip._parameters.ALIASES == {**{v: k for k, v in LONG_NAMES.items()},
+                                             "lambda_": "lam"}
+    values = {"m": 2.0, "k": 30.0, "g": 9.0, "mu": 4.0, "V": 0.5, "lam": 1.5, "ta": 3.0,
+              "c": 0.3, "mu_s": 5.0, "mu_k": 3.5}  # ten distinct values
     a = stickslip.simulate(seed=4, **values)
     b = stickslip.simulate(seed=4, **{LONG_NAMES[kw]: v for kw, v in values.items()})
     assert a.parameters == b.parameters

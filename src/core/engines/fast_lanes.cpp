@@ -120,9 +120,10 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct bound_exceeded {};
 
-// The closed-form steps of event_physics.hpp, instantiated for this
-// target's vectors (see event_physics_steps.inl); the scalar decisions stay
-// physics:: (stickslip::detail::physics).
+// The closed-form steps and decisions of event_physics.hpp, instantiated for
+// this target's vectors and masks (see event_physics_steps.inl); the scalar
+// paths call physics:: (stickslip::detail::physics), the same text for
+// doubles, and its scalar-only decisions (mode_at_start, leave_edge).
 namespace vphysics {
 #include "stickslip/event_physics_steps.inl"
 }  // namespace vphysics
