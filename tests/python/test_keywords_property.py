@@ -47,7 +47,13 @@ FLAG = {"m": "--m", "k": "--k", "g": "--g", "mu": "--mu", "V": "--V", "lam": "--
         "belt_levels": "--belt-levels", "belt_rates": "--belt-rates",
         "belt_start": "--belt-start", "realizations": "--realizations",
         "block_size": "--block-size", "bins": "--bins"}
-PARAMETER = {"lam": "lambda", "lambda_": "lambda", "switch_rate": "lambda", "damping": "c"}
+# each scalar's long name (the CLI's alias flag), an alias of its keyword
+LONG = {"m": "mass", "k": "stiffness", "g": "gravity", "mu": "friction_coefficient",
+        "V": "belt_speed", "ta": "window", "c": "damping", "mu_s": "static_friction",
+        "mu_k": "kinetic_friction"}
+FLAG.update({long_name: FLAG[key] for key, long_name in LONG.items()})
+PARAMETER = {"lam": "lambda", "lambda_": "lambda", "switch_rate": "lambda",
+             **{long_name: key for key, long_name in LONG.items()}}
 MAX_EVENTS = 20000  # every run's cap (a fault may put a bad value in its place)
 
 
@@ -224,11 +230,12 @@ def with_faults(draw, kw, fixed=()):
 
 @st.composite
 def model_keywords(draw, replay):
-    """A random subset of the model keywords (one spelling of lambda and c)
-    at the scale users run; with replay, the initial state too."""
+    """A random subset of the model keywords (one spelling of each: the
+    keyword or its long name) at the scale users run; with replay, the
+    initial state too."""
     kw = {}
     for key in draw(st.lists(st.sampled_from(MODEL_KEYS), unique=True, max_size=5)):
-        name = "damping" if key == "c" and draw(st.booleans()) else key
+        name = LONG[key] if draw(st.booleans()) else key
         kw[name] = draw(valid_number(key))
     if draw(st.booleans()):
         kw[draw(st.sampled_from(LAMBDA_NAMES))] = draw(valid_number("lambda"))
@@ -242,7 +249,7 @@ def model_keywords(draw, replay):
                 kw[key] = draw(valid_number(key))
     if draw(st.integers(0, 2)) == 0:
         kw["belt_start"] = draw(st.sampled_from([1, -1, "stationary"]))
-    if "ta" not in kw:
+    if "ta" not in kw and "window" not in kw:
         kw["ta"] = draw(st.sampled_from([1.0, 3.0]))  # the default, 50 s, is slow to fuzz
     return kw
 
@@ -254,7 +261,7 @@ def simulate_keywords(draw):
     kw["seed"] = draw(valid_whole(0, 2**64 - 1))
     kw["realization"] = draw(valid_whole(0, 5000))
     kw["max_events"] = MAX_EVENTS
-    return draw(with_faults(kw, fixed=("ta",)))
+    return draw(with_faults(kw, fixed=("ta", "window")))
 
 
 @seed(SEED)
@@ -290,7 +297,8 @@ def sweep_keywords(draw):
     """Model keywords, some of them axes, and the run's whole numbers."""
     kw = draw(model_keywords(replay=False))
     for key in draw(st.lists(st.sampled_from(["mu", "k", "c"]), unique=True, max_size=2)):
-        kw.pop("damping" if key == "c" and "damping" in kw else key, None)
+        kw.pop(key, None)
+        kw.pop(LONG[key], None)
         kw[key] = draw(axis(key))
     if draw(st.booleans()):
         for name in LAMBDA_NAMES:
@@ -307,7 +315,7 @@ def sweep_keywords(draw):
         # still has no estimate: docs/bad-input.md).
         kw["bins"] = draw(valid_whole(1, 300))
     kw["max_events"] = MAX_EVENTS
-    kw = draw(with_faults(kw, fixed=("ta",)))
+    kw = draw(with_faults(kw, fixed=("ta", "window")))
     for name, value in kw.items():  # a faulty axis entry: one entry of the list
         if isinstance(value, (int, float)) and name in ("mu", "k", "c", "lam") and \
                 draw(st.booleans()):
@@ -373,7 +381,7 @@ SCALAR_ONLY = ["m", "k", "g", "mu", "V", "ta", "c", "mu_s", "mu_k", "x0", "xdot0
 
 @seed(SEED)
 @settings(max_examples=200, **SETTINGS)
-@given(name=st.sampled_from(SCALAR_ONLY + LAMBDA_NAMES + ["damping"]), value=NOT_A_NUMBER,
+@given(name=st.sampled_from(SCALAR_ONLY + LAMBDA_NAMES + list(LONG.values())), value=NOT_A_NUMBER,
        call=st.sampled_from(["simulate", "sweep"]))
 def test_values_the_cli_cannot_take_are_refused_naming_the_keyword(name, value, call):
     if call == "sweep" and name in ("x0", "xdot0"):
