@@ -130,6 +130,9 @@ struct point_accumulators {
   // only the moments of the per-realization quantities.
   bool family_statistics = true;
   bool means_only = false;
+  // Whether add() fills stick_fraction_causal_score (point_statistics::
+  // keeps_causal_score).
+  bool causal_score_kept = true;
   // The survival group (point_statistics::select_survival): D_i and H_i ended or censored.
   survival_counts stick_survival, slip_survival;
   // The ensemble at the observe times (point_statistics::select_observe_times;

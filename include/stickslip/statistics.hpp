@@ -81,15 +81,22 @@ class point_statistics : public point_accumulators {
   // `stationary_start`: the belt's start level is drawn from the stationary
   // law (initial_condition_law::belt_start = 0), which depends on the rates.
   // `means_only`: add() fills only the moments of the per-realization
-  // quantities (sweep_spec::means_only).
+  // quantities (sweep_spec::means_only). `causal_score`: add() keeps R's
+  // causal score (keeps_causal_score(const sweep_spec&) in sweep_spec.hpp;
+  // by default with the family statistics or means only, as before the
+  // flag).
   point_statistics(const model_parameters& p, const histogram_spec& h, bool family = true,
                    bool stationary_start = true, bool means_only = false);
+  point_statistics(const model_parameters& p, const histogram_spec& h, bool family,
+                   bool stationary_start, bool means_only, bool causal_score);
 
-  // Whether add() keeps R's causal score: not in the paper study's
+  // Whether add() keeps R's causal score. Not in the paper study's
   // configuration (neither family statistics nor means only), whose lane
-  // observer skips its bookkeeping (paper_statistics_observer); the
-  // reference engines drop theirs there too (sweep/block_engines.cpp).
-  [[nodiscard]] bool keeps_causal_score() const noexcept { return family_statistics || means_only; }
+  // observer skips its bookkeeping (paper_statistics_observer), nor for
+  // means only without the derivatives (a `sweep --statistics R`:
+  // mean_statistics_observer); the reference engines drop theirs there too
+  // (sweep/block_engines.cpp).
+  [[nodiscard]] bool keeps_causal_score() const noexcept { return causal_score_kept; }
   // Sizes the survival counts (empty, not selected, by default) on the grid `g`.
   void select_survival(const survival_spec& g);
   // Sizes the observe-time statistics (empty, not selected, by default).
@@ -318,14 +325,21 @@ class paper_statistics_observer : public realization_observer {
 };
 
 // paper_statistics_observer without the lists of stick and slip durations
-// (sweep_spec::means_only: the pooled statistics are not filled).
-class mean_statistics_observer : public realization_observer {
+// (sweep_spec::means_only: the pooled statistics are not filled), with R's
+// causal score's sums only when `CausalScore` (point_statistics::
+// keeps_causal_score: the peak finder's score method; a `sweep --statistics
+// R` does not read them, and they cost it ~5 %).
+template <bool CausalScore>
+class basic_mean_statistics_observer : public realization_observer {
  public:
   using realization_observer::realization_observer;
   using observer_base::on_piece;
+  static constexpr bool causal_score = CausalScore;
   [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
-    collect_episode<false, false>(e);
+    collect_episode<false, false, CausalScore>(e);
   }
 };
+using mean_statistics_observer = basic_mean_statistics_observer<false>;
+using mean_and_causal_score_observer = basic_mean_statistics_observer<true>;
 
 }  // namespace stickslip

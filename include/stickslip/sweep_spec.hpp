@@ -142,6 +142,17 @@ void apply_statistics_selection(sweep_spec& s);
 // it, so blocks, merged prefixes and the merger agree on the shape).
 void select_statistics(point_statistics& stats, const sweep_spec& s);
 
+// Whether the statistics of `s` keep R's causal score (point_statistics::
+// keeps_causal_score): with the family statistics, or with means only when
+// the derivatives are selected (the peak finder's score method,
+// precision/peak_sweep.cpp). A `sweep --statistics R` reads no derivative.
+[[nodiscard]] bool keeps_causal_score(const sweep_spec& s) noexcept;
+
+// The fresh statistics of a block at parameters `p` (the point's, or its
+// histogram_parameters with drawn parameters): the flags of `s`, sized by
+// select_statistics. Every engine's block starts from them.
+[[nodiscard]] point_statistics block_statistics(const sweep_spec& s, const model_parameters& p);
+
 // The key of the random streams of point p: point_key(p), or
 // common_stream_key with common random numbers.
 [[nodiscard]] inline std::uint64_t stream_key(const sweep_spec& s,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stickslip/replay.hpp"
+#include "stickslip/serialize.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
 #include "unit/figure_spec.hpp"
@@ -175,6 +176,64 @@ TEST(CausalScore, StandardErrorMatchesTheSpreadOverReplicates) {
   std::printf("causal score: replicate variance %.3g +- %.2g, mean reported SE^2 %.3g\n", var,
               var_se, se2);
   EXPECT_NEAR(var, se2, 3.5 * var_se);
+}
+
+// R's causal score is kept where it is read (keeps_causal_score): with the
+// family statistics, and with means only when the derivatives are selected
+// (the peak finder's score method); not for means only without them (a
+// `sweep --statistics R`, whose lanes then skip its bookkeeping). Where it
+// is kept, it is the same bits as with the family statistics (the
+// bookkeeping checked against the events above), on the lanes and the
+// reference engine alike; where not, it is empty, the records hold none of
+// its sums, and R keeps its bits. The statistics keep the flag through the
+// journal's codec.
+TEST(CausalScore, KeptWhereItIsReadTheSameBitsOnEveryEngine) {
+  std::vector<sweep_spec> models(3, figure_spec(3.0, {0.7, 3.8}, 120, false, 41));
+  models[1].base.static_friction = 5.0;  // mu_s > mu_k: the family lanes
+  models[2].base.damping = 0.6;          // damped: the scalar engine
+  for (const auto& model : models)
+    for (auto engine : {sweep_engine::fast, sweep_engine::reference}) {
+      sweep_spec family = model;
+      family.engine = engine;
+      family.keep_records = true;
+      family.block_size = 40;
+      sweep_spec peak_score = family, means = family;
+      peak_score.family_statistics = means.family_statistics = false;
+      peak_score.means_only = means.means_only = true;
+      peak_score.statistics.derivatives = true;
+      ASSERT_TRUE(keeps_causal_score(family));
+      ASSERT_TRUE(keeps_causal_score(peak_score));
+      ASSERT_FALSE(keeps_causal_score(means));
+      const auto f = run_sweep(family, 2), k = run_sweep(peak_score, 2), m = run_sweep(means, 2);
+      for (std::size_t p = 0; p < f.points.size(); ++p) {
+        const auto& want = f.points[p].stats;
+        EXPECT_EQ(want.stick_fraction_causal_score.count(), 120u);
+        EXPECT_EQ(k.points[p].stats.stick_fraction_causal_score, want.stick_fraction_causal_score)
+            << "point " << p;
+        EXPECT_EQ(m.points[p].stats.stick_fraction_causal_score.count(), 0u) << "point " << p;
+        EXPECT_EQ(m.points[p].stats.stick_fraction, want.stick_fraction) << "point " << p;
+        EXPECT_EQ(k.points[p].stats.stick_fraction, want.stick_fraction) << "point " << p;
+        for (std::size_t r = 0; r < 120; ++r) {
+          const auto &rf = f.records[p][r], &rk = k.records[p][r], &rm = m.records[p][r];
+          EXPECT_EQ(rk.stick_switch_moment, rf.stick_switch_moment);
+          EXPECT_EQ(rk.stick_time_moment, rf.stick_time_moment);
+          EXPECT_EQ(rk.events.switch_time_sum, rf.events.switch_time_sum);
+          EXPECT_EQ(rm.stick_switch_moment, 0.0);
+          EXPECT_EQ(rm.stick_time_moment, 0.0);
+          EXPECT_EQ(rm.events.switch_time_sum, 0.0);
+          EXPECT_EQ(rm.events.belt_switches, rf.events.belt_switches);
+        }
+      }
+      // A block's statistics through the journal's codec keep the flag.
+      for (const sweep_spec* s : {&family, &peak_score, &means}) {
+        const work_unit u{1, 0};
+        const block_result b = simulate_block(*s, u);
+        EXPECT_EQ(b.stats.keeps_causal_score(), keeps_causal_score(*s));
+        const auto [u2, b2] = deserialize_unit_result(serialize(u, b));
+        EXPECT_EQ(b2.stats.keeps_causal_score(), keeps_causal_score(*s));
+        EXPECT_TRUE(b2.stats == b.stats);
+      }
+    }
 }
 
 // No causal score where the belt is not switched at the rate lambda.

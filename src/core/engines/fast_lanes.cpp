@@ -1113,23 +1113,26 @@ std::vector<block_result> SimulateBlocksLanes(const sweep_spec& s, std::size_t p
   const std::uint64_t first = first_block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, (first_block + count) * s.block_size);
   for (std::uint64_t b = 0; b < count; ++b) {
-    outs[b].stats = point_statistics(p, s.histograms, s.family_statistics,
-                                     s.initial.belt_start == 0, s.means_only);
-    select_statistics(outs[b].stats, s);
+    outs[b].stats = block_statistics(s, p);
     if (s.keep_records) outs[b].records.reserve(s.block_size);
   }
   std::optional<family_point> fp;
   if (!p.is_paper_model()) fp.emplace(p, stream_key(s, p));
-  // Three instantiations: with the family statistics, without their
-  // per-stick and per-round work (sweep_spec::family_statistics), or
-  // without the duration lists too (sweep_spec::means_only).
+  // Four instantiations: with the family statistics, without their
+  // per-stick and per-round work (sweep_spec::family_statistics), without
+  // the duration lists too (sweep_spec::means_only), and then without R's
+  // causal score unless it is kept (keeps_causal_score: the peak finder's
+  // score method keeps it, a `sweep --statistics R` does not).
   if (s.family_statistics) {
     statistics_collector<realization_observer> collect(s, p, outs, point, first_block);
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   } else if (!s.means_only) {
     statistics_collector<paper_statistics_observer> collect(s, p, outs, point, first_block);
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
-  } else {  // the peak finder's sweeps: no duration lists either
+  } else if (keeps_causal_score(s)) {
+    statistics_collector<mean_and_causal_score_observer> collect(s, p, outs, point, first_block);
+    run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
+  } else {
     statistics_collector<mean_statistics_observer> collect(s, p, outs, point, first_block);
     run_lanes(s, p, fp ? &*fp : nullptr, collect, first, last);
   }

@@ -39,10 +39,7 @@ std::optional<std::string> shape_difference(const point_statistics& got,
 // The statistics a unit of `point` starts from: its binnings, belt levels and
 // selection of statistics, as the engines make them.
 point_statistics fresh_statistics(const sweep_spec& s, std::size_t point) {
-  point_statistics fresh(histogram_parameters(s, point), s.histograms, s.family_statistics,
-                         s.initial.belt_start == 0, s.means_only);
-  select_statistics(fresh, s);
-  return fresh;
+  return block_statistics(s, histogram_parameters(s, point));
 }
 }  // namespace
 

@@ -26,6 +26,21 @@ void get_list(reader& r, std::vector<T>& list, std::string_view what, std::size_
   for (auto& m : list) m = get(r);
 }
 
+// The means-only flag's byte: bit 0 means only; bit 1 set when the causal
+// score is kept otherwise than with the family statistics or means only
+// (the rule before point_statistics::keeps_causal_score had a flag of its
+// own), so that the bytes of every journal from before stay the same.
+std::uint8_t means_flags(const point_statistics& s) noexcept {
+  const bool by_old_rule = s.family_statistics || s.means_only;
+  return static_cast<std::uint8_t>((s.means_only ? 1 : 0) |
+                                   (s.keeps_causal_score() != by_old_rule ? 2 : 0));
+}
+void set_means_flags(point_statistics& s, std::uint8_t flags) {
+  if (flags > 3) throw corrupt(fmt::format("means-only flag: {} is not 0 to 3", flags));
+  s.means_only = (flags & 1) != 0;
+  s.causal_score_kept = (s.family_statistics || s.means_only) != ((flags & 2) != 0);
+}
+
 }  // namespace
 
 // The accumulators in schema order (statistics_schema.cpp): every quantity's
@@ -37,7 +52,7 @@ void put(writer& w, const point_statistics& s) {
     if (q.density) put(w, s.*q.density);
   w.u64(s.realizations);
   w.u8(s.family_statistics ? 1 : 0);
-  w.u8(s.means_only ? 1 : 0);
+  w.u8(means_flags(s));
   for (const auto& c : counters()) w.u64(c.value(s));
   for (const auto& q : quantities())
     if (q.score) put(w, s.*q.score);
@@ -87,7 +102,7 @@ point_statistics get_statistics(reader& r) {
     if (q.density) s.*q.density = get_histogram(r);
   s.realizations = r.u64("realizations");
   s.family_statistics = r.boolean("family statistics flag");
-  s.means_only = r.boolean("means-only flag");
+  set_means_flags(s, r.u8("means-only flag"));
   for (const auto& c : counters()) c.of(s) = r.u64(c.name);
   for (const auto& q : quantities())
     if (q.score) s.*q.score = get_five_sums<score_moments>(r, "score moments");

@@ -14,7 +14,13 @@ namespace stickslip {
 
 // The histogram of each binned quantity on [0, upper end of its range rule].
 point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
-                                   bool family, bool stationary_start_, bool means_only_) {
+                                   bool family, bool stationary_start_, bool means_only_)
+    : point_statistics(p, h, family, stationary_start_, means_only_, family || means_only_) {}
+
+point_statistics::point_statistics(const model_parameters& p, const histogram_spec& h,
+                                   bool family, bool stationary_start_, bool means_only_,
+                                   bool causal_score) {
+  causal_score_kept = causal_score;
   expected_switches = p.switch_rate * p.window;
   stationary_start = stationary_start_;
   family_statistics = family;

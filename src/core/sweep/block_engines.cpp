@@ -61,9 +61,7 @@ template <class SimulateOne>
 block_result simulate_block_scalar(const sweep_spec& s, const work_unit& u,
                                    const model_parameters& p, SimulateOne simulate_one) {
   block_result out;
-  out.stats = point_statistics(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
-                               s.means_only);
-  select_statistics(out.stats, s);
+  out.stats = block_statistics(s, p);
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);

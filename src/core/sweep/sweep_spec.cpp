@@ -15,6 +15,17 @@ void select_statistics(point_statistics& stats, const sweep_spec& s) {
   if (!s.observe_times.empty()) stats.select_observe_times(s.observe_times, s.base.levels().size());
 }
 
+bool keeps_causal_score(const sweep_spec& s) noexcept {
+  return s.family_statistics || (s.means_only && selects_derivatives(s.statistics));
+}
+
+point_statistics block_statistics(const sweep_spec& s, const model_parameters& p) {
+  point_statistics stats(p, s.histograms, s.family_statistics, s.initial.belt_start == 0,
+                         s.means_only, keeps_causal_score(s));
+  select_statistics(stats, s);
+  return stats;
+}
+
 std::size_t point_count(const sweep_spec& s) noexcept {
   std::size_t n = 1;
   for (const auto& ax : s.axes) n *= ax.values.size();

@@ -82,9 +82,7 @@ block_result simulate_block_uncertain(const sweep_spec& s, const work_unit& u) {
   const model_parameters point = point_parameters(s, u.point);  // at the medians
   const std::uint64_t key = uncertain_stream_key(s, u.point);
   block_result out;
-  out.stats = point_statistics(histogram_parameters(s, u.point), s.histograms, s.family_statistics,
-                               s.initial.belt_start == 0, s.means_only);
-  select_statistics(out.stats, s);
+  out.stats = block_statistics(s, histogram_parameters(s, u.point));
   const std::uint64_t first = u.block * s.block_size;
   const std::uint64_t last = std::min(s.realizations, first + s.block_size);
   if (s.keep_records) out.records.reserve(last - first);
