@@ -54,6 +54,18 @@ inline constexpr bool wants_causal_score = [] {
     return true;
 }();
 
+// Whether the lane engine hands an observer the tallies of a realization's
+// closed episodes (realization_observer::set_closed_episode_tallies) instead
+// of each episode: an observer that declares `static constexpr bool
+// episode_tallies = true` (the means only, without the causal score).
+template <class Observer>
+inline constexpr bool takes_episode_tallies = [] {
+  if constexpr (requires { Observer::episode_tallies; })
+    return Observer::episode_tallies;
+  else
+    return false;
+}();
+
 // Whether an observer takes events or segments itself, or inherits the no-ops
 // of observer_base (the lane engine then skips building them, and refuses an
 // observer of segments at compile time).

@@ -250,6 +250,19 @@ class realization_observer : public observer_base {
       }
     }
   }
+  // What collect_in_window sums over the closed (not censored) episodes of a
+  // window without a burn-in, summed by the lane engine itself in the same
+  // order (takes_episode_tallies): the sticks of positive length, the slips
+  // after the first stick, the stick time, the first stick's start and
+  // length (-1: none). Before the last, censored episode.
+  void set_closed_episode_tallies(double sticks, double slips, double stick_time,
+                                  double first_start, double first_duration) noexcept {
+    rec_.sticks = static_cast<std::uint32_t>(sticks);
+    rec_.slips = static_cast<std::uint32_t>(slips);
+    total_stick_ = stick_time;
+    rec_.first_stick_start = first_start;
+    rec_.first_stick_duration = first_duration;
+  }
   // The same sums, accumulated by the lane engine itself in the same order
   // (the paper's model: two levels, no damping).
   void set_paper_sums(double time_first, double time_second, double slip_travel) noexcept {
@@ -335,6 +348,9 @@ class basic_mean_statistics_observer : public realization_observer {
   using realization_observer::realization_observer;
   using observer_base::on_piece;
   static constexpr bool causal_score = CausalScore;
+  // Without the causal score (whose sums need each stick's switch count),
+  // the lanes hand over the tallies of the closed episodes instead.
+  static constexpr bool episode_tallies = !CausalScore;
   [[gnu::always_inline, gnu::flatten]] void on_episode(const episode& e) {
     collect_episode<false, false, CausalScore>(e);
   }

@@ -274,6 +274,12 @@ class lane_engine {
   // states (queue_observe_times), and they are evaluated in place when the
   // realization ends (evaluate_observed).
   static constexpr bool samples_states = requires(observer& o) { o.sampler_to_fill(); };
+  // An observer that takes the tallies of the closed episodes instead of
+  // each one (realization_observer::set_closed_episode_tallies: the means of
+  // a `sweep --statistics R`): the vector step sums them, lane-wise in the
+  // observer's order, so the same bits, and side_effects closes no episode.
+  // Not with a burn-in (tallying_), which cuts episodes at T.
+  static constexpr bool tallies_episodes = takes_episode_tallies<observer>;
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
@@ -285,6 +291,7 @@ class lane_engine {
         a_(p.band_half_width()), ak_(a_), w_(p.natural_frequency()), V_(p.belt_speed),
         ta_(p.window), key_(stream_key(s, p)), burn_in_(p, with_pieces ? s.burn_in : 0.0),
         observing_(samples_states && !s.observe_times.empty()),
+        tallying_(tallies_episodes && s.burn_in == 0.0),
         max_steps_(static_cast<double>(s.max_events)) {
     if constexpr (Family) {
       const oscillator_model& m = family_->model;
@@ -380,6 +387,8 @@ class lane_engine {
     episode_belt_velocity_[l] = v;
     episode_switches_before_[l] = 0.0;
     switch_time_sum_[l] = 0.0;
+    tally_sticks_[l] = tally_slips_[l] = tally_stick_time_[l] = 0.0;
+    tally_first_start_[l] = tally_first_duration_[l] = -1.0;  // -1: no stick yet
   }
 
   HWY_INLINE double next_switch(int l) noexcept {
@@ -396,6 +405,14 @@ class lane_engine {
           throw error(exit_code::internal, "the lane engine missed an observe time");
         evaluate_observed(dtag(), *observed_[l]);
         observer_[l]->sampler_to_fill().mark_sampled();
+      }
+    if constexpr (tallies_episodes)
+      if (tallying_) {
+        observer_[l]->set_closed_episode_tallies(tally_sticks_[l], tally_slips_[l],
+                                                 tally_stick_time_[l], tally_first_start_[l],
+                                                 tally_first_duration_[l]);
+        // the vector step does not keep episode_kind_: the lane's mode is the episode's
+        episode_kind_[l] = sticking_[l] > 0.5 ? mode::stick : mode::slip;
       }
     observer_[l]->on_episode(episode{episode_kind_[l], episode_start_[l], ta_, episode_position_[l],
                                      episode_belt_velocity_[l], true, episode_switches_before_[l]});
@@ -427,6 +444,7 @@ class lane_engine {
   // simulate()'s close_episode: the next episode starts with the state just
   // after the event (position_, belt_velocity_ are already updated when this is called).
   void close_episode(int l, double when, mode next_mode) {
+    if (tallying_) return tally_closed_episode(l, when, next_mode);
     if (when > episode_start_[l])
       observer_[l]->on_episode(episode{episode_kind_[l], episode_start_[l], when,
                                        episode_position_[l], episode_belt_velocity_[l], false,
@@ -436,6 +454,23 @@ class lane_engine {
     if constexpr (with_causal) episode_switches_before_[l] = belt_switches_[l];
     episode_position_[l] = position_[l];
     episode_belt_velocity_[l] = belt_velocity_[l];
+  }
+
+  // close_episode's tallies (tallies_episodes), as the vector step sums
+  // them: the closed episode is the other kind than the next one.
+  void tally_closed_episode(int l, double when, mode next_mode) {
+    const double start = episode_start_[l];
+    if (when > start) {
+      const double length = when - start;
+      if (next_mode == mode::slip) {  // a stick closes
+        if (tally_first_start_[l] < 0.0) tally_first_start_[l] = start, tally_first_duration_[l] = length;
+        tally_stick_time_[l] += length;
+        tally_sticks_[l] += 1.0;
+      } else if (tally_sticks_[l] > 0.0) {
+        tally_slips_[l] += 1.0;  // slips after the first stick
+      }
+    }
+    episode_start_[l] = when;
   }
 
   // simulate()'s on_event, with the state just after the event.
@@ -815,6 +850,28 @@ class lane_engine {
       hn::Store(Add(hn::Load(d, slip_reversals_ + j),
                     hn::IfThenElseZero(hn::Eq(round_event, Set(d, ev_slip_reversal)), one)),
                 d, slip_reversals_ + j);
+      if constexpr (tallies_episodes)
+        if (tallying_) {  // tally_closed_episode, lane-wise
+          const vec start = hn::Load(d, episode_start_ + j);
+          const mask closes_stick = hn::Or(is_stick_switch, is_stick_break);
+          const mask has_length = hn::Gt(nt, start);
+          const vec length = Sub(nt, start);
+          const mask stick = hn::And(closes_stick, has_length);
+          const vec sticks = hn::Load(d, tally_sticks_ + j);
+          const vec first_start = hn::Load(d, tally_first_start_ + j);
+          const mask first = hn::And(stick, hn::Lt(first_start, zero));
+          hn::Store(IfThenElse(first, start, first_start), d, tally_first_start_ + j);
+          hn::Store(IfThenElse(first, length, hn::Load(d, tally_first_duration_ + j)), d,
+                    tally_first_duration_ + j);
+          hn::Store(Add(hn::Load(d, tally_stick_time_ + j), hn::IfThenElseZero(stick, length)), d,
+                    tally_stick_time_ + j);
+          hn::Store(Add(sticks, hn::IfThenElseZero(stick, one)), d, tally_sticks_ + j);
+          const mask slip = hn::And(hn::And(is_stick_onset, has_length), hn::Gt(sticks, zero));
+          hn::Store(Add(hn::Load(d, tally_slips_ + j), hn::IfThenElseZero(slip, one)), d,
+                    tally_slips_ + j);
+          hn::Store(IfThenElse(hn::Or(closes_stick, is_stick_onset), nt, start), d,
+                    episode_start_ + j);
+        }
       const unsigned shift = static_cast<unsigned>(j);
       took_switch |= lane_bits(d, is_switch) << shift;
       close_stick |= lane_bits(d, hn::Or(is_stick_switch, is_stick_break)) << shift;
@@ -982,13 +1039,15 @@ class lane_engine {
     const std::uint32_t took_switch = took_switch_, close_stick = close_stick_,
                         close_slip = close_slip_, finished = finished_;
     if constexpr (with_events) emit_round_events();
-    for (unsigned m = close_stick; m != 0; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      close_episode(l, time_[l], mode::slip);
-    }
-    for (unsigned m = close_slip; m != 0; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      close_episode(l, time_[l], mode::stick);
+    if (!tallying_) {  // else the vector step closed them
+      for (unsigned m = close_stick; m != 0; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        close_episode(l, time_[l], mode::slip);
+      }
+      for (unsigned m = close_slip; m != 0; m &= m - 1) {
+        const int l = std::countr_zero(m);
+        close_episode(l, time_[l], mode::stick);
+      }
     }
     for (unsigned m = took_switch; m != 0; m &= m - 1) {
       const int l = std::countr_zero(m);
@@ -1040,6 +1099,7 @@ class lane_engine {
   std::uint64_t key_;
   burn_in_cut burn_in_;  // sweep_spec::burn_in (only with pieces)
   bool observing_;       // observe times, and an observer that samples them
+  bool tallying_;        // tallies_episodes, and no burn-in
   std::vector<observer> pool_;
   std::vector<unsigned char> done_;
   // Lane state, one array per variable (structure of arrays): the vector
@@ -1063,13 +1123,20 @@ class lane_engine {
   // (+V), at the second (-V), and the slips' relative travel.
   HWY_ALIGN double time_at_first_level_[lanes] = {}, time_at_second_level_[lanes] = {};
   HWY_ALIGN double relative_travel_[lanes] = {};
+  // The tallies of the closed episodes (tallies_episodes): sticks of
+  // positive length, the slips after the first, the stick time, and the
+  // first stick's start and length (-1: none yet).
+  HWY_ALIGN double tally_sticks_[lanes] = {}, tally_slips_[lanes] = {};
+  HWY_ALIGN double tally_stick_time_[lanes] = {}, tally_first_start_[lanes] = {};
+  HWY_ALIGN double tally_first_duration_[lanes] = {};
   double max_steps_;
   // What the last vector step left to do, one bit per lane.
   std::uint32_t took_switch_ = 0, close_stick_ = 0, close_slip_ = 0, finished_ = 0;
   bool active_[lanes] = {};
   std::uint64_t realization_[lanes] = {};
   // The episode in progress: kind, start, and x, v at its start.
-  double episode_start_[lanes] = {}, episode_position_[lanes] = {};
+  HWY_ALIGN double episode_start_[lanes] = {};
+  double episode_position_[lanes] = {};
   double episode_belt_velocity_[lanes] = {};
   double episode_switches_before_[lanes] = {};  // episode::switches_before
   double switch_time_sum_[lanes] = {};          // event_counts::switch_time_sum
