@@ -67,8 +67,8 @@ struct realization_record {
 };
 
 // Where the statistics keep no causal score (point_statistics::
-// keeps_causal_score: the paper study's configuration, whose lane observer
-// skips the bookkeeping), the scalar engines drop theirs from the record,
+// keeps_causal_score: the paper study's configuration, and means only
+// without the derivatives, whose lane observers skip the bookkeeping), the scalar engines drop theirs from the record,
 // so that the records are the same bits whichever engine ran.
 inline void drop_causal_score(realization_record& r) noexcept {
   r.stick_switch_moment = r.stick_time_moment = 0.0;

@@ -94,7 +94,8 @@ struct sweep_spec {
   // D_1, the powers): no pooled per-stick or per-slip statistics, no
   // histograms, and the lane engine keeps no list of durations. What the
   // peak finder reads (precision/peak_sweep.cpp); those means are the same
-  // bits either way, everything else is empty.
+  // bits either way, everything else is empty. R's causal score is then kept
+  // only with statistics.derivatives selected (keeps_causal_score).
   bool means_only = false;
   // Uncertain parameters (uncertainty/parameter_law.hpp): each realization
   // of every grid point draws its own values of these from its own substream

@@ -127,7 +127,7 @@ TEST(EpisodeTallies, TheLanesTalliesEqualACountFromTheEpisodes) {
 // the records are still the reference engine's.
 TEST(EpisodeTallies, WithABurnInTheLanesHandOverEveryEpisode) {
   for (auto model : models()) {
-    model.burn_in = 0.2 * model.base.window;  // 10 s of the 50-s window
+    model.burn_in = 0.2 * model.base.window;  // a fifth of each model's window
     const auto fast = run_sweep(means_of_R(model, sweep_engine::fast), 2);
     const auto ref = run_sweep(means_of_R(model, sweep_engine::reference), 2);
     for (std::size_t p = 0; p < fast.points.size(); ++p)

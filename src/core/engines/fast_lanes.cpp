@@ -277,9 +277,14 @@ class lane_engine {
   // An observer that takes the tallies of the closed episodes instead of
   // each one (realization_observer::set_closed_episode_tallies: the means of
   // a `sweep --statistics R`): the vector step sums them, lane-wise in the
-  // observer's order, so the same bits, and side_effects closes no episode.
-  // Not with a burn-in (tallying_), which cuts episodes at T.
+  // observer's order, so the same bits; side_effects closes only the rare
+  // slip ended by a contact at a switch (contact_at_switch), in scalar form.
+  // Not with a burn-in (tallying_), which cuts episodes at T. The last,
+  // censored episode then carries only its kind and times: an observer of
+  // events, pieces or the causal score must take every episode.
   static constexpr bool tallies_episodes = takes_episode_tallies<observer>;
+  static_assert(!tallies_episodes || (!with_causal && !with_events && !with_pieces),
+                "an observer that takes episode tallies reads no other episode field");
 
  public:
   // Realizations [first, last) of one point, handed to `collect` in order.
