@@ -844,6 +844,7 @@ class lane_engine {
       const mask is_stick_break = hn::Eq(round_event, Set(d, ev_stick_break));
       const mask is_stick_onset = hn::Eq(round_event, Set(d, ev_slip_onset));
       const mask is_switch = hn::Or(is_stick_switch, is_slip_switch);
+      const mask closes_stick = hn::Or(is_stick_switch, is_stick_break);
       const mask ends_at_ta =
           hn::Or(hn::Eq(round_event, Set(d, ev_stick_ta)), hn::Eq(round_event, Set(d, ev_slip_ta)));
       hn::Store(Add(hn::Load(d, belt_switches_ + j), hn::IfThenElseZero(is_switch, one)), d,
@@ -858,7 +859,6 @@ class lane_engine {
       if constexpr (tallies_episodes)
         if (tallying_) {  // tally_closed_episode, lane-wise
           const vec start = hn::Load(d, episode_start_ + j);
-          const mask closes_stick = hn::Or(is_stick_switch, is_stick_break);
           const mask has_length = hn::Gt(nt, start);
           const vec length = Sub(nt, start);
           const mask stick = hn::And(closes_stick, has_length);
@@ -879,7 +879,7 @@ class lane_engine {
         }
       const unsigned shift = static_cast<unsigned>(j);
       took_switch |= lane_bits(d, is_switch) << shift;
-      close_stick |= lane_bits(d, hn::Or(is_stick_switch, is_stick_break)) << shift;
+      close_stick |= lane_bits(d, closes_stick) << shift;
       close_slip |= lane_bits(d, is_stick_onset) << shift;
       finished |= lane_bits(d, ends_at_ta) << shift;
     }
