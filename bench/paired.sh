@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Paired timing of two stickslip binaries on one command, for changes whose
 # effect is smaller than this machine's drift between runs (2 shared cores):
-# N pairs run back to back (old, new, old, new, ...), and the figure is the
-# median of the per-pair ratios new/old, which cancels the slow drift that
-# the medians of separate series keep.
+# N pairs run back to back, and the figure is the median of the per-pair
+# ratios new/old, which cancels the slow drift that the medians of separate
+# series keep. The order alternates (old new, new old, old new, ...: ABBA),
+# so that an effect of running second (a warm page cache, a CPU that has
+# just sped up or throttled) falls on each binary in half of the pairs.
 #
 #   bench/paired.sh OLD_BINARY NEW_BINARY N SUBCOMMAND ARGS...
 #   e.g. bench/paired.sh /tmp/old/stickslip build/apps/stickslip/stickslip 10 \
@@ -13,14 +15,16 @@
 # sweep and reproduce). Prints the median ratio of wall and CPU (user + sys)
 # seconds, the median seconds of each binary, and every pair's wall ratio.
 set -euo pipefail
-(($# >= 4)) || { sed -n 2,14p "$0"; exit 2; }
+(($# >= 4)) || { sed -n 2,16p "$0"; exit 2; }
 old=$1 new=$2 n=$3
 shift 3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 times=$work/times
 for i in $(seq "$n"); do
-  for tag in old new; do
+  order=(old new)
+  ((i % 2 == 0)) && order=(new old)
+  for tag in "${order[@]}"; do
     bin=$old
     [[ $tag == new ]] && bin=$new
     out=()
@@ -42,5 +46,5 @@ print("pairs %d: median new/old wall %.3f, CPU %.3f | median wall old %.2f s, ne
       % (len(runs), st.median(wall), st.median(cpu),
          st.median(r["old"][0] for r in runs.values()),
          st.median(r["new"][0] for r in runs.values())))
-print("wall ratios:", " ".join("%.3f" % x for x in wall))
+print("wall ratios:", " ".join("%.3f" % x for x in wall), "(odd pairs ran old first, even pairs new first)")
 PY

@@ -236,6 +236,63 @@ TEST(CausalScore, KeptWhereItIsReadTheSameBitsOnEveryEngine) {
     }
 }
 
+// The journal's codec keeps the flag in bit 1 of the means-only byte, set
+// only where the flag differs from the rule before it (family statistics or
+// means only), so that journals written before read as before. Every one of
+// the eight combinations of (family, means only, kept) goes through and
+// comes back, bytes 0 to 3 are what the rule says, and a byte above 3 is
+// refused by name. The byte is found as the one position where the
+// encodings of two statistics that differ only in means-only differ.
+TEST(CausalScore, TheJournalCodecKeepsEveryFlagCombination) {
+  const model_parameters p;
+  const histogram_spec h;
+  const work_unit u{0, 0};
+  const auto encode = [&](bool family, bool means, bool kept) {
+    block_result b;
+    b.stats = point_statistics(p, h, family, true, means, kept);
+    return serialize(u, b);
+  };
+  // Where the means-only byte is.
+  const auto a = encode(false, false, false), m = encode(false, true, false);
+  ASSERT_EQ(a.size(), m.size());
+  std::size_t at = a.size(), differing = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != m[i]) {
+      at = i;
+      ++differing;
+    }
+  ASSERT_EQ(differing, 1u);
+  int seen_byte[4] = {0, 0, 0, 0};
+  for (bool family : {false, true})
+    for (bool means : {false, true})
+      for (bool kept : {false, true}) {
+        const auto bytes = encode(family, means, kept);
+        const auto flag = static_cast<unsigned char>(bytes[at]);
+        const bool old_rule = family || means;
+        EXPECT_EQ(flag, (means ? 1u : 0u) | (kept != old_rule ? 2u : 0u))
+            << "family " << family << " means " << means << " kept " << kept;
+        if (flag < 4) ++seen_byte[flag];
+        const auto back = deserialize_unit_result(bytes).second.stats;
+        EXPECT_EQ(back.family_statistics, family);
+        EXPECT_EQ(back.means_only, means);
+        EXPECT_EQ(back.keeps_causal_score(), kept);
+        EXPECT_EQ(serialize(u, block_result{back, {}}), bytes);  // canonical
+      }
+  for (int byte = 0; byte < 4; ++byte) EXPECT_EQ(seen_byte[byte], 2) << "byte " << byte;
+  for (unsigned char bad : {4, 7, 255}) {
+    auto bytes = encode(true, false, true);
+    bytes[at] = static_cast<char>(bad);
+    try {
+      (void)deserialize_unit_result(bytes);
+      ADD_FAILURE() << "byte " << int(bad) << " was accepted";
+    } catch (const error& e) {
+      EXPECT_NE(std::string(e.what()).find("means-only flag: " + std::to_string(bad) + " is not 0 to 3"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // No causal score where the belt is not switched at the rate lambda.
 TEST(CausalScore, OnlyWithPoissonSwitching) {
   sweep_spec s = figure_spec(5, {1.0}, 40, false, 5);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "stickslip/engines/integration_counts.hpp"
 #include "stickslip/replay.hpp"
 #include "stickslip/sweep.hpp"
 #include "unit/figure_spec.hpp"
@@ -85,7 +86,13 @@ TEST(EpisodeTallies, TheLanesTalliesEqualACountFromTheEpisodes) {
     const sweep_spec s = means_of_R(model, sweep_engine::fast);
     ASSERT_TRUE(s.means_only);
     ASSERT_FALSE(keeps_causal_score(s));  // the tallying observer
+    // The lanes ran every realization: no scalar integrator did (no rerun
+    // after max_events, no engine choice that sends the model elsewhere).
+    const std::uint64_t paper_before = detail::integrations(integrator::paper),
+                        model_before = detail::integrations(integrator::model);
     const auto rs = run_sweep(s, 2);
+    ASSERT_EQ(detail::integrations(integrator::paper), paper_before);
+    ASSERT_EQ(detail::integrations(integrator::model), model_before);
     for (std::size_t p = 0; p < rs.points.size(); ++p) {
       const model_parameters params = point_parameters(s, p);
       for (std::uint64_t r = 0; r < s.realizations; ++r) {
