@@ -108,4 +108,23 @@ grep -q "interrupted by signal" "$work/usr1.err" || { cat "$work/usr1.err"; fail
   || fail "resume after SIGUSR1"
 $compare "$work/long-single" "$work/usr1" >/dev/null || fail "resume after SIGUSR1 differs"
 echo "mpi_cli: SIGUSR1 to mpirun stops all ranks, journaled; --resume == single process"
+# A grid larger than a window (1,800 points; 60 lambda slabs of 30 points:
+# two windows, 34 and 26 slabs) under mpirun: each window is a spec of its
+# own for the serving ranks, with the same outputs as one process. The first
+# journal segment is written when the first window ends (a checkpoint
+# interval of an hour writes no other before), so SIGUSR1 sent then stops
+# the run in its second window; --resume under MPI completes the same
+# results.
+wide=(sweep --lambda log:0.1:30:60 --mu lin:0.5:7:30 --realizations 120 --seed 9
+      --checkpoint-interval 3600)
+"$bin" "${wide[@]}" --threads 2 -o "$work/wide-single" 2>/dev/null || fail "single-process windowed grid"
+"${launch[@]}" -np 2 "$bin" "${wide[@]}" --threads 1 -o "$work/wide-np2" 2>"$work/wide.err" \
+  || { cat "$work/wide.err"; fail "mpirun -np 2 windowed grid"; }
+$compare "$work/wide-single" "$work/wide-np2" >/dev/null || fail "windowed grid: -np 2 differs"
+usr1_mid_run "$work/wide-usr1" "SIGUSR1 in the second window" "${wide[@]}"
+grep -q "interrupted by signal" "$work/wide-usr1.err" || { cat "$work/wide-usr1.err"; fail "windowed grid: no interruption report (exit $rc)"; }
+"${launch[@]}" -np 2 "$bin" "${wide[@]}" --threads 1 --resume -o "$work/wide-usr1" 2>/dev/null \
+  || fail "windowed grid: resume under mpirun"
+$compare "$work/wide-single" "$work/wide-usr1" >/dev/null || fail "windowed grid: MPI resume differs"
+echo "mpi_cli: a grid of two windows under mpirun -np 2, and stopped in its second window and resumed, == single process"
 rm -rf "$work"

@@ -5,12 +5,18 @@
 // end every rank with that error on rank 0. Exit 0 on success.
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "stickslip/error.hpp"
 #include "stickslip/mpi/distributed_sweep.hpp"
+#include "stickslip/mpi/mpi_runner.hpp"
+#include "stickslip/run/journaled_run.hpp"
+#include "stickslip/run/result_memory.hpp"
 #include "stickslip/serialize.hpp"
 
 using namespace stickslip;
@@ -40,6 +46,71 @@ int fail(const std::string& what) {
   return 1;
 }
 
+// The MPI runner, counting the specs it is handed (one per window).
+class counting_runner final : public run::runner {
+ public:
+  explicit counting_runner(run::runner& inner) : inner_(inner) {}
+  void run(const sweep_spec& s, ordered_merger& m, const sweep_hooks& h) override {
+    ++runs;
+    inner_.run(s, m, h);
+  }
+  [[nodiscard]] int ranks() const noexcept override { return inner_.ranks(); }
+  [[nodiscard]] unsigned threads() const noexcept override { return inner_.threads(); }
+  [[nodiscard]] bool runs_any_spec() const noexcept override { return inner_.runs_any_spec(); }
+  int runs = 0;
+
+ private:
+  run::runner& inner_;
+};
+
+// Every point's statistics as the outputs read them (release_unselected),
+// serialized, with its grid index.
+std::string encode(const result_set& rs) {
+  std::string out;
+  for (const auto& p : rs.points) {
+    auto st = p.stats;
+    run::release_unselected(st, rs.spec);
+    out += serialize(work_unit{}, block_result{st, {}});
+    for (auto i : p.index) out += std::to_string(i) + ",";
+  }
+  return out;
+}
+
+// 5. A whole journaled run of a grid larger than its window (run_journaled,
+// window_points = 3: one lambda slab of 2 points at a time, 4 windows) on
+// the MPI runner: one spec per window goes to the serving ranks, and the
+// results are those of one window on one process.
+int windowed_run(const mpi::session& ses, unsigned threads, const sweep_spec& spec) {
+  const auto dir = [](const char* name) {
+    return (std::filesystem::temp_directory_path() /
+            fmt::format("stickslip-mpi-windows-{}-{}", name, ::getpid()))
+        .string();
+  };
+  const io::run_metadata meta{"cmd", "cfg", "v", "g", "t"};
+  run::run_plan one;
+  one.dir = dir("one");
+  one.window_points = 0;
+  std::filesystem::remove_all(one.dir);
+  run::thread_runner local(1);
+  const auto want = run::run_journaled(spec, one, meta, local);
+
+  run::run_plan windows = one;
+  windows.dir = dir("windows");
+  windows.window_points = 3;
+  std::filesystem::remove_all(windows.dir);
+  mpi::runner distributed(ses, threads);
+  if (!distributed.runs_any_spec()) return fail("case 5: the MPI runner takes one spec only");
+  counting_runner counted(distributed);
+  const auto got = run::run_journaled(spec, windows, meta, counted);
+  std::filesystem::remove_all(one.dir);
+  std::filesystem::remove_all(windows.dir);
+  if (counted.runs != 4) return fail(fmt::format("case 5: {} windows, expected 4", counted.runs));
+  if (!want.results || !got.results) return fail("case 5: no results");
+  if (encode(*got.results) != encode(*want.results))
+    return fail("case 5: the windowed MPI run differs from one window on one process");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -54,6 +125,8 @@ int main(int argc, char** argv) {
     mpi::serve(ses, threads);  // case 3
     mpi::serve(ses, threads);  // case 4, stopped
     mpi::serve(ses, threads);  // case 4, resumed
+    while (mpi::serve(ses, threads)) {
+    }  // case 5: a spec per window, until rank 0 cancels
     return 0;
   }
   ordered_merger reference(spec);
@@ -130,8 +203,17 @@ int main(int argc, char** argv) {
   if (twice || !m4.complete() || encode(small, m4) != want4)
     return fail("case 4: the stopped and resumed run differs from the single-process run");
 
+  int windowed = 0;
+  try {
+    windowed = windowed_run(ses, threads, spec);
+  } catch (const std::exception& e) {
+    windowed = fail(fmt::format("case 5: {}", e.what()));
+  }
+  mpi::cancel(ses);  // the serving ranks return
+  if (windowed != 0) return windowed;
+
   fmt::print("mpi_equivalence: {} ranks x {} threads: {} units bit-identical; resume, stop and "
-             "error paths OK\n",
+             "error paths OK; a windowed journaled run (4 windows) bit-identical\n",
              ses.size(), threads, unit_count(spec));
   return 0;
 }

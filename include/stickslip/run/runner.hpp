@@ -20,8 +20,9 @@ class runner {
   [[nodiscard]] virtual int ranks() const noexcept { return 1; }
   [[nodiscard]] virtual unsigned threads() const noexcept = 0;
   // Whether run() may be handed any spec, one after another (run_journaled
-  // runs a large grid window by window); a runner whose processes agreed on
-  // one spec beforehand (MPI) says no.
+  // runs a large grid window by window). The thread runner and the MPI
+  // runner (each run() broadcasts its spec) say yes; a runner tied to one
+  // spec says no, and its grids run as one window.
   [[nodiscard]] virtual bool runs_any_spec() const noexcept { return false; }
 };
 

@@ -16,6 +16,10 @@ class runner final : public run::runner {
   }
   [[nodiscard]] int ranks() const noexcept override { return ses_.size(); }
   [[nodiscard]] unsigned threads() const noexcept override { return threads_; }
+  // Every run() broadcasts its own spec, and the other ranks serve one spec
+  // after another until rank 0 cancels (serve_all): so a large grid can run
+  // window by window here too, with the same bits (tests/mpi).
+  [[nodiscard]] bool runs_any_spec() const noexcept override { return true; }
 
  private:
   const session& ses_;
