@@ -278,6 +278,65 @@ TEST(Journal, CorruptOrTruncatedSegmentsAreReportedAndSkipped) {
   for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.stats, simulate_block(s, u).stats));
 }
 
+// A record journaled twice (two writers, or a rewritten checkpoint): the
+// same bytes are one record, silently; different bytes for one unit, or for
+// one point's prefix of one length, are damage: reported, and that unit or
+// point is recomputed. Units with records (keep_records) and without;
+// prefixes (whole runs without records).
+TEST(Journal, ARecordReadTwiceIsKeptOnceAndAConflictIsRecomputed) {
+  for (const bool records : {true, false}) {
+    temp_dir d;
+    const auto s = small_spec(records);
+    journal_everything(s, d.path);
+    const work_unit same = unit_at(s, 0), changed = unit_at(s, 1);
+    const std::size_t point = 1;  // its prefix is journaled twice, then changed
+    const auto blocks = blocks_per_point(s);
+    ordered_merger whole(s);
+    run_units(s, 1, whole);
+    const point_statistics merged = whole.points()[point];
+    {
+      io::journal_writer w(d.path.string(), s, io::run_metadata{"cmd", "cfg", "v", "g", "t"},
+                           "again", std::chrono::seconds(0));
+      w.add(same, simulate_block(s, same));  // the same bytes again
+      block_result other = simulate_block(s, changed);
+      other.stats.expected_switches += 1.0;  // the same unit, other bytes
+      w.add(changed, other);
+      if (!records) {  // a sweep that keeps records journals no prefixes
+        w.add_prefix(point, blocks, merged);
+        w.add_prefix(point, blocks, merged);  // the same prefix twice
+      }
+      w.flush();
+    }
+    std::vector<std::string> problems;
+    auto j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+    ASSERT_EQ(problems.size(), 1u) << (problems.empty() ? "" : problems[0]);
+    EXPECT_NE(problems[0].find("journaled twice with different contents"), std::string::npos)
+        << problems[0];
+    EXPECT_EQ(j.units.count(same), 1u);
+    EXPECT_EQ(j.units.count(changed), 0u);  // recomputed
+    EXPECT_TRUE(same_bits(j.units.at(same).stats, simulate_block(s, same).stats));
+    if (records) continue;
+    ASSERT_EQ(j.prefixes.count(point), 1u);
+    EXPECT_TRUE(same_bits(j.prefixes.at(point).stats, merged));
+    // A prefix of the same length with other bytes: the point is recomputed.
+    {
+      io::journal_writer w(d.path.string(), s, io::run_metadata{"cmd", "cfg", "v", "g", "t"},
+                           "conflict", std::chrono::seconds(0));
+      point_statistics other = merged;
+      other.expected_switches += 1.0;
+      w.add_prefix(point, blocks, other);
+      w.flush();
+    }
+    problems.clear();
+    j = io::read_journal(d.path.string(), &s, [&](const std::string& m) { problems.push_back(m); });
+    ASSERT_EQ(problems.size(), 2u);  // segments are read in name order: either may come first
+    EXPECT_TRUE(problems[0].find("two journaled merges of its first") != std::string::npos ||
+                problems[1].find("two journaled merges of its first") != std::string::npos)
+        << problems[0] << "\n" << problems[1];
+    EXPECT_EQ(j.prefixes.count(point), 0u);
+  }
+}
+
 TEST(Journal, DamagedHeaderStillChecksRecordsAgainstTheCurrentSpec) {
   temp_dir d;
   const auto s = small_spec();
