@@ -189,8 +189,9 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     if (plan.slice) merger.discard_results();  // a shard only journals (merge combines them)
     for (auto it = loaded.prefixes.lower_bound(offset);
          it != loaded.prefixes.end() && it->first < offset + points;) {
-      it->second.point -= offset;
-      merger.restore(std::move(it->second));
+      merged_prefix prefix = it->second.decode();
+      prefix.point -= offset;
+      merger.restore(std::move(prefix));
       it = loaded.prefixes.erase(it);
     }
     for (auto it = loaded.units.lower_bound(work_unit{offset, 0});

@@ -29,7 +29,7 @@ sweep_spec configuration_of(const std::vector<std::string>& dirs, const io::jour
 
 struct combined {
   std::map<work_unit, block_result> units;
-  std::map<std::size_t, merged_prefix> prefixes;  // the longest per point
+  std::map<std::size_t, io::journaled_prefix> prefixes;  // the longest per point
   std::optional<io::run_metadata> metadata;
   double elapsed = 0;
   std::uint64_t duplicates = 0;
@@ -47,7 +47,7 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
       if (fresh || it->second.blocks > p.blocks) continue;
       if (it->second.blocks < p.blocks) {
         it->second = std::move(p);
-      } else if (serialize(it->second) != serialize(p)) {
+      } else if (it->second.bytes != p.bytes) {
         throw error(exit_code::io_failure,
                     fmt::format("merge: the merged first {} blocks of point {} differ between "
                                 "two journals (one of them is from another program version or "
@@ -100,7 +100,7 @@ merged_shards merge_shards(const std::vector<std::string>& dirs, const io::journ
   combined all = combine(spec, dirs, report);
   check_coverage(spec, all);
   ordered_merger merger(spec);
-  for (auto& [point, p] : all.prefixes) merger.restore(std::move(p));
+  for (const auto& [point, p] : all.prefixes) merger.restore(p.decode());
   for (auto& [u, r] : all.units) merger.add(u, std::move(r));
   if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
   merged_shards out{make_result_set(spec, std::move(merger)), *all.metadata, all.duplicates};

@@ -111,7 +111,7 @@ TEST(JournalPrefixes, AWholeRunKeepsItsPrefixesInFewSegments) {
   const auto whole = merged_in_order(s);
   for (const auto& [p, prefix] : j.prefixes) {
     EXPECT_EQ(prefix.blocks, blocks_per_point(s));
-    EXPECT_EQ(bits(prefix.stats), whole[p]);
+    EXPECT_EQ(bits(prefix.decode().stats), whole[p]);
   }
   // A resume with everything journaled computes nothing and gives the same bits.
   plan.resume = true;

@@ -317,7 +317,7 @@ TEST(Journal, ARecordReadTwiceIsKeptOnceAndAConflictIsRecomputed) {
     EXPECT_TRUE(same_bits(j.units.at(same).stats, simulate_block(s, same).stats));
     if (records) continue;
     ASSERT_EQ(j.prefixes.count(point), 1u);
-    EXPECT_TRUE(same_bits(j.prefixes.at(point).stats, merged));
+    EXPECT_TRUE(same_bits(j.prefixes.at(point).decode().stats, merged));
     // A prefix of the same length with other bytes: the point is recomputed.
     {
       io::journal_writer w(d.path.string(), s, io::run_metadata{"cmd", "cfg", "v", "g", "t"},

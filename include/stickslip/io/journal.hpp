@@ -47,12 +47,22 @@ inline constexpr const char* journal_directory = ".journal";
 // True when DIR holds a journal (its header or any segment).
 [[nodiscard]] bool journal_exists(const std::string& dir);
 
+// A point's longest valid merged prefix, as its checked bytes: decoded when
+// it is merged. A resume of a large grid holds every journaled point until
+// its window comes, and the bytes take about half the memory of the decoded
+// statistics (a 100,000-point grid: 3.2 KB against ~7 KB a point).
+struct journaled_prefix {
+  std::uint64_t blocks = 0;
+  std::string bytes;  // serialize(merged_prefix), every check passed
+  [[nodiscard]] merged_prefix decode() const;
+};
+
 // What a journal holds after reading and checking it.
 struct journal_contents {
   std::optional<sweep_spec> spec;             // from the header (absent if unreadable)
   std::optional<run_metadata> metadata;       // the first run's metadata
   std::map<work_unit, block_result> units;    // every valid journaled unit, once
-  std::map<std::size_t, merged_prefix> prefixes;  // the longest valid one per point
+  std::map<std::size_t, journaled_prefix> prefixes;  // the longest valid one per point
   double elapsed_seconds = 0.0;  // sum over earlier runs of their last journaled time
   std::size_t segments = 0;      // segment files read
   std::size_t damaged = 0;       // files or records skipped as truncated/corrupt/foreign

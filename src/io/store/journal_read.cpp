@@ -108,10 +108,11 @@ struct segment_reader {
   const journal_report& report;
   journal_contents& out;
   std::map<std::string, double> run_elapsed;  // run id -> latest elapsed
-  // A record read twice is told apart from a conflicting one by serializing
+  // A unit read twice is told apart from a conflicting one by serializing
   // what was kept of the first (the codec is canonical: every accepted record
   // re-serializes to its own bytes), not by a copy of every payload, which
-  // doubled the memory of a resume (880 MB for a 100,000-point grid).
+  // doubled the memory of a resume (880 MB for a 100,000-point grid); a
+  // prefix is kept as its bytes (journaled_prefix) and compared as such.
   std::set<work_unit> conflicting;
   std::set<std::size_t> conflicting_points;
 
@@ -176,15 +177,14 @@ struct segment_reader {
     auto it = out.prefixes.find(p.point);
     if (it != out.prefixes.end() && it->second.blocks > p.blocks) return;
     if (it != out.prefixes.end() && it->second.blocks == p.blocks) {
-      if (serialize(it->second) == payload) return;
+      if (it->second.bytes == payload) return;
       conflicting_points.insert(p.point);
       out.prefixes.erase(it);
       return note(fmt::format("point {}: two journaled merges of its first {} blocks differ; "
                               "they will be recomputed",
                               p.point, p.blocks));
     }
-    const std::size_t point = p.point;
-    out.prefixes.insert_or_assign(point, std::move(p));
+    out.prefixes.insert_or_assign(p.point, journaled_prefix{p.blocks, std::string(payload)});
   }
 
   void add(const work_unit& u, block_result&& b, std::string_view payload) {
@@ -203,6 +203,8 @@ struct segment_reader {
 };
 
 }  // namespace
+
+merged_prefix journaled_prefix::decode() const { return deserialize_merged_prefix(bytes); }
 
 journal_contents read_journal(const std::string& dir, const sweep_spec* expected,
                               const journal_report& report) {
