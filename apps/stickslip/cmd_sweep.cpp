@@ -216,8 +216,6 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   if (exec.is_worker()) return exec.serve();  // rank 0 reports everything
 
   const sweep_spec spec = build_sweep_spec(cmd, o);
-  run::check_result_memory(spec, threads);  // before DIR is touched
-  check_output_dir(o.out_dir);
   run::run_plan plan;
   plan.replace_advice =
       "add --overwrite to replace them, --resume to continue an interrupted sweep, or choose "
@@ -228,6 +226,10 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   plan.writer = plan.slice ? "stickslip sweep --shard " + o.shard : std::string("stickslip sweep");
   plan.resume = o.resume;
   plan.overwrite = o.overwrite;
+  // Before DIR is touched, with what the run will hold (a large grid runs
+  // window by window, also under MPI).
+  run::check_result_memory(spec, threads, run::memory_window(spec, plan, exec.runner()));
+  check_output_dir(o.out_dir);
   progress_bar bar;
   wire_run_plan(plan, o.checkpoint_interval, stop, bar);
 

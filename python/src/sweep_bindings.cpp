@@ -110,8 +110,12 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   resolve_survival_grid(spec);
   validate(spec);
   // Refused before anything is allocated, with or without an output folder
-  // (run_journaled checks it too; the in-memory path below does not go there).
-  run::check_result_memory(spec, threads);
+  // (run_journaled checks it too; the in-memory path below does not go
+  // there), with what the run will hold: an output folder's run goes window
+  // by window through a large grid, the in-memory one holds every point.
+  run::thread_runner runner(threads);
+  run::check_result_memory(
+      spec, threads, output.empty() ? 0 : run::memory_window(spec, run::run_plan{}, runner));
   if (!(checkpoint_interval >= 0) || checkpoint_interval > 86400)
     throw invalid_parameter("checkpoint_interval", checkpoint_interval, "0 .. 86400 seconds");
   // The command line's rule for an output directory (stickslip sweep -o DIR,
@@ -141,7 +145,6 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   io::run_metadata meta = io::make_metadata(0, nullptr, io::to_toml(spec));
   meta.command_line = command_line;
   run::stop_token stop;
-  run::thread_runner runner(threads);
   std::atomic<std::uint64_t> done{0}, total{unit_count(spec)};
   auto count = [&](std::uint64_t d, std::uint64_t t) {
     done.store(d);

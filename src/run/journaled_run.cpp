@@ -121,6 +121,10 @@ std::vector<grid_window> grid_windows(const sweep_spec& spec, const run_plan& pl
 
 }  // namespace
 
+std::size_t memory_window(const sweep_spec& spec, const run_plan& plan, const runner& r) {
+  return runs_in_windows(spec, plan, r) ? plan.window_points : 0;
+}
+
 run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                           const io::run_metadata& fresh, runner& r) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -130,7 +134,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                         "needs every block of a point in one run");
   const bool windowed = runs_in_windows(spec, plan, r);
   // For every front end (sweep, reproduce, Python), with what the windows hold.
-  check_result_memory(spec, r.threads(), windowed ? plan.window_points : 0);
+  check_result_memory(spec, r.threads(), memory_window(spec, plan, r));
   run_outcome out;
   io::journal_contents loaded = load_journal(spec, plan);
   out.metadata = loaded.metadata ? *loaded.metadata : fresh;

@@ -16,6 +16,8 @@
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/run/result_memory.hpp"
 #include "stickslip/run/runner.hpp"
+#include "stickslip/run/shard.hpp"
+#include "stickslip/statistics_groups.hpp"
 #include "stickslip/serialize.hpp"
 
 using namespace stickslip;
@@ -132,6 +134,51 @@ TEST(GridWindows, TheMemoryEstimateFollowsTheWindows) {
   EXPECT_GT(at_once, 2.0e9);
   EXPECT_LT(windowed, 500.0e6);
   EXPECT_GT(windowed, 200.0e6);
+}
+
+// What the front ends check before they touch DIR (memory_window): the
+// window when the grid will run in windows, else the whole grid. A grid that
+// fits only in windows is accepted by that check (the CLI and Python once
+// refused it with the whole grid's estimate); shards, a runner that takes
+// one spec only, a grid within one window and window_points = 0 hold every
+// point.
+TEST(GridWindows, TheFrontEndsCheckTheMemoryOfWhatTheRunWillHold) {
+  sweep_spec s;
+  s.axes = {{"lambda", std::vector<double>(400, 1.0)}, {"mu", std::vector<double>(250, 5.0)}};
+  for (std::size_t i = 0; i < 400; ++i) s.axes[0].values[i] = 0.1 + 0.01 * static_cast<double>(i);
+  for (std::size_t i = 0; i < 250; ++i) s.axes[1].values[i] = 0.5 + 0.02 * static_cast<double>(i);
+  s.realizations = 20;
+  run::thread_runner threads(2);
+  run::run_plan plan;
+  EXPECT_EQ(run::memory_window(s, plan, threads), plan.window_points);
+  class one_spec final : public run::runner {
+   public:
+    void run(const sweep_spec&, ordered_merger&, const sweep_hooks&) override {}
+    [[nodiscard]] unsigned threads() const noexcept override { return 1; }
+  } tied;
+  EXPECT_EQ(run::memory_window(s, plan, tied), 0u);
+  run::run_plan shard = plan;
+  shard.slice = run::parse_shard("1/2");
+  EXPECT_EQ(run::memory_window(s, shard, threads), 0u);
+  run::run_plan whole = plan;
+  whole.window_points = 0;
+  EXPECT_EQ(run::memory_window(s, whole, threads), 0u);
+  sweep_spec small = s;
+  small.axes[0].values.resize(4);  // 1,000 points: one window
+  EXPECT_EQ(run::memory_window(small, plan, threads), 0u);
+  // With 200 bins and the family statistics (their joint histograms, 200^2
+  // cells, while merged) the grid needs ~34 GB at once and ~1.4 GB in
+  // windows: on a machine of up to ~42 GB (80 %) only the whole grid's
+  // estimate refused it.
+  s.histograms.bins = 200;
+  s.statistics = parse_statistics_selection("statistics", "paper,X");
+  apply_statistics_selection(s);
+  ASSERT_TRUE(s.family_statistics);
+  const double at_once = run::estimated_result_bytes(s, 2, 0);
+  const double windowed = run::estimated_result_bytes(s, 2, run::memory_window(s, plan, threads));
+  EXPECT_GT(at_once, 30.0e9);
+  EXPECT_LT(windowed, 2.0e9);
+  EXPECT_NO_THROW(run::check_result_memory(s, 2, run::memory_window(s, plan, threads)));
 }
 
 // What a windowed run's results hold on the heap (glibc's bytes in use and

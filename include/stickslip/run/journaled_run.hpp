@@ -91,6 +91,15 @@ struct run_outcome {
 [[nodiscard]] std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
                                                                   const std::string& dir);
 
+// How many points run_journaled holds with every accumulator at a time, for
+// `spec` and `plan` on `r`: the plan's window when the grid runs window by
+// window (more points than the window, a whole run, a runner that takes any
+// spec, no sensitivity design, no survival grid still to be resolved), else
+// 0 (the whole grid). The front ends pass it to check_result_memory before
+// they touch the output directory, as run_journaled does.
+[[nodiscard]] std::size_t memory_window(const sweep_spec& spec, const run_plan& plan,
+                                        const runner& r);
+
 // Journal, resume, shard and stop around `r`. `fresh` is the metadata a new
 // journal records. Throws: invalid_input when DIR holds an unfinished journal
 // and plan.resume is false; resume_mismatch when the journal was made with
