@@ -5,7 +5,8 @@
 # ratios new/old, which cancels the slow drift that the medians of separate
 # series keep. The order alternates (old new, new old, old new, ...: ABBA),
 # so that an effect of running second (a warm page cache, a CPU that has
-# just sped up or throttled) falls on each binary in half of the pairs.
+# just sped up or throttled) falls on each binary in half of the pairs
+# (take N even).
 #
 #   bench/paired.sh OLD_BINARY NEW_BINARY N SUBCOMMAND ARGS...
 #   e.g. bench/paired.sh /tmp/old/stickslip build/apps/stickslip/stickslip 10 \
@@ -15,7 +16,7 @@
 # sweep and reproduce). Prints the median ratio of wall and CPU (user + sys)
 # seconds, the median seconds of each binary, and every pair's wall ratio.
 set -euo pipefail
-(($# >= 4)) || { sed -n 2,16p "$0"; exit 2; }
+(($# >= 4)) || { sed -n 2,17p "$0"; exit 2; }
 old=$1 new=$2 n=$3
 shift 3
 work=$(mktemp -d)

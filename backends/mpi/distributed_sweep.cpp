@@ -104,7 +104,8 @@ struct failure_slot {
 // STICKSLIP_FAULT_INJECT=mpi_worker_throw_after_units:N makes a worker's
 // main thread, outside its compute threads, throw once it has sent N results
 // to rank 0, as a failed MPI call or allocation there would. Read by the
-// workers of this backend only, once per sweep; any other value is an error,
+// workers of this backend once per spec they serve (per window of a large
+// grid: the count starts again with each); any other value is an error,
 // so that a test that misspells it cannot pass without its fault.
 constexpr const char* fault_variable = "STICKSLIP_FAULT_INJECT";
 std::optional<std::uint64_t> injected_throw_after_units() {
@@ -208,7 +209,12 @@ void coordinate(const session& ses, const sweep_spec& s, unsigned threads,
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned t = 0; t < resolve_threads(threads); ++t) pool.emplace_back(local);
+  try {
+    for (unsigned t = 0; t < resolve_threads(threads); ++t) pool.emplace_back(local);
+  } catch (...) {  // a thread could not be created: end the sweep as a failed unit would
+    std::lock_guard lock(mu);  // (the workers are told to stop; the threads made are joined)
+    failure.set(std::current_exception());
+  }
 
   // Serve the workers until each one is finished: told to stop with all of
   // its units returned, or failed (a failed worker sends nothing after that).

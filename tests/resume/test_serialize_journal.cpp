@@ -280,13 +280,21 @@ TEST(Journal, CorruptOrTruncatedSegmentsAreReportedAndSkipped) {
 
 // A record journaled twice (two writers, or a rewritten checkpoint): the
 // same bytes are one record, silently; different bytes for one unit, or for
-// one point's prefix of one length, are damage: reported, and that unit or
-// point is recomputed. Units with records (keep_records) and without;
-// prefixes (whole runs without records).
+// one point's prefix of one length, are damage: reported and dropped (the
+// point then falls back on its unit records, and what none covers is
+// recomputed). Units with records (keep_records) and without; prefixes
+// (whole runs without records); and every statistics group with observe
+// times, since a unit read twice is compared by re-encoding the first (the
+// codec must be canonical for all of them).
 TEST(Journal, ARecordReadTwiceIsKeptOnceAndAConflictIsRecomputed) {
-  for (const bool records : {true, false}) {
+  sweep_spec everything = small_spec(false);
+  everything.statistics = {true, true, true, true, {}};
+  everything.family_statistics = true;
+  everything.survival.stick_duration_max = everything.survival.slip_duration_max = 5.0;
+  everything.observe_times = {2.0, 7.0};
+  for (const auto& s : {small_spec(true), small_spec(false), everything}) {
+    const bool records = s.keep_records;
     temp_dir d;
-    const auto s = small_spec(records);
     journal_everything(s, d.path);
     const work_unit same = unit_at(s, 0), changed = unit_at(s, 1);
     const std::size_t point = 1;  // its prefix is journaled twice, then changed
@@ -334,6 +342,8 @@ TEST(Journal, ARecordReadTwiceIsKeptOnceAndAConflictIsRecomputed) {
                 problems[1].find("two journaled merges of its first") != std::string::npos)
         << problems[0] << "\n" << problems[1];
     EXPECT_EQ(j.prefixes.count(point), 0u);
+    for (std::uint64_t b = 0; b < blocks; ++b)  // its units are what a resume merges
+      EXPECT_EQ(j.units.count(work_unit{point, b}), 1u) << "block " << b;
   }
 }
 

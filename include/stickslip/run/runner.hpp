@@ -21,8 +21,9 @@ class runner {
   [[nodiscard]] virtual unsigned threads() const noexcept = 0;
   // Whether run() may be handed any spec, one after another (run_journaled
   // runs a large grid window by window). The thread runner and the MPI
-  // runner (each run() broadcasts its spec) say yes; a runner tied to one
-  // spec says no, and its grids run as one window.
+  // runner (each run() broadcasts its spec) say yes; the default no is for
+  // a runner tied to one spec (the tests' runners that fail or stop at a
+  // given unit of it), whose grids run as one window.
   [[nodiscard]] virtual bool runs_any_spec() const noexcept { return false; }
 };
 

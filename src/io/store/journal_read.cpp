@@ -111,8 +111,8 @@ struct segment_reader {
   // A unit read twice is told apart from a conflicting one by serializing
   // what was kept of the first (the codec is canonical: every accepted record
   // re-serializes to its own bytes), not by a copy of every payload, which
-  // doubled the memory of a resume (880 MB for a 100,000-point grid); a
-  // prefix is kept as its bytes (journaled_prefix) and compared as such.
+  // added about the journal's size to a resume's memory; a prefix is kept
+  // as its bytes (journaled_prefix) and compared as such.
   std::set<work_unit> conflicting;
   std::set<std::size_t> conflicting_points;
 
