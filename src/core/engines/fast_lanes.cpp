@@ -139,6 +139,17 @@ struct target_log_inplace {
   }
 };
 
+// A switch source's refill compiled for this target: its refill_with (the
+// Philox rounds, the conversion to doubles, this log, the running sum) is
+// inlined here, as 0.1.0's static AVX-512 build had it. The same bits: the
+// integer rounds and the exact conversions do not depend on the target,
+// the log is this target's either way, and the sum is the same additions.
+template <class SwitchSource>
+HWY_NOINLINE void refill_for_target(SwitchSource& source) {
+  target_log_inplace log;
+  source.refill_with(log);
+}
+
 // Event codes of one round (what the vector step decided for a lane).
 enum : int {
   ev_none = 0,       // lane idle this round
@@ -397,7 +408,7 @@ class lane_engine {
   }
 
   HWY_INLINE double next_switch(int l) noexcept {
-    return switch_times_[l].next(target_log_inplace{});
+    return switch_times_[l].next_refilled_by([](auto& source) { refill_for_target(source); });
   }
 
   void finish_realization(int l) {
