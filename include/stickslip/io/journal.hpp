@@ -49,8 +49,8 @@ inline constexpr const char* journal_directory = ".journal";
 
 // A point's longest valid merged prefix, as its checked bytes: decoded when
 // it is merged. A resume of a large grid holds every journaled point until
-// its window comes, and the bytes take about half the memory of the decoded
-// statistics (a 100,000-point grid: 3.2 KB against ~7 KB a point).
+// its window comes, and the bytes take less memory than the decoded
+// statistics (the 100,000-point grid's resume: 543 MB against 637 MB).
 struct journaled_prefix {
   std::uint64_t blocks = 0;
   std::string bytes;  // serialize(merged_prefix), every check passed
