@@ -8,6 +8,7 @@
 //   given_switches:   a replayed, measured or hand-made list.
 #pragma once
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -55,10 +56,9 @@ class poisson_switches {
   [[nodiscard]] double next() noexcept { return next(detail::fm::log_inplace); }
 
   // The same values, with the log kernel passed in: log_inplace(p, n) must
-  // compute the same bits as detail::fm::log_inplace (the lane engine passes
-  // the kernel of its own target, inlined).
-  // always_inline: the common case is inlined into the caller, also into the
-  // lane engine compiled for a SIMD target; the refill (once per 32) is not.
+  // compute the same bits as detail::fm::log_inplace (next() passes it).
+  // always_inline: the common case is inlined into the caller; the refill
+  // (once per 32) is not.
   template <class LogInplace>
   [[nodiscard, gnu::always_inline]] double next(LogInplace&& log_inplace) noexcept {
     if (i_ == chunk) [[unlikely]] refill(log_inplace);
@@ -72,9 +72,16 @@ class poisson_switches {
   // target too. (Refilled here, out of line, the refill is compiled for the
   // baseline x86-64 and calls the target's log: 21 % more time than 0.1.0's
   // static AVX-512 build on an Intel Xeon, docs/performance.md.)
+  // refill_chunk must call refill_with exactly once; refill_with is for
+  // that call only (it drops the unread times of the chunk). The running
+  // sum's bits depend on -ffp-contract=off in whatever compiles it (the
+  // core does; see src/core/CMakeLists.txt).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
-    if (i_ == chunk) [[unlikely]] refill_chunk(*this);
+    if (i_ == chunk) [[unlikely]] {
+      refill_chunk(*this);
+      assert(i_ == 0 && "refill_chunk must call refill_with");
+    }
     return times_[i_++];
   }
   template <class LogInplace>
@@ -121,16 +128,14 @@ class two_level_switch_times {
         rs_(seed, point, realization, substream::belt_switches) {}
   two_level_switch_times() noexcept : two_level_switch_times(1.0, 1.0, 0, 0, 0) {}
 
-  template <class LogInplace>
-  [[nodiscard, gnu::always_inline]] double next(LogInplace&& log_inplace) noexcept {
-    if (i_ == chunk) [[unlikely]] refill(log_inplace);
-    return times_[i_++];
-  }
-
-  // As poisson_switches::next_refilled_by and refill_with.
+  // As poisson_switches::next_refilled_by and refill_with (the lane engine
+  // is this source's only user).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
-    if (i_ == chunk) [[unlikely]] refill_chunk(*this);
+    if (i_ == chunk) [[unlikely]] {
+      refill_chunk(*this);
+      assert(i_ == 0 && "refill_chunk must call refill_with");
+    }
     return times_[i_++];
   }
   template <class LogInplace>
@@ -148,11 +153,6 @@ class two_level_switch_times {
   }
 
  private:
-  template <class LogInplace>
-  [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
-    refill_with(log_inplace);
-  }
-
   double mean_wait_[2];
   double time_ = 0.0;
   random_stream rs_;

@@ -143,9 +143,10 @@ struct target_log_inplace {
 // Philox rounds, the conversion to doubles, this log, the running sum) is
 // inlined here, as 0.1.0's static AVX-512 build had it. The same bits: the
 // integer rounds and the exact conversions do not depend on the target,
-// the log is this target's either way, and the sum is the same additions.
+// the log is this target's either way, and the sum is the same additions
+// (no multiply-add fused into them: -ffp-contract=off, src/core/CMakeLists.txt).
 template <class SwitchSource>
-HWY_NOINLINE void refill_for_target(SwitchSource& source) {
+HWY_NOINLINE void refill_for_target(SwitchSource& source) noexcept {
   target_log_inplace log;
   source.refill_with(log);
 }
