@@ -33,6 +33,20 @@ template <int Blocks, class LogInplace>
   log_inplace(w, std::size_t{4 * Blocks});
 }
 
+// next_refilled_by of every switch source: the next of the chunk's
+// `times`, after refill_chunk(source) when all were handed out (it must
+// call the source's refill_with, which sets `i` back to 0).
+template <class Source, std::size_t Chunk, class RefillChunk>
+[[gnu::always_inline]] inline double next_of_chunk(Source& source, int& i,
+                                                   const std::array<double, Chunk>& times,
+                                                   RefillChunk& refill_chunk) noexcept {
+  if (i == static_cast<int>(Chunk)) [[unlikely]] {
+    refill_chunk(source);
+    assert(i == 0 && "refill_chunk must call refill_with");
+  }
+  return times[static_cast<std::size_t>(i++)];
+}
+
 }  // namespace detail
 
 // The one Poisson switch source of every engine. Inverse-transform
@@ -78,11 +92,7 @@ class poisson_switches {
   // core does; see src/core/CMakeLists.txt).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
-    if (i_ == chunk) [[unlikely]] {
-      refill_chunk(*this);
-      assert(i_ == 0 && "refill_chunk must call refill_with");
-    }
-    return times_[i_++];
+    return detail::next_of_chunk(*this, i_, times_, refill_chunk);
   }
   template <class LogInplace>
   [[gnu::always_inline]] void refill_with(LogInplace& log_inplace) noexcept {
@@ -132,11 +142,7 @@ class two_level_switch_times {
   // is this source's only user).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
-    if (i_ == chunk) [[unlikely]] {
-      refill_chunk(*this);
-      assert(i_ == 0 && "refill_chunk must call refill_with");
-    }
-    return times_[i_++];
+    return detail::next_of_chunk(*this, i_, times_, refill_chunk);
   }
   template <class LogInplace>
   [[gnu::always_inline]] void refill_with(LogInplace& log_inplace) noexcept {
