@@ -323,6 +323,7 @@ class lane_engine {
       opposite_levels_ = v2_ == -v1_;
       key_ = family_->key;
     }
+    ta_up_ = std::nextafter(ta_, inf);
     const std::size_t n = std::min<std::size_t>(ring, last - first);
     pool_.reserve(n);
     for (std::size_t i = 0; i < n; ++i) pool_.push_back(collect_.make());
@@ -588,7 +589,7 @@ class lane_engine {
     constexpr int K = groups;
 #define K_LOOP for (int k = 0; k < K; ++k)
     const vec A = Set(d, a_), W = Set(d, w_), VV = Set(d, V_), TA = Set(d, ta_);
-    const vec TA_UP = Set(d, std::nextafter(ta_, inf));
+    const vec TA_UP = Set(d, ta_up_);  // the next double after t_a (observe times)
     const vec zero = hn::Zero(d), one = Set(d, 1.0), m_one = Set(d, -1.0), half = Set(d, 0.5);
     const vec mA = hn::Neg(A);
     // Family: the slip centre sigma a_k (the paper: sigma a, the band's edge),
@@ -1110,6 +1111,7 @@ class lane_engine {
   Collector& collect_;
   std::uint64_t first_, last_, next_, flush_;
   double a_, ak_, w_, V_, ta_;  // a_: the stick band (a_s); ak_: the slip centre (a_k)
+  double ta_up_ = 0.0;          // std::nextafter(ta_, inf), once: it cost 0.4 % of a sweep per round
   double v1_ = 1.0, v2_ = -1.0;  // Family: the two levels
   bool equal_friction_ = true;
   bool opposite_levels_ = true;  // v2 = -v1: a switch out of a stick can leave a mirror slip
