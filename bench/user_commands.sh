@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # The commands users run, side by side: this build against a reference build
 # (an earlier commit, e.g. 0.1.0 = 6d302e1, or the previous head), run
-# interleaved (ref, new, ref, new, ...) after one warm-up of each, and the
-# medians of whole-process figures: wall and CPU seconds (user + sys), peak
-# resident memory (GNU time's maximum RSS) and the bytes the command wrote.
+# interleaved after one warm-up of each, in alternating order (ref new, new
+# ref, ref new, ...: whichever runs second in a pair was ~2 % slower on the
+# Intel Xeon of 2026-11-29), and the medians of whole-process figures: wall
+# and CPU seconds (user + sys), peak resident memory (GNU time's maximum
+# RSS) and the bytes the command wrote; then `pairs`, the median of the
+# per-pair wall and CPU ratios new/ref (take an even number of runs).
 #
 # Usage: bench/user_commands.sh NEW_BUILD REF_BUILD [runs] [case ...]
 #   NEW_BUILD, REF_BUILD  CMake build directories (apps/stickslip/stickslip,
@@ -94,8 +97,13 @@ for c in "${cases[@]}"; do
   run_once "$ref" "$c" /dev/null
   run_once "$new" "$c" /dev/null
   for ((i = 0; i < runs; ++i)); do
-    run_once "$ref" "$c" "$tmp/$c.ref"
-    run_once "$new" "$c" "$tmp/$c.new"
+    if ((i % 2 == 0)); then
+      run_once "$ref" "$c" "$tmp/$c.ref"
+      run_once "$new" "$c" "$tmp/$c.new"
+    else
+      run_once "$new" "$c" "$tmp/$c.new"
+      run_once "$ref" "$c" "$tmp/$c.ref"
+    fi
   done
   for b in ref new; do
     f="$tmp/$c.$b"
@@ -107,5 +115,12 @@ for c in "${cases[@]}"; do
     "$(ratio "$(median 2 "$tmp/$c.new")" "$(median 2 "$tmp/$c.ref")")" \
     "$(ratio "$(median 3 "$tmp/$c.new")" "$(median 3 "$tmp/$c.ref")")" \
     "$(ratio "$(median 4 "$tmp/$c.new")" "$(median 4 "$tmp/$c.ref")")"
+  # The median of the ratios of each pair (run i of each build), which
+  # cancels the machine's slow drift that the separate medians keep.
+  printf '%-16s %-5s %9s %9s\n' "$c" "pairs" \
+    "$(paste "$tmp/$c.new" "$tmp/$c.ref" | awk 'NF == 8 && $6 > 0 {printf "%.4f\n", $1 / $5}' | sort -g |
+       awk '{a[NR]=$1} END {if (!NR) print "n/a"; else printf "%.2f", (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}')" \
+    "$(paste "$tmp/$c.new" "$tmp/$c.ref" | awk 'NF == 8 && $6 > 0 {printf "%.4f\n", $2 / $6}' | sort -g |
+       awk '{a[NR]=$1} END {if (!NR) print "n/a"; else printf "%.2f", (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}')"
   echo "  command: stickslip $(args_of "$c")"
 done

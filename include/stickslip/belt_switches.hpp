@@ -89,7 +89,8 @@ class poisson_switches {
   // refill_chunk must call refill_with exactly once; refill_with is for
   // that call only (it drops the unread times of the chunk). The running
   // sum's bits depend on -ffp-contract=off in whatever compiles it (the
-  // core does; see src/core/CMakeLists.txt).
+  // core does, and passes it to every target that links it; see
+  // src/core/CMakeLists.txt).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
     return detail::next_of_chunk(*this, i_, times_, refill_chunk);

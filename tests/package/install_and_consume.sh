@@ -6,7 +6,9 @@
 #      headers are the public API (none under detail/, none includes Highway
 #      or a header that is not installed), compiles each of them in its own
 #      translation unit, and checks that stickslip::core has no I/O libraries;
-#   3. build it and run its two programs;
+#   3. build it and run its three programs (own_observer: a user's observer
+#      on the header templates, compiled with -march=haswell and fused
+#      multiply-adds allowed, gives the library's bits);
 #   4. compare what they computed with the installed `stickslip` binary
 #      running the same sweep: summary.csv byte for byte, and the R means.
 # Usage: bash install_and_consume.sh BUILD_DIR CONSUMER_SOURCE_DIR
@@ -41,6 +43,12 @@ args=(-S "$consumer_src" -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix")
 [[ -n ${CONSUMER_CXX_FLAGS:-} ]] && args+=(-DCMAKE_CXX_FLAGS="$CONSUMER_CXX_FLAGS")
 [[ -n ${CONSUMER_BUILD_TYPE:-} ]] && args+=(-DCMAKE_BUILD_TYPE="$CONSUMER_BUILD_TYPE")
 [[ -n ${CONSUMER_LAUNCHER:-} ]] && args+=(-DCMAKE_CXX_COMPILER_LAUNCHER="$CONSUMER_LAUNCHER")
+# own_observer with -march=haswell where the CPU runs it (fused multiply-adds)
+if grep -qw fma /proc/cpuinfo && grep -qw avx2 /proc/cpuinfo; then
+  args+=(-DSTICKSLIP_CONSUMER_FMA=ON)
+else
+  echo "note: this CPU has no FMA/AVX2: own_observer is built without -march=haswell"
+fi
 "$cmake_cmd" "${args[@]}" || die "configuring the consumer against $prefix"
 
 step "build the consumer"
@@ -49,6 +57,7 @@ step "build the consumer"
 step "run the consumer"
 "$work/build/core_only" >"$work/core_only.txt" || die "core_only"
 "$work/build/sweep_to_csv" "$work/library" || die "sweep_to_csv"
+"$work/build/own_observer" || die "own_observer: the header templates in a user's build differ from the library"
 
 step "compare with the installed stickslip binary"
 "$prefix/bin/stickslip" sweep --lambda 1,3.8 --realizations 100 --seed 7 --threads 1 \
