@@ -15,6 +15,7 @@
 #include "stickslip/serialize.hpp"
 #include "stickslip/run/result_memory.hpp"
 #include "stickslip/run/work_meter.hpp"
+#include "grid_windows.hpp"
 
 namespace stickslip::run {
 namespace {
@@ -78,45 +79,19 @@ class prefix_checkpoint {
   std::set<work_unit> waiting_written_;
 };
 
-// A window of the grid: the slabs [first, first + count) of its first axis,
-// as a spec of its own whose point i is point offset + i of the whole grid
-// (row-major order). A point's results depend only on its parameters (its
-// random streams are keyed by them, point_key; its bins by
-// histogram_parameters), so a window's points have the same bits as in the
-// whole grid.
-struct grid_window {
-  sweep_spec spec;
-  std::size_t offset = 0;
-};
-
-// Whether `spec` may run window by window on `r`: a whole run (a shard
-// journals units for merge instead) on a runner that takes any spec, a grid
-// of more than one window, and nothing that depends on the whole grid at run
-// time (a sensitivity design; a survival grid still to be resolved).
+// Whether `spec` runs window by window on `r` (grid_windows.hpp): a runner
+// that takes any spec, and a grid that splits_into_windows. A shard too:
+// it journals every unit and keeps no results, so a window is all it holds
+// (a whole-grid merger of the 100,000-point grid held 590 MB in each of two
+// shards).
 bool runs_in_windows(const sweep_spec& spec, const run_plan& plan, const runner& r) {
-  if (plan.slice || !r.runs_any_spec() || plan.window_points == 0 || spec.axes.empty()) return false;
-  if (is_sensitivity(spec)) return false;
-  if (spec.statistics.survival &&
-      (spec.survival.stick_duration_max == 0.0 || spec.survival.slip_duration_max == 0.0))
-    return false;
-  return point_count(spec) > plan.window_points;
+  return r.runs_any_spec() && detail::splits_into_windows(spec, plan.window_points);
 }
 
-std::vector<grid_window> grid_windows(const sweep_spec& spec, const run_plan& plan,
-                                      const runner& r) {
+std::vector<detail::grid_window> grid_windows(const sweep_spec& spec, const run_plan& plan,
+                                              const runner& r) {
   if (!runs_in_windows(spec, plan, r)) return {{spec, 0}};
-  const auto& first_axis = spec.axes.front().values;
-  const std::size_t slab = point_count(spec) / first_axis.size();  // points per slab
-  const std::size_t per_window = std::max<std::size_t>(1, plan.window_points / slab);
-  std::vector<grid_window> out;
-  for (std::size_t a = 0; a < first_axis.size(); a += per_window) {
-    const std::size_t n = std::min(per_window, first_axis.size() - a);
-    grid_window w{spec, a * slab};
-    w.spec.axes.front().values.assign(first_axis.begin() + static_cast<std::ptrdiff_t>(a),
-                                      first_axis.begin() + static_cast<std::ptrdiff_t>(a + n));
-    out.push_back(std::move(w));
-  }
-  return out;
+  return detail::windows_of(spec, plan.window_points);
 }
 
 }  // namespace
@@ -188,21 +163,10 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
       merged_before += loaded.units.size();
       break;
     }
-    const std::size_t points = point_count(w.spec), offset = w.offset;
+    const std::size_t offset = w.offset;
     ordered_merger merger(w.spec);
     if (plan.slice) merger.discard_results();  // a shard only journals (merge combines them)
-    for (auto it = loaded.prefixes.lower_bound(offset);
-         it != loaded.prefixes.end() && it->first < offset + points;) {
-      merged_prefix prefix = it->second.decode();
-      prefix.point -= offset;
-      merger.restore(std::move(prefix));
-      it = loaded.prefixes.erase(it);
-    }
-    for (auto it = loaded.units.lower_bound(work_unit{offset, 0});
-         it != loaded.units.end() && it->first.point < offset + points;) {
-      merger.add({it->first.point - offset, it->first.block}, std::move(it->second));
-      it = loaded.units.erase(it);
-    }
+    detail::restore_window(w, loaded.prefixes, loaded.units, merger);
     const auto whole = [offset](const work_unit& u) { return work_unit{u.point + offset, u.block}; };
     prefix_checkpoint checkpoint(w.spec, merger, journal, offset);
     sweep_hooks hooks;
@@ -240,14 +204,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     if (stop || plan.slice) continue;
     if (!merger.complete())
       throw error(exit_code::internal, "the run ended with units missing from the merge");
-    auto part = make_result_set(w.spec, std::move(merger));
-    for (std::size_t i = 0; i < part.points.size(); ++i) {
-      auto& p = part.points[i];
-      p.index = point_index(spec, offset + i);
-      if (windowed) release_unselected(p.stats, spec);
-      all.points.push_back(std::move(p));
-    }
-    for (auto& rec : part.records) all.records.push_back(std::move(rec));
+    detail::append_window(all, make_result_set(w.spec, std::move(merger)), offset, windowed);
   }
   journal.flush();
   out.elapsed_this_run = seconds_since(t0);

@@ -8,6 +8,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/serialize.hpp"
+#include "grid_windows.hpp"
 
 namespace stickslip::run {
 namespace {
@@ -94,16 +95,27 @@ void check_coverage(const sweep_spec& spec, combined& all) {
 
 }  // namespace
 
-merged_shards merge_shards(const std::vector<std::string>& dirs, const io::journal_report& report) {
+merged_shards merge_shards(const std::vector<std::string>& dirs, const io::journal_report& report,
+                           std::size_t window_points) {
   const sweep_spec spec = configuration_of(dirs, report);
   validate(spec);
   combined all = combine(spec, dirs, report);
   check_coverage(spec, all);
-  ordered_merger merger(spec);
-  for (const auto& [point, p] : all.prefixes) merger.restore(p.decode());
-  for (auto& [u, r] : all.units) merger.add(u, std::move(r));
-  if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
-  merged_shards out{make_result_set(spec, std::move(merger)), *all.metadata, all.duplicates};
+  // Window by window, as run_journaled (grid_windows.hpp): one window's
+  // accumulators at a time, and the journaled units leave the maps as
+  // their window is merged.
+  const bool windowed = detail::splits_into_windows(spec, window_points);
+  merged_shards out{result_set{}, *all.metadata, all.duplicates};
+  out.results.spec = spec;
+  out.results.points.reserve(point_count(spec));
+  if (spec.keep_records) out.results.records.reserve(point_count(spec));
+  for (const auto& w : detail::windows_of(spec, window_points)) {
+    ordered_merger merger(w.spec);
+    detail::restore_window(w, all.prefixes, all.units, merger);
+    if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
+    detail::append_window(out.results, make_result_set(w.spec, std::move(merger)), w.offset,
+                          windowed);
+  }
   out.results.elapsed_seconds = all.elapsed;
   return out;
 }

@@ -14,6 +14,7 @@
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/run/journaled_run.hpp"
+#include "stickslip/run/merge.hpp"
 #include "stickslip/run/result_memory.hpp"
 #include "stickslip/run/runner.hpp"
 #include "stickslip/run/shard.hpp"
@@ -91,6 +92,63 @@ TEST(GridWindows, AWindowedRunHasTheBitsOfOneWindow) {
   fs::remove_all(one);
 }
 
+namespace {
+// A thread runner that counts the specs it is given (one per window).
+class counting_runner final : public run::runner {
+ public:
+  explicit counting_runner(unsigned threads) : inner_(threads) {}
+  void run(const sweep_spec& s, ordered_merger& merger, const sweep_hooks& hooks) override {
+    ++specs;
+    points = std::max(points, point_count(s));
+    inner_.run(s, merger, hooks);
+  }
+  [[nodiscard]] unsigned threads() const noexcept override { return inner_.threads(); }
+  [[nodiscard]] bool runs_any_spec() const noexcept override { return true; }
+  int specs = 0;
+  std::size_t points = 0;  // the largest spec given
+
+ private:
+  run::thread_runner inner_;
+};
+}  // namespace
+
+// A shard of a large grid runs window by window too (it journals every unit
+// and keeps no results), and `stickslip merge` merges window by window: the
+// same bits as one run of the whole grid at once, whatever the windows.
+TEST(GridWindows, ShardsRunInWindowsAndMergeWindowByWindowWithTheBitsOfOneRun) {
+  const auto s = grid();
+  const auto one = fresh("shards-ref");
+  const auto whole = run_in(s, one, 0);
+  ASSERT_TRUE(whole.results);
+  std::vector<std::string> dirs;
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    const auto dir = fresh("shard" + std::to_string(i));
+    dirs.push_back(dir.string());
+    run::run_plan plan;
+    plan.dir = dir.string();
+    plan.window_points = 3;  // one slab (3 points) a window: 5 windows
+    plan.slice = run::shard{i, 2};
+    EXPECT_EQ(run::memory_window(s, plan, counting_runner(1)), 3u);
+    counting_runner runner(2);
+    const auto out = run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner);
+    EXPECT_FALSE(out.results);
+    EXPECT_EQ(runner.specs, 5) << "shard " << i;
+    EXPECT_EQ(runner.points, 3u) << "shard " << i;
+    EXPECT_EQ(out.computed_units, unit_count(s) / 2) << "shard " << i;
+  }
+  for (const std::size_t window : {0u, 3u, 4u, 7u, 1000u}) {
+    const auto merged = run::merge_shards(dirs, {}, window);
+    EXPECT_EQ(merged.duplicates, 0u);
+    expect_same_results(*whole.results, merged.results);
+    // Merged in windows, the finished points hold no unselected histograms.
+    EXPECT_EQ(merged.results.points[4].stats.stick_duration_onset.cells().empty(),
+              window > 0 && window < point_count(s))
+        << "window " << window;
+  }
+  for (const auto& d : dirs) fs::remove_all(d);
+  fs::remove_all(one);
+}
+
 TEST(GridWindows, AWindowedRunStoppedInALaterWindowResumesWithTheSameBits) {
   const auto s = grid();
   const auto one = fresh("ref"), dir = fresh("stopped");
@@ -147,9 +205,9 @@ TEST(GridWindows, TheMemoryEstimateFollowsTheWindows) {
 // What the front ends check before they touch DIR (memory_window): the
 // window when the grid will run in windows, else the whole grid. A grid that
 // fits only in windows is accepted by that check (the CLI and Python once
-// refused it with the whole grid's estimate); shards, a runner that takes
-// one spec only, a grid within one window and window_points = 0 hold every
-// point.
+// refused it with the whole grid's estimate), also for a shard; a runner
+// that takes one spec only, a grid within one window and window_points = 0
+// hold every point.
 TEST(GridWindows, TheFrontEndsCheckTheMemoryOfWhatTheRunWillHold) {
   sweep_spec s = hundred_thousand_points();
   run::thread_runner threads(2);
@@ -161,9 +219,9 @@ TEST(GridWindows, TheFrontEndsCheckTheMemoryOfWhatTheRunWillHold) {
     [[nodiscard]] unsigned threads() const noexcept override { return 1; }
   } tied;
   EXPECT_EQ(run::memory_window(s, plan, tied), 0u);
-  run::run_plan shard = plan;
+  run::run_plan shard = plan;  // a shard runs in windows too
   shard.slice = run::parse_shard("1/2");
-  EXPECT_EQ(run::memory_window(s, shard, threads), 0u);
+  EXPECT_EQ(run::memory_window(s, shard, threads), plan.window_points);
   run::run_plan whole = plan;
   whole.window_points = 0;
   EXPECT_EQ(run::memory_window(s, whole, threads), 0u);

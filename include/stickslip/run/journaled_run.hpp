@@ -50,13 +50,14 @@ struct run_plan {
   std::string replace_advice;
   io::output_options outputs;  // what the outputs hold beyond the defaults
   std::chrono::duration<double> checkpoint_interval{2.0};  // between journal segments
-  // A whole run on a runner that takes any spec (runner::runs_any_spec)
+  // A run or a shard on a runner that takes any spec (runner::runs_any_spec)
   // merges a grid of more points than this window by window: whole slabs of
   // its first axis, at least one, about this many points at a time. Only a
   // window's accumulators are held in full (26 KB a point with the default
   // bins); the finished points of such a run keep only what the outputs
-  // read (release_unselected: no unselected histograms). 0: the whole grid
-  // at once. The outputs are the same bits either way.
+  // read (release_unselected: no unselected histograms), and a shard keeps
+  // none. 0: the whole grid at once. The outputs are the same bits either
+  // way. (merge_shards takes the same window.)
   std::size_t window_points = 1024;
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
@@ -93,9 +94,9 @@ struct run_outcome {
 
 // How many points run_journaled holds with every accumulator at a time, for
 // `spec` and `plan` on `r`: the plan's window when the grid runs window by
-// window (more points than the window, a whole run, a runner that takes any
-// spec, no sensitivity design, no survival grid still to be resolved), else
-// 0 (the whole grid). The front ends pass it to check_result_memory before
+// window (more points than the window, a runner that takes any spec, no
+// sensitivity design, no survival grid still to be resolved; a run or a
+// shard), else 0 (the whole grid). The front ends pass it to check_result_memory before
 // they touch the output directory, as run_journaled does.
 [[nodiscard]] std::size_t memory_window(const sweep_spec& spec, const run_plan& plan,
                                         const runner& r);

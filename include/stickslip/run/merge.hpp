@@ -22,8 +22,13 @@ struct merged_shards {
 
 // Throws invalid_input for a directory without a journal or missing units,
 // resume_mismatch for journals of different configurations, io_failure for
-// differing duplicates or unreadable headers.
+// differing duplicates or unreadable headers. A grid of more than
+// `window_points` points is merged window by window, as a run
+// (run_plan::window_points): only one window's accumulators are held in
+// full, and the finished points keep what the outputs read; 0: the whole
+// grid at once. The results are the same bits either way.
 [[nodiscard]] merged_shards merge_shards(const std::vector<std::string>& dirs,
-                                         const io::journal_report& report = {});
+                                         const io::journal_report& report = {},
+                                         std::size_t window_points = 1024);
 
 }  // namespace stickslip::run
