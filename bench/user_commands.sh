@@ -118,7 +118,7 @@ for c in "${cases[@]}"; do
   # The median of the ratios of each pair (run i of each build), which
   # cancels the machine's slow drift that the separate medians keep.
   printf '%-16s %-5s %9s %9s\n' "$c" "pairs" \
-    "$(paste "$tmp/$c.new" "$tmp/$c.ref" | awk 'NF == 8 && $6 > 0 {printf "%.4f\n", $1 / $5}' | sort -g |
+    "$(paste "$tmp/$c.new" "$tmp/$c.ref" | awk 'NF == 8 && $5 > 0 {printf "%.4f\n", $1 / $5}' | sort -g |
        awk '{a[NR]=$1} END {if (!NR) print "n/a"; else printf "%.2f", (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}')" \
     "$(paste "$tmp/$c.new" "$tmp/$c.ref" | awk 'NF == 8 && $6 > 0 {printf "%.4f\n", $2 / $6}' | sort -g |
        awk '{a[NR]=$1} END {if (!NR) print "n/a"; else printf "%.2f", (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}')"

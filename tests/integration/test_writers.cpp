@@ -3,6 +3,9 @@
 // value, and write_all's all-or-nothing behaviour on failure.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 #include <cmath>
@@ -10,6 +13,7 @@
 #include <netcdf>
 
 #include "stickslip/error.hpp"
+#include "stickslip/uncertainty/parameter_law.hpp"
 #include "output/writers_detail.hpp"
 #include "writers_fixture.hpp"
 
@@ -294,6 +298,74 @@ TEST_F(writers, NetcdfGlobalAttributesHoldSeedConfigAndFixedParameters) {
   f.getAtt("ta").getValues(&ta);
   EXPECT_EQ(ta, 10.0);
   EXPECT_TRUE(f.getAtt("lambda").isNull());  // swept: a coordinate, not an attribute
+}
+
+// The one belt of the grid (summary.json's base, results.nc's attributes)
+// is given only where every point has it: a swept lambda makes the rates a
+// coordinate (summary.json gave the first point's, results.nc the default
+// lambda = 1's), a swept V the levels. A user's SciPy check found it.
+TEST_F(writers, TheBeltOfTheGridIsGivenOnlyWhereItIsOneForEveryPoint) {
+  const auto base_of = [](const std::string& json) {
+    const auto at = json.find("\"base\"");
+    return json.substr(at, json.find('}', at) - at);
+  };
+  const auto belt_in = [&](const result_set& r, std::vector<double>& levels,
+                           std::vector<double>& generator, std::string& base) {
+    const fs::path dir = dir_ / "belt";
+    fs::remove_all(dir);
+    io::write_all(r, small_metadata(), dir.string());
+    nc::NcFile f((dir / "results.nc").string(), nc::NcFile::read);
+    const auto read = [&](const char* name, std::vector<double>& out) {
+      out.clear();
+      const auto att = f.getAtt(name);
+      if (att.isNull()) return;
+      out.resize(att.getAttLength());
+      att.getValues(out.data());
+    };
+    read("belt_levels", levels);
+    read("belt_generator", generator);
+    std::ifstream in(dir / "summary.json");
+    base = base_of(std::string(std::istreambuf_iterator<char>(in), {}));
+  };
+  std::vector<double> levels, generator;
+  std::string base;
+  // lambda swept (0.5, 2): the levels are one, the rates are not.
+  belt_in(rs(), levels, generator, base);
+  EXPECT_EQ(levels, (std::vector<double>{1.0, -1.0}));
+  EXPECT_TRUE(generator.empty());
+  EXPECT_NE(base.find("\"belt_levels\": [1, -1]"), std::string::npos) << base;
+  EXPECT_NE(base.find("\"belt_generator\": null"), std::string::npos) << base;
+  EXPECT_NE(base.find("\"belt_rates\": null"), std::string::npos) << base;
+  // One lambda (2.5), V swept (1, 2): the rates are one, the levels are not.
+  auto spec = small_grid_spec();
+  spec.base.switch_rate = 2.5;
+  spec.axes = {{"V", {1.0, 2.0}}};
+  spec.realizations = 20;
+  spec.block_size = 20;
+  belt_in(run_sweep(spec, 1), levels, generator, base);
+  EXPECT_TRUE(levels.empty());
+  EXPECT_EQ(generator, (std::vector<double>{-2.5, 2.5, 2.5, -2.5}));
+  EXPECT_NE(base.find("\"belt_levels\": null"), std::string::npos) << base;
+  EXPECT_NE(base.find("\"belt_rates\": [2.5, 2.5]"), std::string::npos) << base;
+  // Nothing of the belt swept: both, the point's own.
+  spec.axes = {{"mu", {1.0, 3.0}}};
+  belt_in(run_sweep(spec, 1), levels, generator, base);
+  EXPECT_EQ(levels, (std::vector<double>{1.0, -1.0}));
+  EXPECT_EQ(generator, (std::vector<double>{-2.5, 2.5, 2.5, -2.5}));
+  EXPECT_NE(base.find("\"belt_generator\": [[-2.5, 2.5], [2.5, -2.5]]"), std::string::npos) << base;
+  // A law on a level whose median is the default's (v2 = -1): the levels
+  // are drawn per realization, so none is the grid's.
+  spec.uncertain = {{"v2", parse_law("uniform(-1.5, -0.5)", "v2")}};
+  belt_in(run_sweep(spec, 1), levels, generator, base);
+  EXPECT_TRUE(levels.empty());
+  EXPECT_EQ(generator, (std::vector<double>{-2.5, 2.5, 2.5, -2.5}));
+  EXPECT_NE(base.find("\"belt_levels\": null"), std::string::npos) << base;
+  // A law on lambda: the rates.
+  spec.uncertain = {{"lambda", parse_law("uniform(1, 4)", "lambda")}};
+  belt_in(run_sweep(spec, 1), levels, generator, base);
+  EXPECT_EQ(levels, (std::vector<double>{1.0, -1.0}));
+  EXPECT_TRUE(generator.empty());
+  EXPECT_NE(base.find("\"belt_rates\": null"), std::string::npos) << base;
 }
 
 TEST_F(writers, NetcdfWithoutAxesHasOnePointDimension) {

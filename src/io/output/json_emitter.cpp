@@ -149,7 +149,8 @@ void json_emitter::null() {
 
 void emit_model_members(json_emitter& j, const model_parameters& p,
                         const std::vector<std::string>& swept,
-                        const std::vector<std::string>& omitted) {
+                        const std::vector<std::string>& omitted, bool same_levels,
+                        bool same_generator) {
   for (const char* sym : recorded_parameter_names) {
     if (std::find(omitted.begin(), omitted.end(), sym) != omitted.end()) continue;
     if (std::find(swept.begin(), swept.end(), sym) != swept.end()) {
@@ -163,23 +164,35 @@ void emit_model_members(json_emitter& j, const model_parameters& p,
   const auto q = p.generator();
   const std::size_t n = levels.size();
   j.key("belt_levels");
-  j.begin_array();
-  for (double v : levels) j.value(v);
-  j.end_array();
-  j.key("belt_generator");
-  j.begin_array();
-  for (std::size_t i = 0; i < n; ++i) {
+  if (!same_levels) {
+    j.null();
+  } else {
     j.begin_array();
-    for (std::size_t k = 0; k < n; ++k) j.value(q[i * n + k]);
+    for (double v : levels) j.value(v);
     j.end_array();
   }
-  j.end_array();
+  j.key("belt_generator");
+  if (!same_generator) {
+    j.null();
+  } else {
+    j.begin_array();
+    for (std::size_t i = 0; i < n; ++i) {
+      j.begin_array();
+      for (std::size_t k = 0; k < n; ++k) j.value(q[i * n + k]);
+      j.end_array();
+    }
+    j.end_array();
+  }
   if (n == 2) {
     j.key("belt_rates");
-    j.begin_array();
-    j.value(q[1]);
-    j.value(q[2]);
-    j.end_array();
+    if (!same_generator) {
+      j.null();
+    } else {
+      j.begin_array();
+      j.value(q[1]);
+      j.value(q[2]);
+      j.end_array();
+    }
   }
 }
 

@@ -74,9 +74,12 @@ class json_emitter {
 // (recorded_parameter_names, resolved: mu_s of a model without one is mu),
 // null for a symbol in `swept`, left out for a symbol in `omitted` (one that
 // does not define the model); then the resolved belt: "belt_levels" [v_i],
-// "belt_generator" [[q_ij]] and, for two levels, "belt_rates" [r1, r2].
+// "belt_generator" [[q_ij]] and, for two levels, "belt_rates" [r1, r2],
+// each null when it is not one for the whole result (`same_levels`,
+// `same_generator`: a swept lambda, V, vI or rI, or one drawn by a law).
 void emit_model_members(json_emitter& j, const model_parameters& p,
                         const std::vector<std::string>& swept = {},
-                        const std::vector<std::string>& omitted = {});
+                        const std::vector<std::string>& omitted = {},
+                        bool same_levels = true, bool same_generator = true);
 
 }  // namespace stickslip::io::detail

@@ -286,7 +286,9 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   for (auto& sym : symbols_set_by_laws(s.uncertain)) without_value.push_back(sym);
   j.key("base");
   j.begin_object();
-  emit_model_members(j, resolved_base(rs), without_value, meaningless_parameters(rs));
+  const auto belt = same_belt_everywhere(rs);
+  emit_model_members(j, resolved_base(rs), without_value, meaningless_parameters(rs), belt.levels,
+                     belt.generator);
   j.end_object();
   j.key("swept");
   j.begin_array();

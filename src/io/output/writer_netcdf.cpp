@@ -185,12 +185,15 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     if (std::find(sw.begin(), sw.end(), sym) == sw.end() && !is_uncertain(sym) &&
         std::find(omitted.begin(), omitted.end(), sym) == omitted.end())
       f.putAtt(sym, nc::ncDouble, parameter_value(resolved_base(rs), sym));
-  // The resolved belt of the base (a swept vI or rI is a coordinate instead):
-  // levels v_i [m/s] and the generator Q, row-major [1/s].
-  const auto levels = s.base.levels();
-  const auto q = s.base.generator();
-  f.putAtt("belt_levels", nc::ncDouble, levels.size(), levels.data());
-  f.putAtt("belt_generator", nc::ncDouble, q.size(), q.data());
+  // The resolved belt of the grid, when it is one for every point: levels
+  // v_i [m/s] and the generator Q, row-major [1/s]. Left out when it varies
+  // (a swept lambda, V, vI or rI is a coordinate, with its variable over the
+  // grid; a law's parameter is named in uncertain_parameters).
+  const auto belt = same_belt_everywhere(rs);
+  const auto levels = resolved_base(rs).levels();
+  const auto q = resolved_base(rs).generator();
+  if (belt.levels) f.putAtt("belt_levels", nc::ncDouble, levels.size(), levels.data());
+  if (belt.generator) f.putAtt("belt_generator", nc::ncDouble, q.size(), q.data());
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);

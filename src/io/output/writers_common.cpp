@@ -1,8 +1,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "stickslip/error.hpp"
+#include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io::detail {
@@ -38,6 +40,28 @@ std::vector<std::string> meaningless_parameters(const result_set& rs) {
 
 const model_parameters& resolved_base(const result_set& rs) {
   return rs.points.empty() ? rs.spec.base : rs.points.front().parameters;
+}
+
+belt_sameness same_belt_everywhere(const result_set& rs) {
+  belt_sameness same;
+  const model_parameters& first = resolved_base(rs);
+  const auto levels = first.levels();
+  const auto generator = first.generator();
+  for (const auto& p : rs.points) {
+    same.levels = same.levels && p.parameters.levels() == levels;
+    same.generator = same.generator && p.parameters.generator() == generator;
+  }
+  // A law: does its parameter move the belt? (At another value than the
+  // median the first point holds: v + 1 + |v| > v for every finite v; 2 v + 1
+  // missed a median of -1, the default v2.)
+  for (const auto& sym : symbols_set_by_laws(rs.spec.uncertain)) {
+    model_parameters moved = first;
+    const double v = parameter_value(first, sym);
+    set_parameter(moved, sym, v + 1.0 + std::abs(v));
+    same.levels = same.levels && moved.levels() == levels;
+    same.generator = same.generator && moved.generator() == generator;
+  }
+  return same;
 }
 
 std::vector<std::string> point_parameter_symbols(const result_set& rs) {

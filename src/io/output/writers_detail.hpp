@@ -36,6 +36,16 @@ namespace stickslip::io::detail {
 // not swept are read from, so that "mu" of --mu-s 2 --mu-k 2 is 2, not the
 // unused default 5. The spec's base when there are no points.
 [[nodiscard]] const model_parameters& resolved_base(const result_set& rs);
+// Whether the belt's levels v_i and its generator Q are one for the whole
+// result set: not when they differ between points (a swept lambda, V, vI or
+// rI) or follow a law drawn per realization. The outputs' one belt of the
+// grid (summary.json's parameters.base, results.nc's belt_levels and
+// belt_generator attributes) gives only what is one (the first point's,
+// resolved); what varies is read per point from the swept coordinates.
+struct belt_sameness {
+  bool levels = true, generator = true;
+};
+[[nodiscard]] belt_sameness same_belt_everywhere(const result_set& rs);
 // The parameters every summary point carries: lambda and mu (swept or not,
 // unless meaningless_parameters), then the other swept symbols in axis order.
 [[nodiscard]] std::vector<std::string> point_parameter_symbols(const result_set& rs);
