@@ -149,6 +149,50 @@ TEST(GridWindows, ShardsRunInWindowsAndMergeWindowByWindowWithTheBitsOfOneRun) {
   fs::remove_all(one);
 }
 
+// A shard stopped in a later window journals what it finished; resumed (in
+// windows again) it runs only the rest of its units, and the merge of the
+// two shards has the bits of one run.
+TEST(GridWindows, AShardStoppedInALaterWindowResumesAndMergesWithTheSameBits) {
+  const auto s = grid();  // 15 points x 4 blocks: 30 units a shard
+  const auto one = fresh("shard-stop-ref");
+  const auto whole = run_in(s, one, 0);
+  ASSERT_TRUE(whole.results);
+  std::vector<std::string> dirs;
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    const auto dir = fresh("shard-stop" + std::to_string(i));
+    dirs.push_back(dir.string());
+    run::stop_token stop;
+    run::run_plan plan;
+    plan.dir = dir.string();
+    plan.window_points = 3;  // 5 windows of 6 units of this shard
+    plan.slice = run::shard{i, 2};
+    plan.stop = &stop;
+    // Stop in the third window (this shard's units 13..18).
+    plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
+      if (done >= 14) stop.request(SIGINT);
+    };
+    run::thread_runner runner(1);
+    EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner),
+                 error);
+    const auto journaled = io::read_journal(dir.string(), &s).units.size();
+    EXPECT_GE(journaled, 14u) << "shard " << i;
+    EXPECT_LT(journaled, 30u) << "shard " << i;
+    stop.reset();
+    plan.progress = nullptr;
+    plan.resume = true;
+    counting_runner again(2);
+    const auto resumed = run::run_journaled(s, plan, io::run_metadata{}, again);
+    EXPECT_FALSE(resumed.results);
+    EXPECT_EQ(resumed.resumed_units, journaled) << "shard " << i;
+    EXPECT_EQ(resumed.resumed_units + resumed.computed_units, 30u) << "shard " << i;
+    EXPECT_EQ(again.points, 3u) << "shard " << i;
+  }
+  const auto merged = run::merge_shards(dirs, {}, 3);
+  expect_same_results(*whole.results, merged.results);
+  for (const auto& d : dirs) fs::remove_all(d);
+  fs::remove_all(one);
+}
+
 TEST(GridWindows, AWindowedRunStoppedInALaterWindowResumesWithTheSameBits) {
   const auto s = grid();
   const auto one = fresh("ref"), dir = fresh("stopped");
