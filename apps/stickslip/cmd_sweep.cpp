@@ -228,7 +228,8 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   plan.overwrite = o.overwrite;
   // Before DIR is touched, with what the run will hold (a large grid runs
   // window by window, also under MPI).
-  run::check_result_memory(spec, threads, run::memory_window(spec, plan, exec.runner()));
+  run::check_result_memory(spec, threads, run::memory_window(spec, plan, exec.runner()),
+                           !plan.slice);
   check_output_dir(o.out_dir);
   progress_bar bar;
   wire_run_plan(plan, o.checkpoint_interval, stop, bar);

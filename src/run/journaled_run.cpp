@@ -109,7 +109,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                         "needs every block of a point in one run");
   const bool windowed = runs_in_windows(spec, plan, r);
   // For every front end (sweep, reproduce, Python), with what the windows hold.
-  check_result_memory(spec, r.threads(), memory_window(spec, plan, r));
+  check_result_memory(spec, r.threads(), memory_window(spec, plan, r), !plan.slice);
   run_outcome out;
   io::journal_contents loaded = load_journal(spec, plan);
   out.metadata = loaded.metadata ? *loaded.metadata : fresh;

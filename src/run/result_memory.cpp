@@ -34,7 +34,7 @@ double statistics_heap(const sweep_spec& spec, double densities, double joints, 
 }  // namespace
 
 double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
-                              std::size_t window_points) noexcept {
+                              std::size_t window_points, bool keeps_results) noexcept {
   const double points = static_cast<double>(point_count(spec));
   const double blocks = static_cast<double>(blocks_per_point(spec));
   const double trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
@@ -56,7 +56,8 @@ double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
                          statistics_heap(spec, all_densities, all_joints, trace);
   const double finished = static_cast<double>(sizeof(point_result)) +
                           statistics_heap(spec, kept_densities, kept_joints, trace);
-  const double records = spec.keep_records ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
+  const double records =
+      spec.keep_records && keeps_results ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
   const double window = window_points == 0 ? points : std::min(points, static_cast<double>(window_points));
   const double in_flight = std::min(static_cast<double>(resolve_threads(threads)) *
                                         static_cast<double>(units_per_batch(spec)),
@@ -64,12 +65,13 @@ double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
   // Without windows the merger's statistics become the result set's
   // (moved): one copy of each point at a time.
   const double held = window_points == 0 ? points * (merging + sizeof(model_parameters) + 64.0)
-                                         : window * merging + points * finished;
+                                         : window * merging + (keeps_results ? points * finished : 0.0);
   return held + points * records + in_flight * merging;
 }
 
-void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t window_points) {
-  const double bytes = estimated_result_bytes(spec, threads, window_points);
+void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t window_points,
+                         bool keeps_results) {
+  const double bytes = estimated_result_bytes(spec, threads, window_points, keeps_results);
   const double ram = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
   if (ram > 0 && bytes > 0.8 * ram) {

@@ -266,6 +266,18 @@ TEST(GridWindows, TheFrontEndsCheckTheMemoryOfWhatTheRunWillHold) {
   run::run_plan shard = plan;  // a shard runs in windows too
   shard.slice = run::parse_shard("1/2");
   EXPECT_EQ(run::memory_window(s, shard, threads), plan.window_points);
+  // ... and keeps no finished point: its estimate is the window's alone
+  // (counted with the finished points, a grid of 2 windows with observe
+  // times came out above its whole-grid estimate).
+  const double kept = run::estimated_result_bytes(s, 2, plan.window_points);
+  const double shard_bytes = run::estimated_result_bytes(s, 2, plan.window_points, false);
+  EXPECT_LT(shard_bytes, 0.25 * kept);
+  EXPECT_GT(shard_bytes, 0.0);
+  sweep_spec two_windows = s;
+  two_windows.axes[1].values.resize(8);  // 400 x 8 = 3,200 points
+  two_windows.observe_times = {1.0, 2.0, 3.0, 4.0};
+  EXPECT_LT(run::estimated_result_bytes(two_windows, 2, plan.window_points, false),
+            run::estimated_result_bytes(two_windows, 2, 0, false));
   run::run_plan whole = plan;
   whole.window_points = 0;
   EXPECT_EQ(run::memory_window(s, whole, threads), 0u);

@@ -20,12 +20,17 @@ namespace stickslip::run {
 // kept, and one point's statistics per block in flight (a batch per thread,
 // at most every unit). The writers add no copy (results.nc is written a
 // chunk of at most 4 MiB at a time, the text files a buffer at a time).
+// `keeps_results` false: a shard, which journals its units and keeps no
+// finished point nor record (its merger still holds every accumulator of
+// the points it merges: the window's, or the whole grid's).
 [[nodiscard]] double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
-                                            std::size_t window_points = 0) noexcept;
+                                            std::size_t window_points = 0,
+                                            bool keeps_results = true) noexcept;
 
 // Throws invalid_input (exit 2) when estimated_result_bytes exceeds 80 % of
 // this machine's RAM, naming both.
-void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t window_points = 0);
+void check_result_memory(const sweep_spec& spec, unsigned threads, std::size_t window_points = 0,
+                         bool keeps_results = true);
 
 // Frees what no output of `spec` reads from a point's finished statistics:
 // the joint histograms unless selected (point_statistics allocates their
