@@ -40,7 +40,8 @@ void restore_window(const grid_window& w, std::map<std::size_t, io::journaled_pr
     merger.restore(std::move(prefix));
     it = prefixes.erase(it);
   }
-  for (auto it = units.lower_bound(work_unit{first, 0}); it != units.end() && it->first.point < end;) {
+  for (auto it = units.lower_bound(work_unit{first, 0});
+       it != units.end() && it->first.point < end;) {
     merger.add({it->first.point - first, it->first.block}, std::move(it->second));
     it = units.erase(it);
   }

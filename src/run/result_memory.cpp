@@ -64,8 +64,9 @@ double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
                                     static_cast<double>(unit_count(spec)));
   // Without windows the merger's statistics become the result set's
   // (moved): one copy of each point at a time.
+  const double finished_points = keeps_results ? points * finished : 0.0;
   const double held = window_points == 0 ? points * (merging + sizeof(model_parameters) + 64.0)
-                                         : window * merging + (keeps_results ? points * finished : 0.0);
+                                         : window * merging + finished_points;
   return held + points * records + in_flight * merging;
 }
 

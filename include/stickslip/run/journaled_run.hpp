@@ -21,6 +21,7 @@
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/run/result_memory.hpp"
 #include "stickslip/run/runner.hpp"
 #include "stickslip/run/shard.hpp"
 #include "stickslip/run/stop.hpp"
@@ -58,7 +59,7 @@ struct run_plan {
   // read (release_unselected: no unselected histograms), and a shard keeps
   // none. 0: the whole grid at once. The outputs are the same bits either
   // way. (merge_shards takes the same window.)
-  std::size_t window_points = 1024;
+  std::size_t window_points = default_window_points;
   const stop_token* stop = nullptr;  // no unit starts once a stop is requested
   // Units merged so far (resumed ones included) of the total, and the
   // fraction of this run's expected work done (work_meter: for an honest
@@ -96,7 +97,8 @@ struct run_outcome {
 // `spec` and `plan` on `r`: the plan's window when the grid runs window by
 // window (more points than the window, a runner that takes any spec, no
 // sensitivity design, no survival grid still to be resolved; a run or a
-// shard), else 0 (the whole grid). The front ends pass it to check_result_memory before
+// shard), else 0 (the whole grid). The front ends pass it to
+// check_result_memory before
 // they touch the output directory, as run_journaled does.
 [[nodiscard]] std::size_t memory_window(const sweep_spec& spec, const run_plan& plan,
                                         const runner& r);

@@ -10,6 +10,7 @@
 
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/run/result_memory.hpp"
 #include "stickslip/sweep.hpp"
 
 namespace stickslip::run {
@@ -29,6 +30,6 @@ struct merged_shards {
 // grid at once. The results are the same bits either way.
 [[nodiscard]] merged_shards merge_shards(const std::vector<std::string>& dirs,
                                          const io::journal_report& report = {},
-                                         std::size_t window_points = 1024);
+                                         std::size_t window_points = default_window_points);
 
 }  // namespace stickslip::run

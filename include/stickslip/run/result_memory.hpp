@@ -8,6 +8,10 @@
 
 namespace stickslip::run {
 
+// The points of a grid merged with every accumulator at a time, by default
+// (run_plan::window_points, merge_shards).
+inline constexpr std::size_t default_window_points = 1024;
+
 // Bytes held at once by a sweep run on `threads` threads (0 = all cores),
 // merged `window_points` points at a time (run_plan::window_points; 0 = the
 // whole grid at once): the points being merged hold every accumulator
