@@ -112,6 +112,33 @@ class counting_runner final : public run::runner {
 };
 }  // namespace
 
+namespace {
+// Shard i of 2 of the grid into a fresh directory, one slab (3 points) a
+// window; the directory joins `dirs` (for merge_shards).
+run::run_plan shard_plan(const std::string& name, std::uint32_t i, std::vector<std::string>& dirs) {
+  const auto dir = fresh(name + std::to_string(i));
+  dirs.push_back(dir.string());
+  run::run_plan plan;
+  plan.dir = dir.string();
+  plan.window_points = 3;  // 5 windows of the 15-point grid
+  plan.slice = run::shard{i, 2};
+  return plan;
+}
+
+// Runs `plan` on one thread and stops it (SIGINT) once `units` units are
+// merged: the run throws, with what it finished journaled.
+void run_and_stop_after(const sweep_spec& s, run::run_plan plan, std::uint64_t units) {
+  run::stop_token stop;
+  plan.stop = &stop;
+  plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
+    if (done >= units) stop.request(SIGINT);
+  };
+  run::thread_runner runner(1);
+  EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner),
+               error);
+}
+}  // namespace
+
 // A shard of a large grid runs window by window too (it journals every unit
 // and keeps no results), and `stickslip merge` merges window by window: the
 // same bits as one run of the whole grid at once, whatever the windows.
@@ -122,12 +149,7 @@ TEST(GridWindows, ShardsRunInWindowsAndMergeWindowByWindowWithTheBitsOfOneRun) {
   ASSERT_TRUE(whole.results);
   std::vector<std::string> dirs;
   for (std::uint32_t i = 0; i < 2; ++i) {
-    const auto dir = fresh("shard" + std::to_string(i));
-    dirs.push_back(dir.string());
-    run::run_plan plan;
-    plan.dir = dir.string();
-    plan.window_points = 3;  // one slab (3 points) a window: 5 windows
-    plan.slice = run::shard{i, 2};
+    run::run_plan plan = shard_plan("shard", i, dirs);
     EXPECT_EQ(run::memory_window(s, plan, counting_runner(1)), 3u);
     counting_runner runner(2);
     const auto out = run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner);
@@ -159,26 +181,11 @@ TEST(GridWindows, AShardStoppedInALaterWindowResumesAndMergesWithTheSameBits) {
   ASSERT_TRUE(whole.results);
   std::vector<std::string> dirs;
   for (std::uint32_t i = 0; i < 2; ++i) {
-    const auto dir = fresh("shard-stop" + std::to_string(i));
-    dirs.push_back(dir.string());
-    run::stop_token stop;
-    run::run_plan plan;
-    plan.dir = dir.string();
-    plan.window_points = 3;  // 5 windows of 6 units of this shard
-    plan.slice = run::shard{i, 2};
-    plan.stop = &stop;
-    // Stop in the third window (this shard's units 13..18).
-    plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
-      if (done >= 14) stop.request(SIGINT);
-    };
-    run::thread_runner runner(1);
-    EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner),
-                 error);
-    const auto journaled = io::read_journal(dir.string(), &s).units.size();
+    run::run_plan plan = shard_plan("shard-stop", i, dirs);  // 5 windows of 6 of its units
+    run_and_stop_after(s, plan, 14);  // in the third window (this shard's units 13..18)
+    const auto journaled = io::read_journal(plan.dir, &s).units.size();
     EXPECT_GE(journaled, 14u) << "shard " << i;
     EXPECT_LT(journaled, 30u) << "shard " << i;
-    stop.reset();
-    plan.progress = nullptr;
     plan.resume = true;
     counting_runner again(2);
     const auto resumed = run::run_journaled(s, plan, io::run_metadata{}, again);
@@ -197,22 +204,14 @@ TEST(GridWindows, AWindowedRunStoppedInALaterWindowResumesWithTheSameBits) {
   const auto s = grid();
   const auto one = fresh("ref"), dir = fresh("stopped");
   const auto whole = run_in(s, one, 0);
-  run::stop_token stop;
   run::run_plan plan;
   plan.dir = dir.string();
   plan.window_points = 3;  // one slab a window
   plan.checkpoint_interval = std::chrono::duration<double>(0);
-  plan.stop = &stop;
   // Stop in the third window (units 24..35), after a unit of it is merged.
-  plan.progress = [&](std::uint64_t done, std::uint64_t, double) {
-    if (done >= 26) stop.request(SIGINT);
-  };
-  run::thread_runner runner(1);
-  EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, runner),
-               error);
-  stop.reset();
-  plan.progress = nullptr;
+  run_and_stop_after(s, plan, 26);
   plan.resume = true;
+  run::thread_runner runner(1);
   const auto resumed = run::run_journaled(s, plan, io::run_metadata{}, runner);
   ASSERT_TRUE(resumed.results);
   EXPECT_GE(resumed.resumed_units, 26u);
