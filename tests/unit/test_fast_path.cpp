@@ -65,7 +65,9 @@ TEST(FastPath, SimulateBlockDispatchesOnEngine) {
 // against its definition written out here one draw at a time: Y_j =
 // Y_{j-1} + (-log(U_j)) / lambda with U_j the u01fixedpt of the j-th word of
 // the belt-switch substream and the scalar log kernel, bit for bit; and a
-// log kernel passed in explicitly (what the lane engine does) changes nothing.
+// log kernel passed in explicitly changes nothing. (The lane engine refills
+// through next_refilled_by with its target's kernel: FastPath* and
+// ReproducibleBits* compare its bits.)
 TEST(FastPath, PoissonSwitchesAreTheRunningSumOfExponentialWaits) {
   for (double rate : {0.1, 3.8, 30.0}) {
     poisson_switches sw(rate, 99, 1234, 5), sw_passed(rate, 99, 1234, 5);
