@@ -79,6 +79,9 @@ std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
           std::find(given.begin(), given.end(), &flag) == given.end())
         given.push_back(&flag);
   order_assignments(given, [](const model_flags::flag* g) -> std::string_view { return g->symbol; });
+  std::vector<given_parameter> values;
+  for (const auto* g : given) values.push_back({g->symbol, g->text});
+  refuse_overridden_by_refinements(values);
   return given;
 }
 

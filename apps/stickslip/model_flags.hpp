@@ -48,7 +48,8 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
 
 // The model flags given on the command line, in the order they were given,
 // except that --mu comes first: it sets mu_s and mu_k both, and --mu-s or
-// --mu-k then refine it whatever their order.
+// --mu-k then refine it whatever their order. --mu with both --mu-s and
+// --mu-k would have no effect: refused (invalid_input, naming --mu).
 [[nodiscard]] std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
                                                                       const model_flags& f);
 

@@ -238,6 +238,18 @@ const parameter_info& info_for(const std::string& symbol);
 // The symbols a row that sets others also sets (the rows that refine it):
 // for mu, mu_s and mu_k; empty for any other symbol.
 [[nodiscard]] std::vector<std::string> refinements_of(std::string_view symbol);
+// A parameter as a command's flag or a call's keyword gave it: its symbol
+// and its text ("5", a grid "0.5,1", a law).
+struct given_parameter {
+  std::string symbol;
+  std::string text;
+};
+// Throws invalid_input when a symbol that sets others (mu) is given beside
+// all its refinements (mu_s, mu_k): every value it would set is set again,
+// so it would have no effect. Named by its flag (the Python layer words it
+// with keywords). The CLI and Python refuse it; a TOML [model] table may
+// hold all three, because a resolved configuration writes mu beside them.
+void refuse_overridden_by_refinements(const std::vector<given_parameter>& given);
 // Why a grid axis or an uncertain law over `symbol` would change nothing on
 // top of `base`, because the base overrides it: V under given belt levels,
 // lambda under given belt rates or a generator, mu when a refinement of it

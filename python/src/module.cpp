@@ -65,6 +65,21 @@ PYBIND11_MODULE(_stickslip, m) {
     }
     return rows;
   });
+  // The CLI's refusal of --mu beside --mu-s and --mu-k, for the keywords
+  // given ({symbol: a number, a list of numbers or a law's text}), each as
+  // the command line would be given it.
+  m.def("refuse_overridden_by_refinements", [](const py::dict& given) {
+    std::vector<given_parameter> values;
+    for (const auto& [key, value] : given) {
+      std::string text;
+      if (py::isinstance<py::str>(value)) text = py::cast<std::string>(value);
+      else if (py::isinstance<py::sequence>(value))
+        text = stickslip::python::list_text(py::cast<std::vector<double>>(value));
+      else text = fmt::format("{}", py::cast<double>(value));
+      values.push_back({py::cast<std::string>(key), std::move(text)});
+    }
+    refuse_overridden_by_refinements(values);
+  }, py::arg("given"));
   // How a keyword's text is told to be a law (parameter_law.hpp), as flags and TOML tell it.
   m.def("looks_like_law", [](const std::string& text) { return looks_like_law(text); },
         py::arg("text"));

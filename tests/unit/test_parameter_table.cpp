@@ -112,6 +112,33 @@ TEST(ParameterTable, MusRefinementsAndTheOverridesOfTheBaseComeFromTheRows) {
   EXPECT_EQ(overridden_by_base(base, "switch-rate"), "the belt rates are given");
 }
 
+// mu beside mu_s and mu_k would set nothing they do not set again: refused
+// by name (its flag, its text, what is allowed), whatever the order and the
+// names; beside one of them, or alone, it is taken (a new user's report:
+// `--mu 5 --mu-s 6 --mu-k 5` ran without a word about --mu).
+TEST(ParameterTable, MuBesideBothItsRefinementsIsRefusedNotIgnored) {
+  const auto refusal = [](std::vector<given_parameter> given) -> std::string {
+    try {
+      refuse_overridden_by_refinements(given);
+    } catch (const error& e) {
+      EXPECT_EQ(e.code(), exit_code::invalid_input) << e.what();
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_THAT(refusal({{"mu_s", "6"}, {"mu_k", "4"}, {"mu", "5"}}),
+              AllOf(HasSubstr("invalid --mu (Coulomb friction coefficient"), HasSubstr("'5'"),
+                    HasSubstr("--mu alone or with one of --mu-s, --mu-k"),
+                    HasSubstr("drop --mu or one of them")));
+  EXPECT_THAT(refusal({{"friction-coefficient", "0.5,2"}, {"static-friction", "6"},
+                       {"kinetic-friction", "4"}}),
+              HasSubstr("invalid --mu (Coulomb friction coefficient (sets mu_s and mu_k)): '0.5,2'"));
+  EXPECT_EQ(refusal({{"mu", "5"}, {"mu_s", "6"}}), "");
+  EXPECT_EQ(refusal({{"mu", "5"}, {"mu_k", "4"}, {"k", "40"}}), "");
+  EXPECT_EQ(refusal({{"mu_s", "6"}, {"mu_k", "4"}}), "");
+  EXPECT_EQ(refusal({}), "");
+}
+
 // A TOML [grid] without `order` sweeps in default_axis_order (lambda, mu
 // first); the command line puts lambda and mu first and keeps the rest as
 // given; both from the one list.

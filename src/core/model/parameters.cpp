@@ -243,6 +243,27 @@ std::vector<std::string> refinements_of(std::string_view symbol) {
   return out;
 }
 
+void refuse_overridden_by_refinements(const std::vector<given_parameter>& given) {
+  const auto is_given = [&](const std::string& sym) {
+    return std::any_of(given.begin(), given.end(), [&](const given_parameter& g) {
+      return canonical_symbol(g.symbol) == sym;
+    });
+  };
+  for (const auto& g : given) {
+    const std::string sym = canonical_symbol(g.symbol);
+    const auto refinements = refinements_of(sym);
+    if (refinements.empty() || !std::all_of(refinements.begin(), refinements.end(), is_given))
+      continue;
+    std::vector<std::string> flags;
+    for (const auto& r : refinements) flags.push_back(flag_of(r));
+    throw invalid_value(
+        fmt::format("{} ({})", flag_of(sym), info_for(sym).description), g.text,
+        fmt::format("{0} alone or with one of {1}; beside both it would have no effect "
+                    "(they set all it sets), so drop {0} or one of them",
+                    flag_of(sym), fmt::join(flags, ", ")));
+  }
+}
+
 std::string overridden_by_base(const model_parameters& base, std::string_view symbol) {
   const std::string sym = canonical_symbol(symbol);
   if (sym == "V" && !base.belt_levels.empty()) return "the belt levels are given";
