@@ -66,16 +66,11 @@ class poisson_switches {
   // A placeholder (rate 1, seed 0) to be assigned a real source later.
   poisson_switches() noexcept : poisson_switches(1.0, 0, 0, 0) {}
 
-  // The shared log kernel, dispatched to the SIMD target of the CPU.
-  [[nodiscard]] double next() noexcept { return next(detail::fm::log_inplace); }
-
-  // The same values, with the log kernel passed in: log_inplace(p, n) must
-  // compute the same bits as detail::fm::log_inplace (next() passes it).
-  // always_inline: the common case is inlined into the caller; the refill
-  // (once per 32) is not.
-  template <class LogInplace>
-  [[nodiscard, gnu::always_inline]] double next(LogInplace&& log_inplace) noexcept {
-    if (i_ == chunk) [[unlikely]] refill(log_inplace);
+  // The next switch time, refilled with the shared log kernel dispatched to
+  // the SIMD target of the CPU (detail::fm::log_inplace), out of line once
+  // per chunk.
+  [[nodiscard]] double next() noexcept {
+    if (i_ == chunk) [[unlikely]] refill();
     return times_[i_++];
   }
 
@@ -107,10 +102,7 @@ class poisson_switches {
   }
 
  private:
-  template <class LogInplace>
-  [[gnu::noinline]] void refill(LogInplace& log_inplace) noexcept {
-    refill_with(log_inplace);
-  }
+  [[gnu::noinline]] void refill() noexcept { refill_with(detail::fm::log_inplace); }
 
   double mean_wait_;
   double time_ = 0.0;
