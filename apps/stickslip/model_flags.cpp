@@ -79,9 +79,6 @@ std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
           std::find(given.begin(), given.end(), &flag) == given.end())
         given.push_back(&flag);
   order_assignments(given, [](const model_flags::flag* g) -> std::string_view { return g->symbol; });
-  std::vector<given_parameter> values;
-  for (const auto* g : given) values.push_back({g->symbol, g->text});
-  refuse_overridden_by_refinements(values);
   return given;
 }
 
@@ -132,8 +129,16 @@ void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& c
                                       instead));
 }
 
+void note_unused_model_flags(const CLI::App& cmd, const model_flags& f) {
+  std::vector<given_parameter> values;
+  for (const auto* g : given_model_flags(cmd, f)) values.push_back({g->symbol, g->text});
+  if (const auto note = only_in_the_stream_key(values); !note.empty())
+    fmt::print(stderr, "stickslip: warning: {}\n", note);
+}
+
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
+  note_unused_model_flags(cmd, f);
   base = apply_belt_flags(f, std::move(base));
   std::vector<parameter_assignment> values;
   for (const auto* flag : given_model_flags(cmd, f))
@@ -144,6 +149,7 @@ model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
 
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
                        bool grids_allowed) {
+  note_unused_model_flags(cmd, f);
   spec.base = apply_belt_flags(f, apply_preset(f, std::move(spec.base)));
   std::vector<axis> added;
   for (const auto* flag : given_model_flags(cmd, f)) {
@@ -156,7 +162,9 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
     auto in_spec = std::find_if(spec.axes.begin(), spec.axes.end(),
                                 [&](const axis& a) { return a.name == sym; });
     if (io::is_single_value(flag->text)) {
-      set_parameter(spec.base, sym, io::parse_number(flag_label(sym), flag->text));
+      const double value = io::parse_number(flag_label(sym), flag->text);
+      check_assigned(sym, value);
+      set_parameter(spec.base, sym, value);
       if (in_spec != spec.axes.end()) spec.axes.erase(in_spec);
       continue;
     }

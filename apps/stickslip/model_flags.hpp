@@ -48,8 +48,7 @@ void add_model_flags(CLI::App& cmd, model_flags& f, flag_values kind,
 
 // The model flags given on the command line, in the order they were given,
 // except that --mu comes first: it sets mu_s and mu_k both, and --mu-s or
-// --mu-k then refine it whatever their order. --mu with both --mu-s and
-// --mu-k would have no effect: refused (invalid_input, naming --mu).
+// --mu-k then refine it whatever their order.
 [[nodiscard]] std::vector<const model_flags::flag*> given_model_flags(const CLI::App& cmd,
                                                                       const model_flags& f);
 
@@ -88,6 +87,8 @@ void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& c
 //   others in the order given). Without `grids_allowed` (a command that runs
 //   one point, such as `sensitivity`) a grid is refused, exit 2.
 // Bad text exits 2 naming the flag. Nothing is validated beyond the flag.
+// Like apply_scalar_flags, prints only_in_the_stream_key's note (--mu beside
+// --mu-s and --mu-k) on stderr as "stickslip: warning: ...".
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
                        bool grids_allowed);
 

@@ -244,12 +244,15 @@ struct given_parameter {
   std::string symbol;
   std::string text;
 };
-// Throws invalid_input when a symbol that sets others (mu) is given beside
-// all its refinements (mu_s, mu_k): every value it would set is set again,
-// so it would have no effect. Named by its flag (the Python layer words it
-// with keywords). The CLI and Python refuse it; a TOML [model] table may
-// hold all three, because a resolved configuration writes mu beside them.
-void refuse_overridden_by_refinements(const std::vector<given_parameter>& given);
+// A note (one line, named by flags; the Python layer words it with
+// keywords) when a symbol that sets others (mu) is given beside all its
+// refinements (mu_s, mu_k), none of them possibly 0 (0 leaves one unset, so
+// that it resolves to mu): mu then sets no friction coefficient, yet it
+// still enters the point's stream key (random_stream.hpp, point_key), so it
+// changes the draws but not the model. Not refused: a run recorded with it
+// (its command line, its resolved configuration, which writes mu beside
+// them) must replay with it. Empty when there is none.
+[[nodiscard]] std::string only_in_the_stream_key(const std::vector<given_parameter>& given);
 // Why a grid axis or an uncertain law over `symbol` would change nothing on
 // top of `base`, because the base overrides it: V under given belt levels,
 // lambda under given belt rates or a generator, mu when a refinement of it
@@ -274,8 +277,14 @@ void order_assignments(std::vector<Item>& items, SymbolOf symbol_of) {
   std::stable_partition(items.begin(), items.end(),
                         [&](const Item& item) { return assigned_first(symbol_of(item)); });
 }
-// `base` with the assignments applied in that order (set_parameter), not
-// validated.
+// A number a user assigns (a flag, a TOML key, a Python keyword): a row
+// whose 0 means unset (mu_s, mu_k resolve to mu) takes only a value > 0
+// there, because an explicit 0 would silently stand for mu (a new user asked
+// for mu_k = 0 and got mu_k = mu = 5). Throws invalid_input naming the row,
+// the value and what is allowed. (In C++ a 0 field still means unset.)
+void check_assigned(std::string_view symbol, double value);
+// `base` with the assignments applied in that order (set_parameter), each
+// checked by check_assigned, not validated.
 [[nodiscard]] model_parameters assign(model_parameters base,
                                       std::vector<parameter_assignment> assignments);
 

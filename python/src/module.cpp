@@ -65,10 +65,10 @@ PYBIND11_MODULE(_stickslip, m) {
     }
     return rows;
   });
-  // The CLI's refusal of --mu beside --mu-s and --mu-k, for the keywords
-  // given ({symbol: a number, a list of numbers or a law's text}), each as
-  // the command line would be given it.
-  m.def("refuse_overridden_by_refinements", [](const py::dict& given) {
+  // The CLI's warning of --mu beside --mu-s and --mu-k (only_in_the_stream_key),
+  // for the keywords given ({symbol: a number, a list of numbers or a law's
+  // text}), each as the command line would be given it; None when none.
+  m.def("only_in_the_stream_key", [](const py::dict& given) -> py::object {
     std::vector<given_parameter> values;
     for (const auto& [key, value] : given) {
       std::string text;
@@ -78,7 +78,8 @@ PYBIND11_MODULE(_stickslip, m) {
       else text = fmt::format("{}", py::cast<double>(value));
       values.push_back({py::cast<std::string>(key), std::move(text)});
     }
-    refuse_overridden_by_refinements(values);
+    const auto note = only_in_the_stream_key(values);
+    return note.empty() ? py::none() : py::object(py::str(note));
   }, py::arg("given"));
   // How a keyword's text is told to be a law (parameter_law.hpp), as flags and TOML tell it.
   m.def("looks_like_law", [](const std::string& text) { return looks_like_law(text); },

@@ -11,6 +11,7 @@ import keyword
 import numbers
 import os
 import re
+import warnings
 
 import numpy as np
 
@@ -192,8 +193,9 @@ def model_arguments(kwargs, axes=False):
     and returns {symbol: value} with only the given ones: numbers, or with
     axes=True a number or a list of numbers (number_or_axis), each read under
     the keyword the caller used; any of them may be a law's text (is_law),
-    kept as a str. mu beside both mu_s and mu_k would have no effect: refused
-    as the CLI refuses --mu beside --mu-s and --mu-k."""
+    kept as a str. mu beside both mu_s and mu_k sets neither and only changes
+    the draws: a UserWarning, as the CLI warns of --mu beside --mu-s and
+    --mu-k."""
     by_keyword = {kw: sym for sym, (kw, *_rest) in PARAMETERS.items()}
     given = {}
     for key in list(kwargs):
@@ -211,7 +213,9 @@ def model_arguments(kwargs, axes=False):
                             "'gamma(mean=5,cv=0.2)'; got text that is neither)")
             else:
                 given[sym] = number_or_axis(key, value) if axes else number(key, value)
-    extension.refuse_overridden_by_refinements(given)
+    note = _stickslip.only_in_the_stream_key(given)
+    if note:  # the CLI's warning, in keywords; stacklevel: the caller of the public function
+        warnings.warn(python_message(note), UserWarning, stacklevel=3)
     return given
 
 

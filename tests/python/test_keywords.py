@@ -218,8 +218,8 @@ def test_each_parameter_is_also_taken_under_its_long_name():
                                              "lambda_": "lam"}
     values = {"m": 2.0, "k": 30.0, "g": 9.0, "mu": 4.0, "V": 0.5, "lam": 1.5, "ta": 3.0,
               "c": 0.3, "mu_s": 5.0, "mu_k": 3.5}  # ten distinct values
-    # mu beside both mu_s and mu_k is refused (it would do nothing): mu with
-    # mu_s, then mu_s with mu_k, each under both names
+    # mu beside both mu_s and mu_k sets neither (a warning, test_model_parser):
+    # mu with mu_s, then mu_s with mu_k, each under both names
     for left_out in ("mu_k", "mu"):
         given = {kw: v for kw, v in values.items() if kw != left_out}
         a = stickslip.simulate(seed=4, **given)

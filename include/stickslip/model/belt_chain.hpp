@@ -68,6 +68,10 @@ class belt_chain {
 
 class markov_level_switches {
  public:
+  // One source per realization, made where it is used: not copied (its
+  // unread logs are left uninitialized until the first refill).
+  markov_level_switches(const markov_level_switches&) = delete;
+  markov_level_switches& operator=(const markov_level_switches&) = delete;
   markov_level_switches(const belt_chain& chain, std::size_t start_level, std::uint64_t seed,
                         std::uint64_t point, std::uint64_t realization) noexcept
       : chain_(&chain),
@@ -118,7 +122,7 @@ class markov_level_switches {
   random_stream waits_, jumps_;
   random_stream::philox::ctr_type jump_block_{};
   int wait_next_ = wait_chunk, jump_left_ = 0;
-  alignas(64) double wait_logs_[wait_chunk];
+  alignas(64) double wait_logs_[wait_chunk];  // read only after a refill (wait_next_)
 };
 
 class given_level_switches {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdlib>
 
 #include "stickslip/error.hpp"
 
@@ -243,25 +244,44 @@ std::vector<std::string> refinements_of(std::string_view symbol) {
   return out;
 }
 
-void refuse_overridden_by_refinements(const std::vector<given_parameter>& given) {
-  const auto is_given = [&](const std::string& sym) {
+namespace {
+// Whether a flag's text (a value, a list, a grid form 'lin:a:b:n' or a law)
+// may hold the value 0: any of its numbers is 0.
+bool may_hold_zero(const std::string& text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const std::size_t end = text.find_first_of(",:()= ", i);
+    const std::string token = text.substr(i, end == std::string::npos ? end : end - i);
+    char* stop = nullptr;
+    const double v = std::strtod(token.c_str(), &stop);
+    if (!token.empty() && stop == token.c_str() + token.size() && v == 0.0) return true;
+    if (end == std::string::npos) break;
+    i = end + 1;
+  }
+  return false;
+}
+}  // namespace
+
+std::string only_in_the_stream_key(const std::vector<given_parameter>& given) {
+  const auto set_by_it = [&](const std::string& sym) {
     return std::any_of(given.begin(), given.end(), [&](const given_parameter& g) {
-      return canonical_symbol(g.symbol) == sym;
+      return canonical_symbol(g.symbol) == sym && !may_hold_zero(g.text);
     });
   };
   for (const auto& g : given) {
     const std::string sym = canonical_symbol(g.symbol);
     const auto refinements = refinements_of(sym);
-    if (refinements.empty() || !std::all_of(refinements.begin(), refinements.end(), is_given))
+    if (refinements.empty() || !std::all_of(refinements.begin(), refinements.end(), set_by_it))
       continue;
     std::vector<std::string> flags;
     for (const auto& r : refinements) flags.push_back(flag_of(r));
-    throw invalid_value(
-        fmt::format("{} ({})", flag_of(sym), info_for(sym).description), g.text,
-        fmt::format("{0} alone or with one of {1}; beside both it would have no effect "
-                    "(they set all it sets), so drop {0} or one of them",
-                    flag_of(sym), fmt::join(flags, ", ")));
+    return fmt::format(
+        "{0} {1} sets neither {2}: {3} give them. It still enters the random streams' key, "
+        "so it changes the draws, not the model: keep it to replay a run made with it, "
+        "drop it otherwise",
+        flag_of(sym), g.text, fmt::join(refinements, " nor "), fmt::join(flags, " and "));
   }
+  return {};
 }
 
 std::string overridden_by_base(const model_parameters& base, std::string_view symbol) {
@@ -277,7 +297,16 @@ std::string overridden_by_base(const model_parameters& base, std::string_view sy
   return {};
 }
 
+void check_assigned(std::string_view symbol, double value) {
+  const auto* row = row_of(canonical_symbol(symbol));
+  if (row && row->domain == parameter_domain::positive_or_unset && value == 0.0)
+    throw invalid_parameter(message_name(*row), value,
+                            fmt::format("a finite number > 0; leave {} out for {} = mu",
+                                        row->symbol, row->symbol));
+}
+
 model_parameters assign(model_parameters base, std::vector<parameter_assignment> assignments) {
+  for (const auto& a : assignments) check_assigned(a.symbol, a.value);
   order_assignments(assignments, [](const parameter_assignment& a) -> std::string_view {
     return a.symbol;
   });
