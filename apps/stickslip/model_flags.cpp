@@ -138,18 +138,18 @@ void note_unused_model_flags(const CLI::App& cmd, const model_flags& f) {
 
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                     model_parameters base) {
-  note_unused_model_flags(cmd, f);
   base = apply_belt_flags(f, std::move(base));
   std::vector<parameter_assignment> values;
   for (const auto* flag : given_model_flags(cmd, f))
     if (!holds_law(*flag))
       values.push_back({flag->symbol, io::parse_number(flag_label(flag->symbol), flag->text)});
-  return assign(std::move(base), std::move(values));
+  base = assign(std::move(base), std::move(values));
+  note_unused_model_flags(cmd, f);  // after every value passed its checks
+  return base;
 }
 
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
                        bool grids_allowed) {
-  note_unused_model_flags(cmd, f);
   spec.base = apply_belt_flags(f, apply_preset(f, std::move(spec.base)));
   std::vector<axis> added;
   for (const auto* flag : given_model_flags(cmd, f)) {
@@ -181,6 +181,7 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
   }
   io::order_added_axes(added);
   spec.axes.insert(spec.axes.end(), added.begin(), added.end());
+  note_unused_model_flags(cmd, f);  // after every value passed its checks
 }
 
 std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback) {

@@ -246,8 +246,8 @@ struct given_parameter {
 };
 // A note (one line, named by flags; the Python layer words it with
 // keywords) when a symbol that sets others (mu) is given beside all its
-// refinements (mu_s, mu_k), none of them possibly 0 (0 leaves one unset, so
-// that it resolves to mu): mu then sets no friction coefficient, yet it
+// refinements (mu_s, mu_k; a given 0, which would leave one unset, is
+// refused by check_assigned): mu then sets no friction coefficient, yet it
 // still enters the point's stream key (random_stream.hpp, point_key), so it
 // changes the draws but not the model. Not refused: a run recorded with it
 // (its command line, its resolved configuration, which writes mu beside

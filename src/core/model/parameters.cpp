@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <cstdlib>
 
 #include "stickslip/error.hpp"
 
@@ -244,29 +243,10 @@ std::vector<std::string> refinements_of(std::string_view symbol) {
   return out;
 }
 
-namespace {
-// Whether a flag's text (a value, a list, a grid form 'lin:a:b:n' or a law)
-// may hold the value 0: any of its numbers is 0.
-bool may_hold_zero(const std::string& text) {
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const std::size_t end = text.find_first_of(",:()= ", i);
-    const std::string token = text.substr(i, end == std::string::npos ? end : end - i);
-    char* stop = nullptr;
-    const double v = std::strtod(token.c_str(), &stop);
-    if (!token.empty() && stop == token.c_str() + token.size() && v == 0.0) return true;
-    if (end == std::string::npos) break;
-    i = end + 1;
-  }
-  return false;
-}
-}  // namespace
-
 std::string only_in_the_stream_key(const std::vector<given_parameter>& given) {
   const auto set_by_it = [&](const std::string& sym) {
-    return std::any_of(given.begin(), given.end(), [&](const given_parameter& g) {
-      return canonical_symbol(g.symbol) == sym && !may_hold_zero(g.text);
-    });
+    return std::any_of(given.begin(), given.end(),
+                       [&](const given_parameter& g) { return canonical_symbol(g.symbol) == sym; });
   };
   for (const auto& g : given) {
     const std::string sym = canonical_symbol(g.symbol);
