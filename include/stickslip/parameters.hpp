@@ -245,13 +245,16 @@ struct given_parameter {
   std::string text;
 };
 // A note (one line, named by flags; the Python layer words it with
-// keywords) when a symbol that sets others (mu) is given beside all its
-// refinements (mu_s, mu_k; a given 0, which would leave one unset, is
-// refused by check_assigned): mu then sets no friction coefficient, yet it
-// still enters the point's stream key (random_stream.hpp, point_key), so it
-// changes the draws but not the model. Not refused: a run recorded with it
-// (its command line, its resolved configuration, which writes mu beside
-// them) must replay with it. Empty when there is none.
+// keywords) when a symbol that sets others (mu) is given as one number
+// beside all its refinements (mu_s, mu_k; a given 0, which would leave one
+// unset, is refused by check_assigned): mu then sets no friction
+// coefficient, yet unless the model is the paper's (whose key is its seven
+// values, mu_k for mu) it still enters the point's stream key
+// (random_stream.hpp, point_key), so it changes the draws but not the
+// model. Not refused: a run recorded with it (its command line, its
+// resolved configuration, which writes mu beside them) must replay with it.
+// Empty when there is none (a grid or a law over mu beside a refinement is
+// refused elsewhere: overridden_by_base).
 [[nodiscard]] std::string only_in_the_stream_key(const std::vector<given_parameter>& given);
 // Why a grid axis or an uncertain law over `symbol` would change nothing on
 // top of `base`, because the base overrides it: V under given belt levels,

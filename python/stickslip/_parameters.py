@@ -188,14 +188,15 @@ def is_law(value):
     return isinstance(value, str) and _stickslip.looks_like_law(value)
 
 
-def model_arguments(kwargs, axes=False):
+def model_arguments(kwargs, axes=False, stacklevel=3):
     """Pops the scalar model parameters out of `kwargs` (in the order given)
     and returns {symbol: value} with only the given ones: numbers, or with
     axes=True a number or a list of numbers (number_or_axis), each read under
     the keyword the caller used; any of them may be a law's text (is_law),
     kept as a str. mu beside both mu_s and mu_k sets neither and only changes
     the draws: a UserWarning, as the CLI warns of --mu beside --mu-s and
-    --mu-k."""
+    --mu-k, at `stacklevel` (that of the user's call: 3 when the public
+    function calls this directly)."""
     by_keyword = {kw: sym for sym, (kw, *_rest) in PARAMETERS.items()}
     given = {}
     for key in list(kwargs):
@@ -215,7 +216,7 @@ def model_arguments(kwargs, axes=False):
                 given[sym] = number_or_axis(key, value) if axes else number(key, value)
     note = _stickslip.only_in_the_stream_key(given)
     if note:  # the CLI's warning, in keywords; stacklevel: the caller of the public function
-        warnings.warn(python_message(note), UserWarning, stacklevel=3)
+        warnings.warn(python_message(note), UserWarning, stacklevel=stacklevel)
     return given
 
 

@@ -161,7 +161,7 @@ def _replay_arguments(function, model, seed, x0, xdot0, belt_start, switch_times
                       belt_levels, belt_rates, belt_generator, max_events, common_random_numbers):
     """The arguments of one replay, read through the one coercion
     (_parameters.py), shared by simulate() and simulate_many()."""
-    params = model_arguments(model)
+    params = model_arguments(model, stacklevel=4)  # the user's call is two frames up
     if model:
         raise TypeError(f"{function}() got unexpected keyword arguments: {', '.join(model)}")
     params.update(belt_arguments(belt_levels, belt_rates, belt_generator))

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdlib>
 
 #include "stickslip/error.hpp"
 
@@ -248,17 +249,25 @@ std::string only_in_the_stream_key(const std::vector<given_parameter>& given) {
     return std::any_of(given.begin(), given.end(),
                        [&](const given_parameter& g) { return canonical_symbol(g.symbol) == sym; });
   };
+  // One fixed value: a grid or a law beside a refinement is refused anyway
+  // (overridden_by_base), with its own message.
+  const auto one_number = [](const std::string& text) {
+    char* stop = nullptr;
+    (void)std::strtod(text.c_str(), &stop);
+    return !text.empty() && stop == text.c_str() + text.size();
+  };
   for (const auto& g : given) {
     const std::string sym = canonical_symbol(g.symbol);
     const auto refinements = refinements_of(sym);
-    if (refinements.empty() || !std::all_of(refinements.begin(), refinements.end(), set_by_it))
+    if (refinements.empty() || !one_number(g.text) ||
+        !std::all_of(refinements.begin(), refinements.end(), set_by_it))
       continue;
     std::vector<std::string> flags;
     for (const auto& r : refinements) flags.push_back(flag_of(r));
     return fmt::format(
-        "{0} {1} sets neither {2}: {3} give them. It still enters the random streams' key, "
-        "so it changes the draws, not the model: keep it to replay a run made with it, "
-        "drop it otherwise",
+        "{0} {1} sets neither {2}: {3} give them. Unless the model is the paper's (mu_s = "
+        "mu_k, c = 0, the belt +-V), {0} still enters the random streams' key and changes the "
+        "draws, not the model: keep it to replay a run made with it, drop it otherwise",
         flag_of(sym), g.text, fmt::join(refinements, " nor "), fmt::join(flags, " and "));
   }
   return {};
