@@ -162,9 +162,7 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
     auto in_spec = std::find_if(spec.axes.begin(), spec.axes.end(),
                                 [&](const axis& a) { return a.name == sym; });
     if (io::is_single_value(flag->text)) {
-      const double value = io::parse_number(flag_label(sym), flag->text);
-      check_assigned(sym, value);
-      set_parameter(spec.base, sym, value);
+      assign_value(spec.base, sym, io::parse_number(flag_label(sym), flag->text));
       if (in_spec != spec.axes.end()) spec.axes.erase(in_spec);
       continue;
     }

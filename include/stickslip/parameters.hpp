@@ -247,7 +247,7 @@ struct given_parameter {
 // A note (one line, named by flags; the Python layer words it with
 // keywords) when a symbol that sets others (mu) is given as one number
 // beside all its refinements (mu_s, mu_k; a given 0, which would leave one
-// unset, is refused by check_assigned): mu then sets no friction
+// unset, is refused by assign_value): mu then sets no friction
 // coefficient, yet unless the model is the paper's (whose key is its seven
 // values, mu_k for mu) it still enters the point's stream key
 // (random_stream.hpp, point_key), so it changes the draws but not the
@@ -280,14 +280,15 @@ void order_assignments(std::vector<Item>& items, SymbolOf symbol_of) {
   std::stable_partition(items.begin(), items.end(),
                         [&](const Item& item) { return assigned_first(symbol_of(item)); });
 }
-// A number a user assigns (a flag, a TOML key, a Python keyword): a row
-// whose 0 means unset (mu_s, mu_k resolve to mu) takes only a value > 0
-// there, because an explicit 0 would silently stand for mu (a new user asked
-// for mu_k = 0 and got mu_k = mu = 5). Throws invalid_input naming the row,
-// the value and what is allowed. (In C++ a 0 field still means unset.)
-void check_assigned(std::string_view symbol, double value);
-// `base` with the assignments applied in that order (set_parameter), each
-// checked by check_assigned, not validated.
+// set_parameter for a number a user wrote (a flag, a TOML key, a Python
+// keyword): a row whose 0 means unset (mu_s, mu_k resolve to mu) takes only
+// a value > 0 there, because an explicit 0 would silently stand for mu (a
+// new user asked for mu_k = 0 and got mu_k = mu = 5). Throws invalid_input
+// naming the row, the value and what is allowed, before `p` changes. (In
+// C++ a 0 field still means unset.) Not validated.
+void assign_value(model_parameters& p, std::string_view symbol, double value);
+// `base` with the assignments applied in that order (assign_value), not
+// validated.
 [[nodiscard]] model_parameters assign(model_parameters base,
                                       std::vector<parameter_assignment> assignments);
 

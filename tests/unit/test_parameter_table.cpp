@@ -152,7 +152,7 @@ TEST(ParameterTable, MuBesideBothItsRefinementsIsNotedNotIgnored) {
 }
 
 // mu_s or mu_k written as 0 (a flag, a TOML key, a keyword: assign,
-// check_assigned) was taken for "unset", i.e. mu, without a word; it is
+// assign_value) was taken for "unset", i.e. mu, without a word; it is
 // refused by name. A C++ field left 0 still means unset.
 TEST(ParameterTable, AnExplicitZeroFrictionIsRefusedNotTakenForMu) {
   const auto refusal = [](auto&& f) -> std::string {

@@ -286,20 +286,20 @@ std::string overridden_by_base(const model_parameters& base, std::string_view sy
   return {};
 }
 
-void check_assigned(std::string_view symbol, double value) {
+void assign_value(model_parameters& p, std::string_view symbol, double value) {
   const auto* row = row_of(canonical_symbol(symbol));
   if (row && row->domain == parameter_domain::positive_or_unset && value == 0.0)
     throw invalid_parameter(message_name(*row), value,
                             fmt::format("a finite number > 0; leave {} out for {} = mu",
                                         row->symbol, row->symbol));
+  set_parameter(p, symbol, value);
 }
 
 model_parameters assign(model_parameters base, std::vector<parameter_assignment> assignments) {
-  for (const auto& a : assignments) check_assigned(a.symbol, a.value);
   order_assignments(assignments, [](const parameter_assignment& a) -> std::string_view {
     return a.symbol;
   });
-  for (const auto& a : assignments) set_parameter(base, a.symbol, a.value);
+  for (const auto& a : assignments) assign_value(base, a.symbol, a.value);
   return base;
 }
 

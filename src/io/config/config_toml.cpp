@@ -150,9 +150,7 @@ void read_model_value(const context& cx, const std::string& key, const toml::nod
                       sweep_spec& s) {
   if (n.is_string()) return read_law(cx, key, n, s);
   drop_law(s, key);
-  const double value = read_number(cx, "model." + key, n);
-  check_assigned(key, value);
-  set_parameter(s.base, key, value);
+  assign_value(s.base, key, read_number(cx, "model." + key, n));
 }
 
 // "m, k, g, mu, V, lambda, ta, c, mu_s, mu_k": the scalar keys.
