@@ -122,6 +122,24 @@ TEST(Histogram, BinsEdgesAndOutOfRange) {
   EXPECT_EQ(h.total(), 9u);
 }
 
+// add_all is add in one loop: the same counts, also for the edges, the
+// closed right edge, out-of-range values, NaN and infinities, and added to
+// counts already there.
+TEST(Histogram, AddAllEqualsAddingOneAtATime) {
+  std::vector<double> xs = {0.0,  0.1, 0.25, 0.5, 0.99, 1.0, -0.1, 1.5, std::nan(""),
+                            -0.0, std::nextafter(1.0, 2.0), INFINITY, -INFINITY, 0.75};
+  for (double x : sample(500)) xs.push_back(x / 2 + 0.5);  // some beyond [0, 1] either side
+  histogram one(0.0, 1.0, 7), all(0.0, 1.0, 7);
+  one.add(0.3), all.add(0.3), one.add(-1.0), all.add(-1.0);
+  for (double x : xs) one.add(x);
+  all.add_all(xs.data(), xs.data() + xs.size());
+  EXPECT_EQ(one, all);
+  EXPECT_GT(all.underflow(), 3u);
+  EXPECT_GT(all.overflow(), 2u);
+  all.add_all(xs.data(), xs.data());  // nothing
+  EXPECT_EQ(one, all);
+}
+
 TEST(Histogram, DensityIntegratesToInRangeFraction) {
   histogram h(0.0, 2.0, 10);
   for (double x : sample(1000)) h.add(std::abs(x));

@@ -32,6 +32,32 @@ class histogram {
     const auto n = counts_.size();
     ++counts_[f < static_cast<double>(n) ? static_cast<std::size_t>(f) : n - 1];
   }
+  // add(x) for every x of [first, last), in one loop: the bounds, the scale
+  // and the counts' storage in registers (add(x) in a loop reloaded them
+  // after every count: a store to a count may alias the out-of-range
+  // counters). The same counts as add(x) one at a time.
+  void add_all(const double* first, const double* last) noexcept {
+    const double lo = lo_, hi = hi_, scale = scale_;
+    const auto n = counts_.size();
+    const double bins = static_cast<double>(n);
+    std::uint64_t* const counts = counts_.data();
+    std::uint64_t under = 0, over = 0;
+    for (; first != last; ++first) {
+      const double x = *first;
+      if (!(x >= lo)) {
+        ++under;
+        continue;
+      }
+      if (x > hi) {
+        ++over;
+        continue;
+      }
+      const double f = (x - lo) * scale;
+      ++counts[f < bins ? static_cast<std::size_t>(f) : n - 1];
+    }
+    underflow_ += under;
+    overflow_ += over;
+  }
   // Where add(x) counts x: 0 below lo (or NaN), 1 + i for bin i, bins() + 1
   // above hi. The same arithmetic as add (histogram2d bins with it, so its
   // marginals equal the 1-D counts exactly).
