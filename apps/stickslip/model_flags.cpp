@@ -129,11 +129,35 @@ void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& c
                                       instead));
 }
 
-void note_unused_model_flags(const CLI::App& cmd, const model_flags& f) {
+// The note of only_in_the_stream_key for the given flags, and for the
+// symbols set besides them (`also_set`: a configuration's refinements),
+// which have no text of their own here.
+void note_unused_model_flags(const CLI::App& cmd, const model_flags& f,
+                             const std::vector<std::string>& also_set = {}) {
   std::vector<given_parameter> values;
   for (const auto* g : given_model_flags(cmd, f)) values.push_back({g->symbol, g->text});
+  for (const auto& symbol : also_set) values.push_back({symbol, ""});
   if (const auto note = only_in_the_stream_key(values); !note.empty())
     fmt::print(stderr, "stickslip: warning: {}\n", note);
+}
+
+// The refinements of the given flags' symbols (mu_s, mu_k of --mu) that
+// `spec` still sets after the flags: in practice an axis or a law from
+// --config, since a configuration's value of mu_s or mu_k is cleared by a
+// --mu number, which then sets the friction (flags come after the file).
+std::vector<std::string> refinements_set_in(const CLI::App& cmd, const model_flags& f,
+                                            const sweep_spec& spec) {
+  std::vector<std::string> out;
+  for (const auto* g : given_model_flags(cmd, f))
+    for (const auto& r : refinements_of(g->symbol)) {
+      const auto named = [&](const auto& x) { return x.symbol == r; };
+      const bool in_base = spec.base.*info_for(r).field > 0.0;
+      const bool on_axis = std::any_of(spec.axes.begin(), spec.axes.end(),
+                                       [&](const axis& a) { return a.name == r; });
+      if (in_base || on_axis || std::any_of(spec.uncertain.begin(), spec.uncertain.end(), named))
+        out.push_back(r);
+    }
+  return out;
 }
 
 model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
@@ -179,7 +203,8 @@ void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& sp
   }
   io::order_added_axes(added);
   spec.axes.insert(spec.axes.end(), added.begin(), added.end());
-  note_unused_model_flags(cmd, f);  // after every value passed its checks
+  // after every value passed its checks
+  note_unused_model_flags(cmd, f, refinements_set_in(cmd, f, spec));
 }
 
 std::uint64_t resolve_seed(const model_flags& f, std::uint64_t fallback) {

@@ -88,12 +88,15 @@ void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& c
 //   one point, such as `sensitivity`) a grid is refused, exit 2.
 // Bad text exits 2 naming the flag. Nothing is validated beyond the flag.
 // Like apply_scalar_flags, prints only_in_the_stream_key's note (--mu beside
-// --mu-s and --mu-k) on stderr as "stickslip: warning: ...".
+// --mu-s and --mu-k) on stderr as "stickslip: warning: ..."; here a
+// refinement the spec already held (a --config file's value, grid axis or
+// law of mu_s or mu_k) counts as given beside a --mu flag.
 void apply_model_flags(const CLI::App& cmd, const model_flags& f, sweep_spec& spec,
                        bool grids_allowed);
 
 // `base` with every given flag applied as one number (and the belt flags),
 // not validated. Flags that hold laws are left out (given_laws reads them).
+// Prints only_in_the_stream_key's note (--mu beside --mu-s and --mu-k).
 [[nodiscard]] model_parameters apply_scalar_flags(const CLI::App& cmd, const model_flags& f,
                                                   model_parameters base);
 

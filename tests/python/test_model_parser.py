@@ -143,6 +143,31 @@ def test_mu_beside_both_refinements_is_kept_with_a_warning(cli, tmp_path):
     assert python_base([("mu", 5.0), ("mu_k", 4.0)])["mu_s"] == 5.0
 
 
+def test_mu_flag_beside_refinements_from_a_configuration(cli, tmp_path):
+    """A --mu flag on top of a --config file: flags come after the file, so
+    --mu replaces the file's mu_s and mu_k values and sets the friction (no
+    warning); but an axis or a law of both in the file still sets them at
+    every point, and then --mu only changes the draws: the warning, as for
+    flags. With one of them on an axis, --mu sets the other: no warning."""
+    cases = {
+        "values": ("[model]\nmu_s = 6\nmu_k = 4\n", 0),
+        "axes": ("[grid]\nmu_s = [6, 7]\nmu_k = [4]\n", 1),
+        "axis and flag": ("[grid]\nmu_s = [6, 7]\n", 1),  # with --mu-k 4 below
+        "one axis": ("[model]\nmu_k = 4\n[grid]\nmu_s = [6, 7]\n", 0),
+    }
+    for name, (toml, warned) in cases.items():
+        config = tmp_path / f"{len(name)}-{warned}.toml"
+        config.write_text(toml)
+        out = tmp_path / name.replace(" ", "_")
+        extra = ["--mu-k", 4] if name == "axis and flag" else []
+        r = cli("sweep", "--config", config, "--mu", 5, *extra, "--lambda", "1,2",
+                "--realizations", 20, "-o", out)
+        assert r.stderr.count("stickslip: warning: --mu 5 sets neither") == warned, (name, r.stderr)
+        base = json.loads((out / "summary.json").read_text())["parameters"]["base"]
+        if name == "values":  # --mu replaced the file's values: the friction is 5
+            assert (base["mu_s"], base["mu_k"]) == (5.0, 5.0), base
+
+
 def test_a_resolved_configuration_with_mu_beside_both_reads_back(cli, tmp_path):
     """The resolved configuration writes mu beside mu_s and mu_k (all it
     was given); as a --config it gives the same results again, mu's draws
