@@ -9,6 +9,7 @@
 #include <map>
 
 #include "stickslip/error.hpp"
+#include "stickslip/nearest_name.hpp"
 
 namespace stickslip::app {
 namespace {
@@ -58,32 +59,6 @@ std::string did_you_mean(const std::string& guess) {
 
 }  // namespace
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  // Optimal string alignment distance, O(|a| |b|).
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i)
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
-}
-
-std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
-  for (const auto& c : candidates)
-    if (const auto dist = edit_distance(word, c); dist < best_distance) {
-      best = c;
-      best_distance = dist;
-    }
-  return best;
-}
-
 int report_parse_error(CLI::App& app, const CLI::ParseError& e,
                        const std::vector<std::string>& args) {
   if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
@@ -102,7 +77,7 @@ int report_parse_error(CLI::App& app, const CLI::ParseError& e,
                               fmt::join(subs, ", ")));
     else
       print_error(fmt::format("unknown subcommand '{}'{} (subcommands: {})", word,
-                              did_you_mean(nearest(word, subs)), fmt::join(subs, ", ")));
+                              did_you_mean(nearest_name(word, subs)), fmt::join(subs, ", ")));
     return code;
   }
   const std::string where = fmt::format("`stickslip {}`", sub->get_name());
@@ -114,7 +89,7 @@ int report_parse_error(CLI::App& app, const CLI::ParseError& e,
     const auto* opt = sub->get_option_no_throw(name);
     if (opt == nullptr) {
       print_error(fmt::format("unknown flag '{}' for {}{} (stickslip {} --help lists them)",
-                              name, where, did_you_mean(nearest(name, flags)), sub->get_name()));
+                              name, where, did_you_mean(nearest_name(name, flags)), sub->get_name()));
       return code;
     }
     seen[opt].push_back(name);

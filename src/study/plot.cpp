@@ -12,6 +12,7 @@
 #include "plot_selection.hpp"
 #include "plot_sensitivity.hpp"
 #include "stickslip/error.hpp"
+#include "stickslip/io/journal.hpp"
 
 namespace stickslip::study {
 namespace {
@@ -235,9 +236,14 @@ std::pair<curve_request, figure_text> along(const io::result_file& f, const quan
   curve_request c;
   c.q = q;
   c.x_dim = x_dim;
-  c.by_dim = r.by;
-  if (!c.by_dim.empty()) require_dim(*q.value, "--by", c.by_dim);
   c.at = parse_all(r.at);
+  c.by_dim = r.by;
+  if (c.by_dim.empty()) {  // the remaining dimension, when exactly one is left (plot.md)
+    auto open = open_dims(f, *q.value, c.at);
+    std::erase(open, x_dim);
+    if (open.size() == 1) c.by_dim = open.front();
+  }
+  if (!c.by_dim.empty()) require_dim(*q.value, "--by", c.by_dim);
   c.style = style;
   c.logx = r.logx;
   figure_text t;
@@ -265,7 +271,7 @@ curve_plot plan_time(const io::result_file& f, const plot_request& r) {
                 fmt::format("cannot plot --time: {} has no 'time' dimension; time-resolved "
                             "statistics are written by `stickslip sweep --observe-times GRID`",
                             f.path()));
-  const auto q = detail::find_quantity(f, "--y", r.y.empty() ? "stick_probability" : r.y);
+  const auto q = detail::find_quantity(f, "--y", r.y.empty() ? "stick_probability" : r.y, "time");
   require_dim(*q.value, "--y", "time");
   auto [c, t] = along(f, q, "time", r, curve_style::lines);
   t.stem = q.asked + "_vs_time";
@@ -297,9 +303,16 @@ std::string find_result_file(const std::string& dir) {
   namespace fs = std::filesystem;
   for (const char* name : {"results.nc", "sensitivity.nc"})
     if (fs::is_regular_file(fs::path(dir) / name)) return (fs::path(dir) / name).string();
+  // An interrupted run leaves its journal and no results yet: say so.
+  const std::string unfinished =
+      io::journal_exists(dir)
+          ? fmt::format("; {} holds the journal of an unfinished run: finish it with the same "
+                        "command and --resume, then plot",
+                        dir)
+          : "";
   throw invalid_value("DIR", dir,
                       "a directory holding results.nc (from stickslip sweep -o DIR) or "
-                      "sensitivity.nc (from stickslip sensitivity -o DIR)");
+                      "sensitivity.nc (from stickslip sensitivity -o DIR)" + unfinished);
 }
 
 plot_figure plan_plot(const io::result_file& f, const plot_request& r) {

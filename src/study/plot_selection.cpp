@@ -10,6 +10,7 @@
 #include "stickslip/accumulators/mean_variance.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/nearest_name.hpp"
 
 namespace stickslip::study::detail {
 namespace {
@@ -50,7 +51,44 @@ std::string statistic_list(const io::result_file& f) {
   return joined(names);
 }
 
-quantity find_quantity(const io::result_file& f, const std::string& flag, const std::string& name) {
+namespace {
+
+// The names find_quantity takes for the variables over the dimension
+// `along`: X for X_mean, else the variable's own name, leaving out the
+// bands and spreads that go with them.
+std::vector<std::string> names_along(const io::result_file& f, const std::string& along) {
+  std::vector<std::string> names;
+  for (const auto& v : f.variables()) {
+    if (v.text || std::find(v.dims.begin(), v.dims.end(), along) == v.dims.end() ||
+        v.dims == std::vector<std::string>{along})
+      continue;
+    if (ends_with(v.name, "_mean")) {
+      names.push_back(v.name.substr(0, v.name.size() - 5));
+      continue;
+    }
+    const bool band = ends_with(v.name, "_std_error") || ends_with(v.name, "_variance") ||
+                      ends_with(v.name, "_ci95_half_width") || ends_with(v.name, "_ci95_low") ||
+                      ends_with(v.name, "_ci95_high");
+    if (!band) names.push_back(v.name);
+  }
+  return names;
+}
+
+// What a name can be, for a refusal: the symbols and X of every X_mean.
+std::vector<std::string> statistic_names(const io::result_file& f) {
+  std::vector<std::string> names;
+  for (const auto& v : f.variables()) {
+    if (!ends_with(v.name, "_mean") || v.text) continue;
+    names.push_back(v.name.substr(0, v.name.size() - 5));
+    if (!v.symbol.empty()) names.push_back(v.symbol);
+  }
+  return names;
+}
+
+}  // namespace
+
+quantity find_quantity(const io::result_file& f, const std::string& flag, const std::string& name,
+                       const std::string& along) {
   quantity q;
   q.asked = name;
   q.value = f.variable(name + "_mean");
@@ -62,12 +100,20 @@ quantity find_quantity(const io::result_file& f, const std::string& flag, const 
     const bool coordinate = v && v->dims == std::vector<std::string>{name};
     if (v && !v->text && !coordinate && !v->dims.empty()) q.value = v;
   }
-  if (!q.value)
+  if (!q.value) {
+    const auto names = along.empty() ? std::vector<std::string>{} : names_along(f, along);
+    const auto guess = nearest_name(name, along.empty() ? statistic_names(f) : names);
+    const std::string hint = guess.empty() ? "" : fmt::format("; did you mean {}?", guess);
+    if (!along.empty())
+      throw invalid_value(flag, name,
+                          fmt::format("a statistic of {} over {}: {}{}", f.path(), along,
+                                      joined(names), hint));
     throw invalid_value(flag, name,
                         fmt::format("a statistic of {}: {}; or another variable of it over the "
                                     "grid (ncdump -h lists them); a statistic the sweep did not "
-                                    "select is not there: rerun it with --statistics",
-                                    f.path(), statistic_list(f)));
+                                    "select is not there: rerun it with --statistics{}",
+                                    f.path(), statistic_list(f), hint));
+  }
   const std::string& var = q.value->name;
   const std::string base = ends_with(var, "_mean") ? var.substr(0, var.size() - 5) : var;
   q.low = first_present(f, {base + "_ci95_low", var + "_ci95_low"});
@@ -137,9 +183,15 @@ grid_choice choose_point(const io::result_file& f, const io::result_variable& va
       std::vector<std::string> fixable;
       for (const auto& d : var.dims)
         if (std::find(free.begin(), free.end(), d) == free.end()) fixable.push_back(d);
-      throw invalid_value("--at", fmt::format("{}={}", name, short_number(wanted)),
-                          fmt::format("an axis of {} that is not drawn ({} is): {}", var.name,
-                                      joined(free), joined(fixable)));
+      const std::string drawn = joined(free) + (free.size() == 1 ? " is" : " are");
+      throw invalid_value(
+          "--at", fmt::format("{}={}", name, short_number(wanted)),
+          fixable.empty()
+              ? fmt::format("none: every axis of {} is drawn ({}); leave {} out of --at "
+                            "(or, if it is --by, drop --by to draw that value alone)",
+                            var.name, joined(free), name)
+              : fmt::format("an axis of {} that is not drawn ({} drawn): {}", var.name, drawn,
+                            joined(fixable)));
     }
     if (c.index.count(name))
       throw invalid_value("--at", name, "each name once in one --at");

@@ -28,9 +28,11 @@ struct quantity {
 };
 
 // `--y NAME`: the statistic NAME (its NAME_mean), the statistic whose mean
-// has the symbol NAME ("R"), or the numeric variable NAME.
+// has the symbol NAME ("R"), or the numeric variable NAME. An unknown NAME
+// is refused with the names there are (over `along`, when given: "time" for
+// --time) and the nearest of them.
 [[nodiscard]] quantity find_quantity(const io::result_file& f, const std::string& flag,
-                                     const std::string& name);
+                                     const std::string& name, const std::string& along = "");
 // The statistics of the file (every X of an X_mean) as "X (symbol)".
 [[nodiscard]] std::string statistic_list(const io::result_file& f);
 

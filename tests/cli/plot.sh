@@ -84,6 +84,12 @@ for x, y, *_, z in rows:
     assert z == float(R[lam.index(x), mu.index(y)]), (x, y, z)
 PY
 
+# --by defaults to the one dimension left open (plot.md), for a histogram
+# too (a new user found --time and --survival asking for it).
+run_ok plot sw --histogram D --at mu=5
+check_figure sw/plots/D_histogram_by_lambda_at_mu5 "stick duration (s)" "density of D (1/s)" \
+  "lambda = 10"
+
 # Histograms at two points; the nearest grid lambda to 3.8 is 4.729.
 run_ok plot sw --histogram D --at lambda=3.8,mu=5 --at lambda=0.5,mu=5
 stem=sw/plots/D_histogram_at_lambda4.729_mu5_at_lambda0.5_mu5
@@ -171,6 +177,9 @@ run_ok sweep --preset paper-figures --lambda 0.5,3.8 --mu 5 --ta 20 --realizatio
 run_ok plot sv --survival stick --by lambda
 check_figure sv/plots/stick_survival_by_lambda "stick duration (s)" "stick survival probability (1)" \
   "lambda = 3.8"
+run_ok plot sv --survival slip -o sv/default_by
+check_figure sv/default_by/slip_survival_by_lambda "slip duration (s)" \
+  "slip survival probability (1)" "lambda = 3.8"
 run_ok plot sv --survival slip --at lambda=0.5
 check_figure sv/plots/slip_survival_at_lambda0.5 "slip duration (s)" "slip survival probability (1)"
 checks=$((checks + 1))
@@ -196,6 +205,9 @@ run_ok sweep --preset paper-figures --lambda 0.5,3.8 --mu 5 --ta 20 --realizatio
   --observe-times lin:0:20:41 -o ot
 run_ok plot ot --time --by lambda
 check_figure ot/plots/stick_probability_vs_time_by_lambda "observation time (s)" \
+  "stick probability (1)" "lambda = 3.8"
+run_ok plot ot --time -o ot/default_by
+check_figure ot/default_by/stick_probability_vs_time_by_lambda "observation time (s)" \
   "stick probability (1)" "lambda = 3.8"
 run_ok plot ot --time --y position --at lambda=3.8
 check_figure ot/plots/position_vs_time_at_lambda3.8 "observation time (s)" "mean position (m)"
@@ -253,16 +265,25 @@ refused "invalid --histogram: 'Q'|stick_duration (D)" sw --histogram Q --at lamb
 refused "invalid --at: 'lambda=20'|within the grid's range [0.5, 10]" sw --histogram D --at lambda=20,mu=5
 refused "invalid --at: 'lambda=0.1'|[0.5, 10]" sw --y R --x mu --at lambda=0.1
 refused "invalid --at: 'k=40'|lambda, mu" sw --y R --x lambda --at k=40
-refused "varies over lambda|--by lambda|--at lambda=VALUE" sw --histogram D --at mu=5
+refused "varies over lambda|--by lambda|--at lambda=VALUE" sw --histogram D
 refused "invalid --at: 'lambda3'|NAME=VALUE" sw --y R --x mu --at lambda3
 refused "invalid --histogram: '--histogram D with --map'|one figure kind at a time" sw --map --histogram D
 refused "no 'time' dimension|stickslip sweep --observe-times" sw --time --at lambda=1,mu=5
 refused "no 'stick_survival' variable|--statistics survival" sw --survival stick --at lambda=1,mu=5
 refused "invalid --survival: 'slip'|stick" tm --survival slip --at lambda=1,mu=5
+# a misspelt time-resolved statistic: the ones over time, and the nearest
+refused "invalid --y: 'stick_probabilty'|over time: stick_probability, position, velocity|level_occupancy|did you mean stick_probability?" \
+  ot --time --y stick_probabilty
+refused "invalid --y: 'stick_fractoin'|did you mean stick_fraction?" sw --y stick_fractoin
+# --at of an axis that is drawn, when no axis is left to fix
+refused "invalid --at: 'lambda=3.8'|none: every axis of stick_survival is drawn (stick_duration, lambda)" \
+  sv --survival stick --at lambda=3.8 --by lambda
 refused "invalid --x: 'lambda'|sensitivity result" sens --x lambda
 refused "invalid DIR: 'nowhere'|results.nc|sensitivity.nc" nowhere
 mkdir empty
 refused "invalid DIR: 'empty'" empty
+mkdir -p unfinished/.journal  # what an interrupted sweep leaves: say so
+refused "invalid DIR: 'unfinished'|holds the journal of an unfinished run|--resume" unfinished
 env PATH=/nonexistent "$BIN" plot sw --y R --x lambda -o none >"$WORK/stdout" 2>"$WORK/stderr"
 expect_eq "exit code without gnuplot" "$?" "2"
 checks=$((checks + 1))
