@@ -74,7 +74,8 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
                   bool common_random_numbers, const std::string& target_ci,
                   std::uint64_t min_realizations, bool overwrite,
                   const py::object& design, const std::vector<std::string>& statistics,
-                  std::size_t survival_bins, double burn_in, const py::object& observe_times) {
+                  std::optional<std::size_t> survival_bins, double burn_in,
+                  const py::object& observe_times) {
   sweep_spec spec =
       spec_from(base, axes, realizations, seed, block_size, bins, records, engine, max_events,
                 belt_start);
@@ -104,7 +105,12 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   // The CLI's --statistics and --survival-bins (their checks and messages).
   spec.statistics = parse_statistics_selection("statistics", statistics);
   apply_statistics_selection(spec);
-  spec.survival.bins = survival_bins;
+  if (survival_bins) {
+    if (!spec.statistics.survival)
+      throw invalid_value("survival_bins", std::to_string(*survival_bins),
+                          "only with the survival statistics (statistics=\"survival\" or \"all\")");
+    spec.survival.bins = *survival_bins;
+  }
   spec.burn_in = burn_in;  // the CLI's --burn-in (validate() checks 0 <= T < t_a)
   spec.observe_times = observe_times_from(observe_times);  // the CLI's --observe-times
   resolve_survival_grid(spec);
@@ -208,7 +214,7 @@ void register_sweep(py::module_& m) {
         py::arg("common_random_numbers") = false, py::arg("target_ci") = "",
         py::arg("min_realizations") = 1000, py::arg("overwrite") = false,
         py::arg("design") = py::none(), py::arg("statistics") = std::vector<std::string>{},
-        py::arg("survival_bins") = survival_spec{}.bins, py::arg("burn_in") = 0.0,
+        py::arg("survival_bins") = py::none(), py::arg("burn_in") = 0.0,
         py::arg("observe_times") = py::none());
 }
 

@@ -1,6 +1,7 @@
 """stickslip.peak(): the maximizer of a mean statistic over one parameter,
 exactly as `stickslip peak` computes it (docs/precision.md)."""
 from . import _stickslip
+from ._parameters import unexpected_keywords
 from ._parameters import (belt_arguments, describe, error, extension, max_events_of, model_arguments,
                           number, text, whole)
 
@@ -34,7 +35,7 @@ def peak(*, statistic="R", over="lambda", range=None, target_halfwidth=0.01,  # 
     """
     params = model_arguments(model)
     if model:
-        raise TypeError(f"peak() got unexpected keyword arguments: {', '.join(model)}")
+        raise unexpected_keywords(peak, model)
     params.update(belt_arguments(belt_levels, belt_rates, belt_generator))
     over = text("over", over)
     if over in params:

@@ -2,6 +2,7 @@
 import numpy as np
 import pandas as pd
 
+from ._parameters import unexpected_keywords
 from ._parameters import (belt_arguments, belt_start_text, describe, error, extension, flag,
                           max_events_of, model_arguments, number, optional, sequence, whole)
 
@@ -163,7 +164,7 @@ def _replay_arguments(function, model, seed, x0, xdot0, belt_start, switch_times
     (_parameters.py), shared by simulate() and simulate_many()."""
     params = model_arguments(model, stacklevel=4)  # the user's call is two frames up
     if model:
-        raise TypeError(f"{function}() got unexpected keyword arguments: {', '.join(model)}")
+        raise unexpected_keywords(globals()[function], model)
     params.update(belt_arguments(belt_levels, belt_rates, belt_generator))
     return dict(parameters=params, seed=whole("seed", seed), x0=optional(number, "x0", x0),
                 xdot0=optional(number, "xdot0", xdot0), belt_start=belt_start_text(belt_start),

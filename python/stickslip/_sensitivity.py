@@ -3,6 +3,7 @@ import json
 import os
 
 from . import _stickslip
+from ._parameters import unexpected_keywords
 from ._parameters import (belt_arguments, extension, flag, max_events_of, model_arguments, number,
                           text, whole)
 from ._parameters import path as _path
@@ -41,7 +42,7 @@ def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_sampl
     """
     params = model_arguments(model, axes=False)
     if model:
-        raise TypeError(f"sensitivity() got unexpected keyword arguments: {', '.join(model)}")
+        raise unexpected_keywords(sensitivity, model)
     belt = belt_arguments(belt_levels, belt_rates, belt_generator)
     base = dict(params)
     base.update(belt)

@@ -1,10 +1,12 @@
 """stickslip.sweep() and stickslip.open(): the CLI's `sweep`, as xarray."""
+import inspect
 import os
 import tempfile
 
 import xarray as xr
 
 from . import _stickslip
+from ._parameters import unexpected_keywords
 from ._parameters import (PARAMETERS, belt_arguments, belt_start_text, describe, error, extension,
                           flag, max_events_of, model_arguments, number, sequence, text, whole)
 from ._parameters import path as _path  # `path` is open()'s argument
@@ -99,7 +101,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
           records=False, engine="fast", max_events=None, output=None, resume=False,
           keep_journal=False, checkpoint_interval=2.0, belt_levels=None, belt_rates=None,
           belt_generator=None, belt_start=None, common_random_numbers=False, target_ci=None,
-          min_realizations=1000, overwrite=False, statistics=None, survival_bins=200, burn_in=0.0,
+          min_realizations=1000, overwrite=False, statistics=None, survival_bins=None, burn_in=0.0,
           observe_times=None, **model):
     """The paper's statistics over a grid of model parameters, exactly as
     `stickslip sweep` computes them (bit-identical for any thread count).
@@ -149,8 +151,8 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         stick_survival_ci95_low/high, stick_at_risk, stick_restricted_mean
         over stick_duration, slip_* over slip_duration), "all"; the CLI's
         --statistics (docs/outputs.md).
-    survival_bins: bins of the survival grid (default 200; the CLI's
-        --survival-bins).
+    survival_bins: bins of the survival grid (default None: 200; the CLI's
+        --survival-bins), only with the survival statistics.
     burn_in: T in seconds, 0 <= T < t_a (default 0: the whole window): every
         statistic counts only [T, t_a] (R, the rates and the level fractions
         over t_a - T; an episode in progress at T counts from T); the CLI's
@@ -173,16 +175,16 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     journal stays resumable.
     Raises stickslip.Error for bad input.
     """
+    options = {k: v for k, v in locals().items() if k != "model"}  # the call, for its record
     params = model_arguments(model, axes=True)
     if model:
-        raise TypeError(f"sweep() got unexpected keyword arguments: {', '.join(model)}")
+        raise unexpected_keywords(sweep, model)
     base, axes = _axes_and_base(params)
     belt = belt_arguments(belt_levels, belt_rates, belt_generator)
     realizations = whole("realizations", realizations, 1, _stickslip.max_realizations)
     seed = whole("seed", seed)
-    given = ", ".join(f"{k}={v!r}" for k, v in {**params, **belt}.items())
     base.update(belt)
-    command = f"python: stickslip.sweep({given}, realizations={realizations}, seed={seed})"
+    command = _call_text(params, belt, options)
     arguments = dict(
         realizations=realizations, seed=seed,
         block_size=whole("block_size", block_size, 1, _stickslip.max_block_size),
@@ -199,7 +201,8 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
                                _stickslip.max_realizations),
         overwrite=flag("overwrite", overwrite),
         statistics=_statistics_names(statistics),
-        survival_bins=whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins),
+        survival_bins=(None if survival_bins is None else
+                       whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins)),
         burn_in=number("burn_in", burn_in), observe_times=_observe_times(observe_times))
     update, bar = _progress_bar(flag("progress", progress))
     try:
@@ -211,6 +214,31 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     finally:
         if bar is not None:
             bar.close()
+
+
+def _call_text(params, belt, options):
+    """The call as its record (results.nc's command_line and history): the
+    model and belt keywords given, realizations and seed, then every other
+    keyword whose value is not its default (observe_times, statistics,
+    records, output, ...), so that the record replays the run."""
+    defaults = {k: p.default for k, p in inspect.signature(sweep).parameters.items()
+                if p.default is not inspect.Parameter.empty}
+    keyword = {sym: kw for sym, (kw, *_rest) in PARAMETERS.items()}  # lambda -> lam
+    given = [f"{keyword.get(k, k)}={v!r}" for k, v in {**params, **belt}.items()]
+    given += [f"{k}={options[k]!r}" for k in ("realizations", "seed")]
+    for k, v in options.items():
+        if k in defaults and k not in ("realizations", "seed") and k not in belt:
+            default = defaults[k]
+            if v is not default and not (type(v) is type(default) and v == default):
+                given.append(f"{k}={_literal(v)}")
+    return f"python: stickslip.sweep({', '.join(given)})"
+
+
+def _literal(value):
+    """A keyword's value as Python text: arrays as lists."""
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        value = value.tolist()
+    return repr(value)
 
 
 sweep.__doc__ = sweep.__doc__.format(params=describe())

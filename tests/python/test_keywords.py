@@ -5,6 +5,7 @@ belt_start, output, overwrite=True, resume=True), lambda_ is a
 documented alias of lam, and every parameter is also taken under its long
 name (the command line's alias flag)."""
 import pathlib
+import re
 
 import numpy as np
 import pytest
@@ -254,3 +255,21 @@ def test_docs_define_the_episodes_belt_velocity_and_the_realization_attributes()
         assert f"| {attribute} |" in python, attribute
     doc = stickslip.Realization.__doc__
     assert "at the episode's start" in doc and "x0, xdot0, belt_start" in doc
+
+
+@pytest.mark.parametrize("call, typo, near", [
+    (lambda **kw: stickslip.sweep(realizations=2, **kw), "lamda", "lam"),
+    (lambda **kw: stickslip.sweep(**kw), "realisations", "realizations"),
+    (lambda **kw: stickslip.sweep(**kw), "switchrate", "switch_rate"),
+    (lambda **kw: stickslip.simulate(**kw), "xdot", "xdot0"),
+    (lambda **kw: stickslip.simulate_many(realizations=2, **kw), "sed", "seed"),
+    (lambda **kw: stickslip.peak(**kw), "staticfriction", "static_friction"),
+    (lambda **kw: stickslip.sensitivity(**kw), "sample", "samples"),
+])
+def test_a_misspelt_keyword_is_named_with_the_nearest(call, typo, near):
+    """As the command line suggests the nearest flag (a new user found a
+    plain TypeError); a word near nothing gets no suggestion."""
+    with pytest.raises(TypeError, match=re.escape(f"{typo} (did you mean {near}?)")):
+        call(**{typo: 1})
+    with pytest.raises(TypeError, match=r"unexpected keyword arguments: zzzz$"):
+        call(zzzz=1)

@@ -113,6 +113,41 @@ def test_bad_input_raises_error_with_the_cli_message(cli, tmp_path):
     assert not (tmp_path / "bad").exists()
 
 
+def test_the_recorded_call_replays_the_run(tmp_path):
+    """results.nc's command_line is the call: every keyword that is not its
+    default (a new user found observe_times, statistics, records and
+    output missing, so the record did not replay the run). Evaluated, it
+    gives the same Dataset."""
+    out = tmp_path / "first"
+    ds = stickslip.sweep(lam=np.array([0.5, 3.8]), mu=5, k=40, realizations=40, seed=11,
+                         observe_times=np.linspace(0, 50, 6), statistics=["paper", "survival"],
+                         survival_bins=30, records=True, burn_in=0.0, output=str(out))
+    call = ds.attrs["command_line"]
+    assert call.startswith("python: stickslip.sweep(lam=[0.5, 3.8], mu=5.0, k=40.0, "), call
+    for keyword in ("realizations=40", "seed=11", "observe_times=[0.0, 10.0, 20.0, 30.0, 40.0, "
+                    "50.0]", "statistics=['paper', 'survival']", "survival_bins=30",
+                    "records=True", f"output={str(out)!r}"):
+        assert keyword in call, (keyword, call)
+    assert "burn_in" not in call and "threads" not in call  # defaults are left out
+    again = eval(call[len("python: "):].replace(repr(str(out)), repr(str(tmp_path / "again"))),
+                 {"stickslip": stickslip})
+    assert_same_dataset(ds, again)
+
+
+def test_survival_bins_without_the_survival_statistics_is_refused(cli, tmp_path):
+    """As the CLI refuses --survival-bins without --statistics survival (it
+    was taken and ignored in Python)."""
+    p = cli("sweep", "--lambda", 1, "--survival-bins", 50, "--realizations", 10,
+            "-o", tmp_path / "c", check=False)
+    assert p.returncode == 2 and "only with the survival statistics" in p.stderr
+    with pytest.raises(stickslip.Error, match=r"^invalid survival_bins: '50' \(allowed: only with "
+                       "the survival statistics"):
+        stickslip.sweep(lam=1, realizations=10, survival_bins=50, output=str(tmp_path / "p"))
+    assert not (tmp_path / "c").exists() and not (tmp_path / "p").exists()
+    ds = stickslip.sweep(lam=1, realizations=10, survival_bins=50, statistics="survival")
+    assert ds.sizes["stick_duration"] == 51
+
+
 def test_progress_bar_reaches_the_total(capsys):
     stickslip.sweep(lam=[0.5, 2.0], realizations=200, progress=True)
     err = capsys.readouterr().err
