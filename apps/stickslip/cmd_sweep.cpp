@@ -189,8 +189,9 @@ void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_ou
     n = 0;
     for (const auto& p : out.results->points) n += p.stats.realizations;
   }
-  fmt::print(stderr, "{} realizations in {:.3g} s ({} grid points, {}{}) -> {}\n", n,
-             out.elapsed_this_run, point_count(spec), where, resumed, plan.dir);
+  const auto points = point_count(spec);
+  fmt::print(stderr, "{} realizations in {:.3g} s ({} grid point{}, {}{}) -> {}\n", n,
+             out.elapsed_this_run, points, points == 1 ? "" : "s", where, resumed, plan.dir);
 }
 
 // The command's results, kept until the process ends: it ends right after

@@ -169,6 +169,9 @@ bad "invalid --observe-times: '0,inf'|not finite" --observe-times 0,inf
 bad "invalid --observe-times: '-1,2'|>= 0" --observe-times -1,2
 bad "invalid --observe-times: ''|at least one value" --observe-times ''
 bad "invalid --observe-times: 'lin:20:0'|4 fields" --observe-times lin:20:0
+# every refusal of a range states the times' domain, >= 0 (n's said "> 0")
+bad "invalid --observe-times: 'lin:0:50:0'|n >= 1|of finite values >= 0)" --observe-times lin:0:50:0
+bad "invalid --observe-times: 'lin:0:50:x'|n a whole number|of finite values >= 0)" --observe-times lin:0:50:x
 bad "invalid observe_times: 10|increasing order" --observe-times lin:20:0:3
 expect_fail "invalid observe_times: 25|t_a = 20 (the low end of the support of t_a's law uniform(min=20,max=30))" \
   sweep --lambda 1 --ta 'uniform(20,30)' --realizations 10 --observe-times 0,25

@@ -76,7 +76,7 @@ const char* domain_text(grid_domain d) {
 }
 
 [[noreturn]] void grid_error(std::string_view key, std::string_view text, const std::string& rule,
-                             const std::string& got, grid_domain d = grid_domain::positive) {
+                             const std::string& got, grid_domain d) {
   throw invalid_value(std::string(key), std::string(text),
                       fmt::format("{}, got {}; a grid is {} of finite values{}{}", rule, got,
                                   grid_forms, d == grid_domain::any ? "" : " ",
@@ -110,10 +110,10 @@ std::vector<double> parse_range(std::string_view key, std::string_view text, std
   long long n = 0;
   const auto [ptr, ec] = std::from_chars(n_text.data(), n_text.data() + n_text.size(), n);
   if (ec != std::errc{} || n_text.empty() || ptr != n_text.data() + n_text.size())
-    grid_error(key, text, "n a whole number", fmt::format("n = '{}'", n_text));
-  if (n < 1) grid_error(key, text, "n >= 1", fmt::format("n = {}", n));
+    grid_error(key, text, "n a whole number", fmt::format("n = '{}'", n_text), d);
+  if (n < 1) grid_error(key, text, "n >= 1", fmt::format("n = {}", n), d);
   if (static_cast<unsigned long long>(n) > max_grid_values)
-    grid_error(key, text, fmt::format("n <= {}", max_grid_values), fmt::format("n = {}", n));
+    grid_error(key, text, fmt::format("n <= {}", max_grid_values), fmt::format("n = {}", n), d);
 
   std::vector<double> values(static_cast<std::size_t>(n));
   values.front() = a;
@@ -223,12 +223,12 @@ std::vector<double> parse_grid(std::string_view key, std::string_view text, grid
   if (t.empty()) grid_error(key, text, "at least one value", "an empty list", d);
   if (t.starts_with("lin:") || t.starts_with("log:")) return parse_range(key, text, t, d);
   if (t.find(':') != std::string_view::npos)
-    grid_error(key, text, "a range 'lin:a:b:n' or 'log:a:b:n'", "another prefix");
+    grid_error(key, text, "a range 'lin:a:b:n' or 'log:a:b:n'", "another prefix", d);
   std::vector<double> values;
   const auto items = split(t, ',');
   if (items.size() > max_grid_values)
     grid_error(key, text, fmt::format("at most {} values", max_grid_values),
-               fmt::format("{}", items.size()));
+               fmt::format("{}", items.size()), d);
   for (std::size_t i = 0; i < items.size(); ++i)
     values.push_back(grid_number(key, text, items[i], fmt::format("entry #{}", i + 1), d));
   return values;
