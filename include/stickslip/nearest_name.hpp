@@ -12,7 +12,8 @@ namespace stickslip {
 [[nodiscard]] std::size_t edit_distance(const std::string& a, const std::string& b);
 
 // The candidate nearest to `word` if it is near enough to be a likely typo
-// (distance <= max(2, |word| / 3)), else "".
+// (distance <= max(2, |word| / 3), or <= |word| / 2 for a word of 3 letters
+// or fewer), else "".
 [[nodiscard]] std::string nearest_name(const std::string& word,
                                        const std::vector<std::string>& candidates);
 

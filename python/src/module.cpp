@@ -10,6 +10,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/estimates.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/nearest_name.hpp"
 #include "stickslip/record_schema.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep_spec.hpp"
@@ -82,6 +83,10 @@ PYBIND11_MODULE(_stickslip, m) {
     return note.empty() ? py::none() : py::object(py::str(note));
   }, py::arg("given"));
   // How a keyword's text is told to be a law (parameter_law.hpp), as flags and TOML tell it.
+  // The CLI's rule for "did you mean" (nearest_name.hpp), for misspelt keywords.
+  m.def("nearest_name", [](const std::string& word, const std::vector<std::string>& names) {
+        return nearest_name(word, names);
+      }, py::arg("word"), py::arg("names"));
   m.def("looks_like_law", [](const std::string& text) { return looks_like_law(text); },
         py::arg("text"));
   m.attr("default_max_events") = stickslip::default_max_events;

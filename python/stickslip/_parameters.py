@@ -224,15 +224,14 @@ def unexpected_keywords(function, leftover):
     """The TypeError for keywords that `function` (a public function) does
     not take, each with the nearest keyword it does take, as the command
     line suggests the nearest flag."""
-    import difflib
     import inspect
     known = [kw for kw, *_rest in PARAMETERS.values()]
     known += [name for name in inspect.signature(function).parameters if name != "model"]
     words = []
-    for key in leftover:  # the keywords first, then their long aliases
-        near = (difflib.get_close_matches(key, known, n=1, cutoff=0.75) or
-                difflib.get_close_matches(key, list(ALIASES), n=1, cutoff=0.75))
-        words.append(f"{key} (did you mean {near[0]}?)" if near else key)
+    for key in leftover:  # the keywords first, then their long aliases; the CLI's rule
+        near = (_stickslip.nearest_name(key, known) or
+                _stickslip.nearest_name(key, list(ALIASES)))
+        words.append(f"{key} (did you mean {near}?)" if near else key)
     return TypeError(f"{function.__name__}() got unexpected keyword arguments: {', '.join(words)}")
 
 

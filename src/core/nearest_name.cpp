@@ -21,7 +21,11 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 std::string nearest_name(const std::string& word, const std::vector<std::string>& candidates) {
   std::string best;
-  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  // At most max(2, |word| / 3) edits, and for a word of 3 letters or fewer
+  // at most |word| / 2: a short word is not "near" another by replacing
+  // most of it (a review found `--y X` taken for R and W_f for D_1).
+  const std::size_t n = word.size();
+  std::size_t best_distance = (n <= 3 ? n / 2 : std::max<std::size_t>(2, n / 3)) + 1;
   for (const auto& c : candidates)
     if (const auto dist = edit_distance(word, c); dist < best_distance) {
       best = c;

@@ -13,6 +13,7 @@
 #include "plot_sensitivity.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/journal.hpp"
+#include "stickslip/nearest_name.hpp"
 
 namespace stickslip::study {
 namespace {
@@ -218,14 +219,20 @@ const io::result_variable& histogram_of(const io::result_file& f, const std::str
     if (v.symbol == name && v.name.size() > 5 && v.name.ends_with("_mean"))
       if (const auto* d = f.variable(v.name.substr(0, v.name.size() - 5) + "_density")) return *d;
   std::string names;
+  std::vector<std::string> candidates;  // for "did you mean": the names and the symbols
   for (const auto& v : f.variables())
     if (v.name.ends_with("_density")) {
       const std::string base = v.name.substr(0, v.name.size() - 8);
       const auto* mean = f.variable(base + "_mean");
       names += fmt::format("{}{}{}", names.empty() ? "" : ", ", base,
                            mean && !mean->symbol.empty() ? " (" + mean->symbol + ")" : "");
+      candidates.push_back(base);
+      if (mean && !mean->symbol.empty()) candidates.push_back(mean->symbol);
     }
-  throw invalid_value("--histogram", name, "a statistic with a histogram in " + f.path() + ": " + names);
+  const auto guess = nearest_name(name, candidates);
+  throw invalid_value("--histogram", name,
+                      "a statistic with a histogram in " + f.path() + ": " + names +
+                          (guess.empty() ? "" : "; did you mean " + guess + "?"));
 }
 
 // Curves of `q` along its own dimension `x_dim` (time, bins, durations) at

@@ -11,6 +11,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/nearest_name.hpp"
+#include "stickslip/statistics_schema.hpp"
 
 namespace stickslip::study::detail {
 namespace {
@@ -101,18 +102,32 @@ quantity find_quantity(const io::result_file& f, const std::string& flag, const 
     if (v && !v->text && !coordinate && !v->dims.empty()) q.value = v;
   }
   if (!q.value) {
+    // A statistic of the schema that the sweep did not select is named as
+    // such, not taken for a typo of another.
+    const auto& all = quantities();
+    const bool known = std::any_of(all.begin(), all.end(), [&](const quantity_info& k) {
+      return name == k.name || name == k.summary_name || name == std::string_view(k.symbol);
+    });
     const auto names = along.empty() ? std::vector<std::string>{} : names_along(f, along);
-    const auto guess = nearest_name(name, along.empty() ? statistic_names(f) : names);
-    const std::string hint = guess.empty() ? "" : fmt::format("; did you mean {}?", guess);
+    const auto guess =
+        known ? std::string() : nearest_name(name, along.empty() ? statistic_names(f) : names);
+    const std::string hint =
+        known ? fmt::format("; {} is a statistic this sweep did not select: rerun it with "
+                            "--statistics paper,{}",
+                            name, name)
+              : guess.empty() ? "" : fmt::format("; did you mean {}?", guess);
     if (!along.empty())
       throw invalid_value(flag, name,
                           fmt::format("a statistic of {} over {}: {}{}", f.path(), along,
                                       joined(names), hint));
     throw invalid_value(flag, name,
                         fmt::format("a statistic of {}: {}; or another variable of it over the "
-                                    "grid (ncdump -h lists them); a statistic the sweep did not "
-                                    "select is not there: rerun it with --statistics{}",
-                                    f.path(), statistic_list(f), hint));
+                                    "grid (ncdump -h lists them){}",
+                                    f.path(), statistic_list(f),
+                                    hint.empty() || !known
+                                        ? "; a statistic the sweep did not select is not there: "
+                                          "rerun it with --statistics" + hint
+                                        : hint));
   }
   const std::string& var = q.value->name;
   const std::string base = ends_with(var, "_mean") ? var.substr(0, var.size() - 5) : var;
@@ -184,14 +199,18 @@ grid_choice choose_point(const io::result_file& f, const io::result_variable& va
       for (const auto& d : var.dims)
         if (std::find(free.begin(), free.end(), d) == free.end()) fixable.push_back(d);
       const std::string drawn = joined(free) + (free.size() == 1 ? " is" : " are");
-      throw invalid_value(
-          "--at", fmt::format("{}={}", name, short_number(wanted)),
-          fixable.empty()
-              ? fmt::format("none: every axis of {} is drawn ({}); leave {} out of --at "
-                            "(or, if it is --by, drop --by to draw that value alone)",
-                            var.name, joined(free), name)
-              : fmt::format("an axis of {} that is not drawn ({} drawn): {}", var.name, drawn,
-                            joined(fixable)));
+      std::string allowed;
+      if (!fixable.empty())
+        allowed = fmt::format("an axis of {} that is not drawn ({} drawn): {}", var.name, drawn,
+                              joined(fixable));
+      else if (!is_dim)
+        allowed = fmt::format("none: {} is not an axis of {}, whose axes ({}) are all drawn",
+                              name, var.name, joined(var.dims));
+      else
+        allowed = fmt::format("none: every axis of {} is drawn ({}); leave {} out of --at "
+                              "(or, if it is --by, drop --by to draw that value alone)",
+                              var.name, joined(free), name);
+      throw invalid_value("--at", fmt::format("{}={}", name, short_number(wanted)), allowed);
     }
     if (c.index.count(name))
       throw invalid_value("--at", name, "each name once in one --at");

@@ -275,6 +275,15 @@ refused "invalid --survival: 'slip'|stick" tm --survival slip --at lambda=1,mu=5
 refused "invalid --y: 'stick_probabilty'|over time: stick_probability, position, velocity|level_occupancy|did you mean stick_probability?" \
   ot --time --y stick_probabilty
 refused "invalid --y: 'stick_fractoin'|did you mean stick_fraction?" sw --y stick_fractoin
+# a statistic of the schema the sweep did not select is named so, not taken
+# for a typo of another (a review found W_f "near" D_1 and X "near" R)
+refused "invalid --y: 'W_f'|W_f is a statistic this sweep did not select|--statistics paper,W_f" \
+  sw --y W_f
+checks=$((checks + 1))
+"$BIN" plot sw --y X -o none 2>"$WORK/stderr" && fail "plot --y X ran"
+grep -q "did you mean" "$WORK/stderr" && fail "a one-letter --y X got a suggestion: $(cat "$WORK/stderr")"
+refused "invalid --histogram: 'DD'|did you mean D?" sw --histogram DD
+refused "invalid --at: 'k=40'|none: k is not an axis of stick_fraction_mean" sw --y R --x lambda --by mu --at k=40
 # --at of an axis that is drawn, when no axis is left to fix
 refused "invalid --at: 'lambda=3.8'|none: every axis of stick_survival is drawn (stick_duration, lambda)" \
   sv --survival stick --at lambda=3.8 --by lambda
