@@ -148,9 +148,12 @@ void note_unused_model_flags(const CLI::App& cmd, const model_flags& f,
 std::vector<std::string> refinements_set_in(const CLI::App& cmd, const model_flags& f,
                                             const sweep_spec& spec) {
   std::vector<std::string> out;
-  for (const auto* g : given_model_flags(cmd, f))
+  const auto flags = given_model_flags(cmd, f);
+  for (const auto* g : flags)
     for (const auto& r : refinements_of(g->symbol)) {
       const auto named = [&](const auto& x) { return x.symbol == r; };
+      if (std::any_of(flags.begin(), flags.end(), [&](const auto* h) { return h->symbol == r; }))
+        continue;  // a flag gives it
       const bool in_base = spec.base.*info_for(r).field > 0.0;
       const bool on_axis = std::any_of(spec.axes.begin(), spec.axes.end(),
                                        [&](const axis& a) { return a.name == r; });

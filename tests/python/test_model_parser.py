@@ -163,6 +163,10 @@ def test_mu_flag_beside_refinements_from_a_configuration(cli, tmp_path):
         r = cli("sweep", "--config", config, "--mu", 5, *extra, "--lambda", "1,2",
                 "--realizations", 20, "-o", out)
         assert r.stderr.count("stickslip: warning: --mu 5 sets neither") == warned, (name, r.stderr)
+        if name == "axes":  # who gives them: the file, not flags that were not given
+            assert "sets neither mu_s nor mu_k: the --config file gives them." in r.stderr
+        if name == "axis and flag":
+            assert "nor mu_k: --mu-k and the --config file give them." in r.stderr, r.stderr
         base = json.loads((out / "summary.json").read_text())["parameters"]["base"]
         if name == "values":  # --mu replaced the file's values: the friction is 5
             assert (base["mu_s"], base["mu_k"]) == (5.0, 5.0), base

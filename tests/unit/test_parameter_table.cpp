@@ -128,6 +128,11 @@ TEST(ParameterTable, MuBesideBothItsRefinementsIsNotedNotIgnored) {
                                       {"static-friction", "lin:6:8:3"},
                                       {"kinetic-friction", "uniform(2,5)"}}),
               HasSubstr("--mu 2 sets neither"));
+  // a refinement without text is one a --config file set: named as such
+  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_s", ""}, {"mu_k", ""}}),
+              HasSubstr("--mu 5 sets neither mu_s nor mu_k: the --config file gives them."));
+  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_k", "4"}, {"mu_s", ""}}),
+              HasSubstr("nor mu_k: --mu-k and the --config file give them."));
   // a grid or a law over mu beside a refinement is refused elsewhere
   // (overridden_by_base): no note before that refusal
   EXPECT_EQ(only_in_the_stream_key({{"mu", "0.5,2"}, {"mu_s", "6"}, {"mu_k", "4"}}), "");

@@ -262,13 +262,26 @@ std::string only_in_the_stream_key(const std::vector<given_parameter>& given) {
     if (refinements.empty() || !one_number(g.text) ||
         !std::all_of(refinements.begin(), refinements.end(), set_by_it))
       continue;
-    std::vector<std::string> flags;
-    for (const auto& r : refinements) flags.push_back(flag_of(r));
+    // Who gives them: their flags, or (an entry without text) the
+    // configuration file the flags were applied to.
+    std::vector<std::string> givers;
+    bool from_file = false;
+    for (const auto& r : refinements) {
+      const auto it = std::find_if(given.begin(), given.end(), [&](const given_parameter& e) {
+        return canonical_symbol(e.symbol) == r && !e.text.empty();
+      });
+      if (it != given.end())
+        givers.push_back(flag_of(r));
+      else
+        from_file = true;
+    }
+    if (from_file) givers.emplace_back("the --config file");
     return fmt::format(
-        "{0} {1} sets neither {2}: {3} give them. Unless the model is the paper's (mu_s = "
+        "{0} {1} sets neither {2}: {3} {4} them. Unless the model is the paper's (mu_s = "
         "mu_k, c = 0, the belt +-V), {0} still enters the random streams' key and changes the "
         "draws, not the model: keep it to replay a run made with it, drop it otherwise",
-        flag_of(sym), g.text, fmt::join(refinements, " nor "), fmt::join(flags, " and "));
+        flag_of(sym), g.text, fmt::join(refinements, " nor "), fmt::join(givers, " and "),
+        givers.size() == 1 ? "gives" : "give");
   }
   return {};
 }
