@@ -184,7 +184,6 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
     realizations = whole("realizations", realizations, 1, _stickslip.max_realizations)
     seed = whole("seed", seed)
     base.update(belt)
-    command = _call_text(params, belt, options)
     arguments = dict(
         realizations=realizations, seed=seed,
         block_size=whole("block_size", block_size, 1, _stickslip.max_block_size),
@@ -204,6 +203,7 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         survival_bins=(None if survival_bins is None else
                        whole("survival_bins", survival_bins, 1, _stickslip.max_histogram_bins)),
         burn_in=number("burn_in", burn_in), observe_times=_observe_times(observe_times))
+    command = _call_text(params, belt, options, arguments)
     update, bar = _progress_bar(flag("progress", progress))
     try:
         with tempfile.TemporaryDirectory(prefix="stickslip-") as tmp:
@@ -216,26 +216,30 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
             bar.close()
 
 
-def _call_text(params, belt, options):
+def _call_text(params, belt, options, arguments):
     """The call as its record (results.nc's command_line and history): the
     model and belt keywords given, realizations and seed, then every other
     keyword whose value is not its default (observe_times, statistics,
-    records, output, ...), so that the record replays the run."""
+    records, output, ...), so that the record replays the run. Each value
+    as it was read (`arguments`: plain ints, floats, lists and str, a path
+    as its text), else as given."""
     defaults = {k: p.default for k, p in inspect.signature(sweep).parameters.items()
                 if p.default is not inspect.Parameter.empty}
     keyword = {sym: kw for sym, (kw, *_rest) in PARAMETERS.items()}  # lambda -> lam
     given = [f"{keyword.get(k, k)}={v!r}" for k, v in {**params, **belt}.items()]
-    given += [f"{k}={options[k]!r}" for k in ("realizations", "seed")]
+    given += [f"{k}={arguments[k]!r}" for k in ("realizations", "seed")]
     for k, v in options.items():
         if k in defaults and k not in ("realizations", "seed") and k not in belt:
             default = defaults[k]
             if v is not default and not (type(v) is type(default) and v == default):
-                given.append(f"{k}={_literal(v)}")
+                read = arguments[k] if k in arguments and k != "belt_start" else v
+                given.append(f"{k}={_literal(read)}")
     return f"python: stickslip.sweep({', '.join(given)})"
 
 
 def _literal(value):
-    """A keyword's value as Python text: arrays as lists."""
+    """A keyword's value as Python text: arrays and numpy scalars as lists
+    and numbers."""
     if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
         value = value.tolist()
     return repr(value)

@@ -132,6 +132,18 @@ def test_the_recorded_call_replays_the_run(tmp_path):
     again = eval(call[len("python: "):].replace(repr(str(out)), repr(str(tmp_path / "again"))),
                  {"stickslip": stickslip})
     assert_same_dataset(ds, again)
+    # Values as they were read (a review found these written as given): a
+    # pathlib output, float32 times in a list (their exact doubles), numpy
+    # integers, a statistics name as one str.
+    ds = stickslip.sweep(lam=[0.5], realizations=np.int64(20), seed=np.uint32(3),
+                         observe_times=[np.float32(0.1), np.float32(5.3)], statistics="survival",
+                         output=tmp_path / "path")
+    call = ds.attrs["command_line"]
+    assert f"output={str(tmp_path / 'path')!r}" in call and "realizations=20, seed=3" in call, call
+    again = eval(call[len("python: "):].replace(repr(str(tmp_path / "path")), "None"),
+                 {"stickslip": stickslip})
+    assert ds["time"].values.tobytes() == again["time"].values.tobytes()
+    assert_same_dataset(ds, again)
 
 
 def test_survival_bins_without_the_survival_statistics_is_refused(cli, tmp_path):
