@@ -52,8 +52,8 @@ sweep_spec build_spec(const CLI::App& cmd, const sensitivity_options& o) {
   spec.max_events = resolve_max_events(o.model, spec.max_events);
   sensitivity_choice c;
   c.statistic = o.statistic;
-  auto rows = [](const char* flag, const std::string& text) {
-    return io::parse_unsigned(flag, text, 1, max_realizations);
+  auto rows = [](const char* flag, const std::string& text) {  // variances need two rows
+    return io::parse_unsigned(flag, text, 2, max_realizations);
   };
   if (o.samples_opt->count() > 0) c.samples = rows("--samples", o.samples);
   if (o.max_opt->count() > 0) c.max_samples = rows("--max-samples", o.max_samples);
@@ -137,7 +137,12 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
       return;
     }
     const result_set& rs = *out.results;
-    if (!o.no_figure) {
+    const auto undefined =
+        undefined_indices_note(sobol_indices(rs.points.front().stats.sensitivity),
+                               sensitivity_quantity(rs.spec).summary_name);
+    if (!undefined.empty())  // and no figure: there are no bars to draw
+      fmt::print(stderr, "stickslip: warning: {}; no figure is drawn\n", undefined);
+    if (!o.no_figure && undefined.empty()) {
       const auto f = study::write_sensitivity_figure(rs, o.out_dir, true);
       if (!f.rendered)
         fmt::print(stderr, "stickslip: note: the figure was not rendered (gnuplot with pngcairo "

@@ -4,6 +4,8 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
+
 #include <optional>
 
 #include "bindings.hpp"
@@ -142,8 +144,10 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   if (!output.empty() && !overwrite) {
     if (!resume)
       io::refuse_to_replace(io::existing_sweep_results(output), "the results of an earlier run",
-                            "pass overwrite=True to replace them, resume=True to continue an "
-                            "interrupted sweep, or choose another output folder");
+                            fmt::format("pass overwrite=True to replace them, resume=True to "
+                                        "continue an interrupted {}, or choose another output "
+                                        "folder",
+                                        design.is_none() ? "sweep" : "study"));
     else if (!io::journal_exists(output))
       already_complete = run::finished_outputs_of(spec, output).has_value();
   }

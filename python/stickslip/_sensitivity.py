@@ -1,6 +1,7 @@
 """stickslip.sensitivity(): the CLI's `sensitivity` (docs/uncertainty.md)."""
 import json
 import os
+import warnings
 
 from . import _stickslip
 from ._parameters import unexpected_keywords
@@ -78,5 +79,8 @@ def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_sampl
         with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
             data = json.load(f)
         data.pop("run", None)
-        return data
-    return json.loads(result)
+    else:
+        data = json.loads(result)
+    if "warning" in data:  # a constant statistic: the CLI's warning (undefined indices)
+        warnings.warn(data["warning"], UserWarning, stacklevel=2)
+    return data

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "stickslip/io/writers.hpp"
 #include "stickslip/study/plot_figures.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "stickslip/uncertainty/sobol.hpp"
@@ -17,7 +18,7 @@ figure write_sensitivity_figure(const result_set& rs, const std::string& dir, bo
   // Drawn by the bars of study/plot_figures.hpp, as `stickslip plot` draws
   // a sensitivity.nc.
   bar_plot p;
-  p.text.stem = "sensitivity";
+  p.text.stem = io::sensitivity_figure_stem;
   p.text.title = fmt::format("Sobol' indices of E[{} | theta]; parameter share {:.2f}, "
                              "intrinsic {:.2f}",
                              q.summary_name, est.parameter_share.value, est.intrinsic_share.value);

@@ -113,5 +113,41 @@ bad "--mu|beta" sensitivity --mu 'beta(mean=5,sd=1e-200,min=2,max=7)'
 bad "--mu|beta|1e10" sensitivity --mu 'beta(min=1e-300,mean=1.3e-154,max=1e-61,sd=1.9e-183)'
 bad "--max-samples|only with --target-halfwidth" sensitivity --mu 'uniform(2,7)' --max-samples 7
 bad "--samples|--target-halfwidth" sensitivity --mu 'uniform(2,7)' --samples 10 --target-halfwidth 0.1
+# one range for --samples (it said 1 .. 2^40, then >= 2 for 1); a default
+# that does not fit is named as the default
+bad "invalid --samples: '1'|from 2 to" sensitivity --mu 'uniform(2,7)' --samples 1
+bad "invalid --samples: '0'|from 2 to" sensitivity --mu 'uniform(2,7)' --samples 0
+bad "invalid --min-samples: '1000 (the default)'|give --min-samples too" \
+  sensitivity --mu 'uniform(2,7)' --target-halfwidth 0.01 --max-samples 3
+
+# A statistic constant over the design (no damping: damping_power is 0):
+# its mean 0 and variance 0, undefined indices (NaN) with a warning, and no
+# figure. (It reported a NaN mean, exit 0 without a word.)
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' \
+  --statistic damping_power --samples 64 -o constant
+grep -qF "warning: damping_power is constant over the design (mean 0, variance 0)" "$WORK/stderr" ||
+  fail "no warning of a constant statistic: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
+"$PY" - <<'PY' || fail "summary.json of a constant statistic"
+import json, math
+d = json.load(open("constant/summary.json"))
+assert d["mean"] == 0 and d["variance"] == 0, (d["mean"], d["variance"])
+assert "constant over the design" in d["warning"]
+assert all(i["first_order"] is None for i in d["indices"])
+PY
+[[ -e constant/sensitivity.png || -e constant/sensitivity.dat ]] && fail "a figure of undefined indices"
+
+# --overwrite leaves nothing of the earlier run beside the new one: a study's
+# figure under --no-figure, a sweep's files under a study and the other way
+# round (a new user found them left).
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 64 -o over
+[[ -e over/sensitivity.dat ]] || fail "no figure data in over/"
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
+expect_eq "files after --overwrite --no-figure" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
+run_ok sweep --lambda 1 --realizations 10 --records --overwrite -o over
+expect_eq "files after a sweep over a study" "$(ls over | tr '\n' ' ')" \
+  "records.csv results.nc summary.csv summary.json "
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
+expect_eq "files after a study over a sweep" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
 
 finish

@@ -273,3 +273,16 @@ def test_a_misspelt_keyword_is_named_with_the_nearest(call, typo, near):
         call(**{typo: 1})
     with pytest.raises(TypeError, match=r"unexpected keyword arguments: zzzz$"):
         call(zzzz=1)
+
+
+def test_a_constant_statistic_warns_that_its_indices_are_undefined(tmp_path):
+    """As the CLI warns (damping_power is 0 without damping): the mean and
+    variance are 0, the indices NaN (None in JSON), and a UserWarning says
+    why."""
+    with pytest.warns(UserWarning, match="damping_power is constant over the design"):
+        r = stickslip.sensitivity(statistic="damping_power", k=40, mu="uniform(2,7)",
+                                  samples=32)
+    assert r["mean"] == 0 and r["variance"] == 0 and r["indices"][0]["first_order"] is None
+    stickslip.sensitivity(mu="uniform(2,7)", samples=16, output=str(tmp_path / "s"))
+    with pytest.raises(stickslip.Error, match="continue an interrupted study"):
+        stickslip.sensitivity(mu="uniform(2,7)", samples=16, output=str(tmp_path / "s"))

@@ -365,6 +365,31 @@ TEST(SobolMoments, TooFewRowsOrNoVarianceGiveNaN) {
   EXPECT_TRUE(std::isnan(f.intrinsic_share.value));
 }
 
+// A statistic constant over the design (damping_power without damping):
+// its mean and variance 0 are estimates like any other, only the indices
+// and shares are 0 / 0 (a new user found the mean reported as NaN, and no
+// word of why); undefined_indices_note says why, and nothing otherwise.
+TEST(SobolMoments, AConstantStatisticHasItsMeanAndNoIndices) {
+  sobol_moments zero(2);
+  for (int j = 0; j < 10; ++j) zero.add(0, 0, 0, std::vector<double>{0, 0});
+  const auto z = sobol_indices(zero);
+  EXPECT_EQ(z.mean, 0.0);
+  EXPECT_EQ(z.variance, 0.0);
+  EXPECT_EQ(z.intrinsic_variance, 0.0);
+  EXPECT_EQ(z.rows, 10u);
+  EXPECT_TRUE(std::isnan(z.first_order[0].value) && std::isnan(z.total_order[1].high));
+  EXPECT_TRUE(std::isnan(z.parameter_share.value) && std::isnan(z.intrinsic_share.value));
+  EXPECT_EQ(stickslip::undefined_indices_note(z, "damping_power"),
+            "damping_power is constant over the design (mean 0, variance 0): its Sobol' "
+            "indices and shares are 0 / 0, undefined, and written as NaN");
+  sobol_moments two(1);
+  for (int j = 0; j < 10; ++j) two.add(2.5, 2.5, 2.5, std::vector<double>{2.5});
+  EXPECT_EQ(sobol_indices(two).mean, 2.5);
+  sobol_moments varied(1);
+  for (int j = 0; j < 10; ++j) varied.add(j, j + 0.5, 9 - j, std::vector<double>{j % 3 * 1.0});
+  EXPECT_EQ(stickslip::undefined_indices_note(sobol_indices(varied), "R"), "");
+}
+
 TEST(SobolMoments, NegativeEstimatesAreNotClipped) {
   // A pure-noise output: every index of g is 0 and half the estimates fall
   // below it; they are reported as they are.

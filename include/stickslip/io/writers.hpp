@@ -24,6 +24,9 @@ inline constexpr const char* records_csv_file = "records.csv";
 // A sensitivity study (uncertainty/sensitivity_design.hpp) writes
 // sensitivity.nc and summary.json instead of the sweep's files.
 inline constexpr const char* sensitivity_file = "sensitivity.nc";
+// and its figure, sensitivity.{dat,gp,png,svg} (study/sensitivity_figure.hpp).
+inline constexpr const char* sensitivity_figure_stem = "sensitivity";
+inline constexpr const char* figure_extensions[] = {".dat", ".gp", ".png", ".svg"};
 
 // results.nc: NetCDF-4, one dimension per swept axis (coordinate variables
 // named after the parameter symbols), statistics as variables with units and

@@ -75,6 +75,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace stickslip {
@@ -140,9 +142,17 @@ enum class first_order_form { openturns_saltelli, saltelli_2010 };
 // The 95 % normal quantile of the intervals.
 inline constexpr double sobol_z95 = 1.959963984540054;
 
-// The estimates and their 95 % intervals. With fewer than 2 rows, or a zero
-// variance, every value is NaN (the indices of g also when V - s2 = 0).
+// The estimates and their 95 % intervals. With fewer than 2 rows every value
+// is NaN; with a zero variance (a statistic constant over the design, e.g.
+// damping_power with c = 0) the mean, the variance 0 and the intrinsic
+// variance, and every index and share NaN (the indices of g also when
+// V - s2 = 0).
 [[nodiscard]] sobol_estimates sobol_indices(
     const sobol_moments& m, first_order_form form = first_order_form::openturns_saltelli);
+
+// For a zero variance, why the indices are NaN (one line, for a warning and
+// summary.json's "warning"); empty otherwise.
+[[nodiscard]] std::string undefined_indices_note(const sobol_estimates& e,
+                                                 std::string_view statistic);
 
 }  // namespace stickslip

@@ -44,8 +44,11 @@ void set_sensitivity_design(sweep_spec& s, const sensitivity_choice& c) {
     s.realizations = c.max_samples.value_or(default_design_max_rows);
     s.min_realizations = c.min_samples.value_or(default_design_min_rows);
     if (s.min_realizations < 2 || s.min_realizations > s.realizations)
-      throw invalid_value("--min-samples", std::to_string(s.min_realizations),
-                          "2 .. --max-samples (" + std::to_string(s.realizations) + ")");
+      throw invalid_value(
+          "--min-samples",
+          std::to_string(s.min_realizations) + (c.min_samples ? "" : " (the default)"),
+          "2 .. --max-samples (" + std::to_string(s.realizations) + ")" +
+              (c.min_samples ? "" : ": give --min-samples too"));
   } else {
     if (c.max_samples || c.min_samples)
       throw invalid_value(c.max_samples ? "--max-samples" : "--min-samples",

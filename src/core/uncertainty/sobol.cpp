@@ -209,7 +209,14 @@ sobol_estimates sobol_indices(const sobol_moments& m, first_order_form form) {
   const double V = cov(L.a(), L.a()) / (N - 1.0);
   const double s2 = mu[L.replicate()] / 2.0;
   const double G = V - s2;
-  if (!(V != 0.0) || !std::isfinite(V)) return all_nan(m);
+  if (!std::isfinite(V)) return all_nan(m);
+  if (V == 0.0) {  // a constant statistic: its mean and variance, and no indices (0 / 0)
+    sobol_estimates s = all_nan(m);
+    s.mean = c;
+    s.variance = 0.0;
+    s.intrinsic_variance = s2;
+    return s;
+  }
 
   // Limits' gradients with respect to E z, at the sample means.
   auto zero = [&] { return std::vector<double>(n, 0.0); };
@@ -261,6 +268,14 @@ sobol_estimates sobol_indices(const sobol_moments& m, first_order_form form) {
   s.intrinsic_share = dm.interval(s2 / V, ratio_gradient(s2, gs2, V, gV));
   s.parameter_share = dm.interval(G / V, ratio_gradient(G, gG, V, gV));
   return s;
+}
+
+std::string undefined_indices_note(const sobol_estimates& e, std::string_view statistic) {
+  if (e.variance != 0.0) return {};
+  return fmt::format(
+      "{} is constant over the design (mean {}, variance 0): its Sobol' indices and shares are "
+      "0 / 0, undefined, and written as NaN",
+      statistic, e.mean);
 }
 
 }  // namespace stickslip

@@ -4,6 +4,7 @@
 // removes the temporaries; a failure in phase 2 (rare: a rename within one
 // directory) also removes the files this call already renamed. A directory
 // this call created is removed again on failure, so nothing is left behind.
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <system_error>
@@ -73,9 +74,21 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
     detail::remove_created(created);
     throw;
   }
-  // A records.csv left by an earlier run into the same directory would
-  // describe other results: once this set is in place, it goes.
-  if (!rs.spec.keep_records) detail::remove_file_quietly(in_dir(records_csv_file));
+  // What an earlier run left in the same directory and this one did not
+  // write would describe other results beside these (records.csv without
+  // --records; a sweep's files under a sensitivity study's, or the other
+  // way round; a study's figure, which `sensitivity` draws after this, or
+  // not with --no-figure): once this set is in place, it goes (a new
+  // user's --overwrite left them).
+  std::vector<std::string> earlier;
+  for (const char* name : {results_file, summary_json_file, summary_csv_file, records_csv_file,
+                           sensitivity_file})
+    earlier.push_back(in_dir(name));
+  for (const char* ext : figure_extensions)
+    earlier.push_back(in_dir(sensitivity_figure_stem) + ext);
+  for (const auto& path : earlier)
+    if (std::none_of(outputs.begin(), outputs.end(), [&](const output& o) { return o.path == path; }))
+      detail::remove_file_quietly(path);
 }
 
 }  // namespace stickslip::io

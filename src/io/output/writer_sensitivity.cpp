@@ -55,6 +55,8 @@ void emit_sensitivity(json_emitter& j, const result_set& rs) {
   j.member("mean", est.mean);
   j.member("variance", est.variance);
   j.member("intrinsic_variance", est.intrinsic_variance);
+  if (const auto note = undefined_indices_note(est, q.summary_name); !note.empty())
+    j.member("warning", note);
   j.key("indices");
   j.begin_array(layout::multi_line);
   for (std::size_t i = 0; i < rs.spec.uncertain.size(); ++i) {
@@ -133,7 +135,9 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
   f.putAtt("estimators",
-           "first order: Saltelli (2010); total order: Jansen (1999); intrinsic variance from "
+           "first order: OpenTURNS's Saltelli form, centred by the mean of all outputs "
+           "(Saltelli 2010's uncentred form estimates the same quantity); total order: Jansen "
+           "(1999); intrinsic variance from "
            "a replicate at the same parameters; 95 % intervals by the delta method "
            "(docs/uncertainty.md)");
   const auto d = rs.spec.uncertain.size();
