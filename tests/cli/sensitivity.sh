@@ -149,5 +149,9 @@ expect_eq "files after a sweep over a study" "$(ls over | tr '\n' ' ')" \
   "records.csv results.nc summary.csv summary.json "
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
 expect_eq "files after a study over a sweep" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
+# a file named like a study's figure, in a directory without a study, is not ours
+mkdir mine && echo "my own figure" >mine/sensitivity.png
+run_ok sweep --lambda 1 --realizations 10 -o mine
+[[ -e mine/sensitivity.png ]] || fail "a sweep removed a sensitivity.png it had not written"
 
 finish

@@ -22,6 +22,10 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
   detail::check_shape(rs);
   const auto created = detail::create_directories(dir);
   const auto in_dir = [&](const char* name) { return (fs::path(dir) / name).string(); };
+  // A study's figure is ours only beside its sensitivity.nc (a file of the
+  // same name in a directory without one is left alone).
+  std::error_code exists_ec;
+  const bool earlier_study = fs::exists(in_dir(sensitivity_file), exists_ec);
 
   struct output {
     std::string path;
@@ -84,8 +88,9 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
   for (const char* name : {results_file, summary_json_file, summary_csv_file, records_csv_file,
                            sensitivity_file})
     earlier.push_back(in_dir(name));
-  for (const char* ext : figure_extensions)
-    earlier.push_back(in_dir(sensitivity_figure_stem) + ext);
+  if (earlier_study)
+    for (const char* ext : figure_extensions)
+      earlier.push_back(in_dir(sensitivity_figure_stem) + ext);
   for (const auto& path : earlier)
     if (std::none_of(outputs.begin(), outputs.end(), [&](const output& o) { return o.path == path; }))
       detail::remove_file_quietly(path);
