@@ -130,13 +130,12 @@ void refuse_laws(const CLI::App& cmd, const model_flags& f, const std::string& c
 }
 
 // The note of only_in_the_stream_key for the given flags, and for the
-// symbols set besides them (`also_set`: a configuration's refinements),
-// which have no text of their own here.
+// symbols a --config file set besides them (`also_set`).
 void note_unused_model_flags(const CLI::App& cmd, const model_flags& f,
                              const std::vector<std::string>& also_set = {}) {
   std::vector<given_parameter> values;
   for (const auto* g : given_model_flags(cmd, f)) values.push_back({g->symbol, g->text});
-  for (const auto& symbol : also_set) values.push_back({symbol, ""});
+  for (const auto& symbol : also_set) values.push_back({symbol, "", true});
   if (const auto note = only_in_the_stream_key(values); !note.empty())
     fmt::print(stderr, "stickslip: warning: {}\n", note);
 }

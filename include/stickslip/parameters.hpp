@@ -243,6 +243,7 @@ const parameter_info& info_for(const std::string& symbol);
 struct given_parameter {
   std::string symbol;
   std::string text;
+  bool from_config_file = false;  // set by a --config file's axis or law, not given here
 };
 // A note (one line, named by flags; the Python layer words it with
 // keywords) when a symbol that sets others (mu) is given as one number
@@ -254,8 +255,9 @@ struct given_parameter {
 // model. Not refused: a run recorded with it (its command line, its
 // resolved configuration, which writes mu beside them) must replay with it.
 // Empty when there is none (a grid or a law over mu beside a refinement is
-// refused elsewhere: overridden_by_base). A refinement given without text
-// is one a --config file set (an axis or a law), and the note says so.
+// refused elsewhere: overridden_by_base). A refinement marked
+// from_config_file is one a --config file set (an axis or a law), and the
+// note says so.
 [[nodiscard]] std::string only_in_the_stream_key(const std::vector<given_parameter>& given);
 // Why a grid axis or an uncertain law over `symbol` would change nothing on
 // top of `base`, because the base overrides it: V under given belt levels,

@@ -49,7 +49,7 @@ def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_sampl
     base.update(belt)
 
     def rows(name, value):
-        return None if value is None else whole(name, value, 1, _stickslip.max_realizations)
+        return None if value is None else whole(name, value, 2, _stickslip.max_realizations)
 
     # The rules and defaults are the library's (set_sensitivity_design), so
     # refusals are the CLI's, with these keyword names.

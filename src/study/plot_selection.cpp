@@ -113,8 +113,8 @@ quantity find_quantity(const io::result_file& f, const std::string& flag, const 
         known ? std::string() : nearest_name(name, along.empty() ? statistic_names(f) : names);
     const std::string hint =
         known ? fmt::format("; {} is a statistic this sweep did not select: rerun it with "
-                            "--statistics paper,{}",
-                            name, name)
+                            "--statistics {},{}",
+                            name, f.attribute("statistics").empty() ? "paper" : f.attribute("statistics"), name)
               : guess.empty() ? "" : fmt::format("; did you mean {}?", guess);
     if (!along.empty())
       throw invalid_value(flag, name,

@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "plot_selection.hpp"
 #include "stickslip/error.hpp"
@@ -73,6 +74,16 @@ bar_plot plan_sensitivity_bars(const io::result_file& f, const plot_request& r) 
       throw invalid_value("--y", name, "indices of " + f.path() + ", comma-separated: " + allowed);
     p.groups.push_back({words(name), f.values(name), f.values(name + "_ci95_low"),
                         f.values(name + "_ci95_high")});
+    // Undefined indices (a statistic constant over the design) have no bars:
+    // refused before anything is written (gnuplot failed on them, leaving
+    // its files: a review).
+    const auto& v = p.groups.back().value;
+    if (!v.empty() && std::all_of(v.begin(), v.end(), [](double x) { return std::isnan(x); })) {
+      const std::string why = f.attribute("warning");
+      throw error(exit_code::invalid_input,
+                  fmt::format("cannot plot {} of {}: every value is NaN (undefined){}", name,
+                              f.path(), why.empty() ? "" : ": " + why));
+    }
   }
   const auto& first = *f.variable(names.front());
   const std::string statistic = f.attribute("statistic");

@@ -282,6 +282,10 @@ refused "invalid --y: 'W_f'|W_f is a statistic this sweep did not select|--stati
 checks=$((checks + 1))
 "$BIN" plot sw --y X -o none 2>"$WORK/stderr" && fail "plot --y X ran"
 grep -q "did you mean" "$WORK/stderr" && fail "a one-letter --y X got a suggestion: $(cat "$WORK/stderr")"
+checks=$((checks + 1))  # Q is no statistic at all: the short-word rule, not the schema, decides
+"$BIN" plot sw --y Q -o none 2>"$WORK/stderr" && fail "plot --y Q ran"
+grep -q "did you mean" "$WORK/stderr" && fail "a one-letter --y Q got a suggestion: $(cat "$WORK/stderr")"
+grep -q "is a statistic this sweep did not select" "$WORK/stderr" && fail "--y Q was taken for a statistic: $(cat "$WORK/stderr")"
 refused "invalid --histogram: 'DD'|did you mean D?" sw --histogram DD
 refused "invalid --at: 'k=40'|none: k is not an axis of stick_fraction_mean" sw --y R --x lambda --by mu --at k=40
 # --at of an axis that is drawn, when no axis is left to fix

@@ -149,6 +149,13 @@ expect_eq "files after a sweep over a study" "$(ls over | tr '\n' ' ')" \
   "records.csv results.nc summary.csv summary.json "
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
 expect_eq "files after a study over a sweep" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
+# the refusal names every output an --overwrite would replace or remove
+run_ok sweep --lambda 1 --realizations 5 -o listed
+"$BIN" sensitivity --k 40 --mu 'uniform(2,7)' --samples 8 -o listed >/dev/null 2>"$WORK/stderr"
+expect_eq "exit of a study into a sweep's directory" "$?" "2"
+grep -qF "'listed/results.nc' already exists (the results of an earlier run), and so do 'listed/summary.json', 'listed/summary.csv': add --overwrite" "$WORK/stderr" ||
+  fail "the refusal does not list every output: $(cat "$WORK/stderr")"
+[[ -e listed/results.nc && ! -e listed/sensitivity.nc ]] || fail "a refused study changed listed/"
 # a file named like a study's figure, in a directory without a study, is not ours
 mkdir mine && echo "my own figure" >mine/sensitivity.png
 run_ok sweep --lambda 1 --realizations 10 -o mine

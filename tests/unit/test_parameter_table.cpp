@@ -128,11 +128,14 @@ TEST(ParameterTable, MuBesideBothItsRefinementsIsNotedNotIgnored) {
                                       {"static-friction", "lin:6:8:3"},
                                       {"kinetic-friction", "uniform(2,5)"}}),
               HasSubstr("--mu 2 sets neither"));
-  // a refinement without text is one a --config file set: named as such
-  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_s", ""}, {"mu_k", ""}}),
+  // a refinement a --config file set is named as such; an empty text (an
+  // empty Python list) is not a file
+  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_s", "", true}, {"mu_k", "", true}}),
               HasSubstr("--mu 5 sets neither mu_s nor mu_k: the --config file gives them."));
-  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_k", "4"}, {"mu_s", ""}}),
+  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_k", "4"}, {"mu_s", "", true}}),
               HasSubstr("nor mu_k: --mu-k and the --config file give them."));
+  EXPECT_THAT(only_in_the_stream_key({{"mu", "5"}, {"mu_k", "4"}, {"mu_s", ""}}),
+              HasSubstr("nor mu_k: --mu-s and --mu-k give them."));
   // a grid or a law over mu beside a refinement is refused elsewhere
   // (overridden_by_base): no note before that refusal
   EXPECT_EQ(only_in_the_stream_key({{"mu", "0.5,2"}, {"mu_s", "6"}, {"mu_k", "4"}}), "");

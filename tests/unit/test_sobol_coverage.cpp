@@ -8,6 +8,7 @@
 // 95 %, the observed coverage has standard error sqrt(0.95 * 0.05 / R)
 // (0.0049 for R = 2000), so 93 % is 4 standard errors below 95 %; an
 // interval with half its width covers about 2 Phi(0.98) - 1 = 67 %.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -363,6 +364,12 @@ TEST(SobolMoments, TooFewRowsOrNoVarianceGiveNaN) {
   const auto f = sobol_indices(flat);  // y_A constant: V = 0
   EXPECT_TRUE(std::isnan(f.total_order[1].value));
   EXPECT_TRUE(std::isnan(f.intrinsic_share.value));
+  // y_B varies: not a constant statistic, too few rows (a review found the
+  // note calling such a design constant)
+  EXPECT_FALSE(f.constant_statistic);
+  EXPECT_THAT(stickslip::undefined_indices_note(f, "S_T"),
+              testing::HasSubstr("S_T is the same in every row's first output (variance 0) "
+                                 "though not in the others: too few rows (10)"));
 }
 
 // A statistic constant over the design (damping_power without damping):
@@ -377,6 +384,7 @@ TEST(SobolMoments, AConstantStatisticHasItsMeanAndNoIndices) {
   EXPECT_EQ(z.variance, 0.0);
   EXPECT_EQ(z.intrinsic_variance, 0.0);
   EXPECT_EQ(z.rows, 10u);
+  EXPECT_TRUE(z.constant_statistic);
   EXPECT_TRUE(std::isnan(z.first_order[0].value) && std::isnan(z.total_order[1].high));
   EXPECT_TRUE(std::isnan(z.parameter_share.value) && std::isnan(z.intrinsic_share.value));
   EXPECT_EQ(stickslip::undefined_indices_note(z, "damping_power"),

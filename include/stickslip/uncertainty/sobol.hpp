@@ -130,6 +130,9 @@ struct sobol_estimates {
   std::vector<interval_estimate> total_order;           // T_i of g
   std::vector<interval_estimate> response_first_order;  // Var E[Y|theta_i] / Var Y
   interval_estimate parameter_share, intrinsic_share;
+  // With variance 0: whether every output of every row (y_A, y_A2, y_B,
+  // y_E) was the same value, i.e. the statistic is constant over the design.
+  bool constant_statistic = false;
   // The largest half-width of every index and share (the stop rule of
   // --target-halfwidth); NaN when any is NaN.
   [[nodiscard]] double max_half_width() const noexcept;

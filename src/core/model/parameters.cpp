@@ -262,13 +262,13 @@ std::string only_in_the_stream_key(const std::vector<given_parameter>& given) {
     if (refinements.empty() || !one_number(g.text) ||
         !std::all_of(refinements.begin(), refinements.end(), set_by_it))
       continue;
-    // Who gives them: their flags, or (an entry without text) the
-    // configuration file the flags were applied to.
+    // Who gives them: their flags, or the configuration file the flags
+    // were applied to.
     std::vector<std::string> givers;
     bool from_file = false;
     for (const auto& r : refinements) {
       const auto it = std::find_if(given.begin(), given.end(), [&](const given_parameter& e) {
-        return canonical_symbol(e.symbol) == r && !e.text.empty();
+        return canonical_symbol(e.symbol) == r && !e.from_config_file;
       });
       if (it != given.end())
         givers.push_back(flag_of(r));

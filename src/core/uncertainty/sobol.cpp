@@ -210,11 +210,17 @@ sobol_estimates sobol_indices(const sobol_moments& m, first_order_form form) {
   const double s2 = mu[L.replicate()] / 2.0;
   const double G = V - s2;
   if (!std::isfinite(V)) return all_nan(m);
-  if (V == 0.0) {  // a constant statistic: its mean and variance, and no indices (0 / 0)
+  if (V == 0.0) {  // no indices (0 / 0); the mean and the variance are estimates
     sobol_estimates s = all_nan(m);
     s.mean = c;
     s.variance = 0.0;
     s.intrinsic_variance = s2;
+    // Constant over the design only if every output column is (y_A alone
+    // can be, by chance, for a discrete statistic on few rows: a review).
+    bool constant = s2 == 0.0 && cov(L.b(), L.b()) == 0.0 && b == a;
+    for (std::size_t i = 0; i < d; ++i)
+      constant = constant && cov(L.e(i), L.e(i)) == 0.0 && mu[L.e(i)] == a;
+    s.constant_statistic = constant;
     return s;
   }
 
@@ -272,6 +278,11 @@ sobol_estimates sobol_indices(const sobol_moments& m, first_order_form form) {
 
 std::string undefined_indices_note(const sobol_estimates& e, std::string_view statistic) {
   if (e.variance != 0.0) return {};
+  if (!e.constant_statistic)
+    return fmt::format(
+        "{} is the same in every row's first output (variance 0) though not in the others: "
+        "too few rows ({}) for Sobol' indices, which are written as NaN; run more --samples",
+        statistic, e.rows);
   return fmt::format(
       "{} is constant over the design (mean {}, variance 0): its Sobol' indices and shares are "
       "0 / 0, undefined, and written as NaN",

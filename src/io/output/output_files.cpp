@@ -1,5 +1,8 @@
 #include "stickslip/io/output_files.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <filesystem>
 #include <system_error>
 
@@ -24,12 +27,23 @@ std::vector<std::string> existing_sweep_results(const std::string& dir) {
 
 void refuse_to_replace(const std::vector<std::string>& paths, const std::string& what,
                        const std::string& how_to_proceed) {
+  std::vector<std::string> found;
   for (const auto& p : paths) {
     std::error_code ec;
-    if (!fs::exists(fs::symlink_status(p, ec))) continue;
-    throw error(exit_code::invalid_input,
-                fmt::format("'{}' already exists ({}): {}", p, what, how_to_proceed));
+    if (fs::exists(fs::symlink_status(p, ec))) found.push_back(fmt::format("'{}'", p));
   }
+  if (found.empty()) return;
+  // Every one of them: what an overwrite would replace or remove (a review
+  // found a study's sensitivity.nc removed by a sweep's --overwrite that the
+  // refusal had named only summary.json of).
+  const std::string others =
+      found.size() == 1
+          ? ""
+          : fmt::format(", and so do {}",
+                        fmt::join(std::vector<std::string>(found.begin() + 1, found.end()), ", "));
+  throw error(exit_code::invalid_input,
+              fmt::format("{} already exists ({}){}: {}", found.front(), what, others,
+                          how_to_proceed));
 }
 
 namespace {

@@ -134,6 +134,9 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
+  if (const auto note = undefined_indices_note(est, sensitivity_quantity(rs.spec).summary_name);
+      !note.empty())
+    f.putAtt("warning", note);
   f.putAtt("estimators",
            "first order: OpenTURNS's Saltelli form, centred by the mean of all outputs "
            "(Saltelli 2010's uncentred form estimates the same quantity); total order: Jansen "
