@@ -25,6 +25,7 @@
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/io/result_file.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/study/sensitivity_figure.hpp"
@@ -130,6 +131,10 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
     if (out.already_complete) {
       fmt::print(stderr, "stickslip: {} already holds this study's complete results: nothing "
                          "to do (summary.json has them)\n", plan.dir);
+      // the run's warning again (undefined indices), from its sensitivity.nc
+      const io::result_file finished((std::filesystem::path(plan.dir) / io::sensitivity_file).string());
+      if (const auto note = finished.attribute("warning"); !note.empty())
+        fmt::print(stderr, "stickslip: warning: {}\n", note);
       if (o.format == "json") {  // the finished study's numbers, as a run would print them
         std::ifstream in(std::filesystem::path(plan.dir) / io::summary_json_file);
         fmt::print("{}", std::string(std::istreambuf_iterator<char>(in), {}));

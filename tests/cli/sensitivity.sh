@@ -136,6 +136,17 @@ assert "constant over the design" in d["warning"]
 assert all(i["first_order"] is None for i in d["indices"])
 PY
 [[ -e constant/sensitivity.png || -e constant/sensitivity.dat ]] && fail "a figure of undefined indices"
+# --resume of the finished study: nothing runs, and the warning is given again
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' \
+  --statistic damping_power --samples 64 -o constant --resume
+grep -qF "already holds this study's complete results" "$WORK/stderr" &&
+  grep -qF "warning: damping_power is constant over the design" "$WORK/stderr" ||
+  fail "--resume of a finished constant study: $(cat "$WORK/stderr")"
+"$BIN" plot constant -o constant_plot >/dev/null 2>"$WORK/stderr"
+expect_eq "exit of plot of undefined indices" "$?" "2"
+grep -qF "every value is NaN (undefined): damping_power is constant" "$WORK/stderr" ||
+  fail "plot of undefined indices: $(cat "$WORK/stderr")"
+[[ -e constant_plot ]] && fail "plot of undefined indices wrote constant_plot/"
 
 # --overwrite leaves nothing of the earlier run beside the new one: a study's
 # figure under --no-figure, a sweep's files under a study and the other way
