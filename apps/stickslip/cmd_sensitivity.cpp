@@ -117,6 +117,12 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
   plan.overwrite = o.overwrite;
   progress_bar bar;
   wire_run_plan(plan, o.checkpoint_interval, stop, bar);
+  // The study's warning (undefined indices) as its sensitivity.nc records
+  // it: the same for a run just written and a finished one --resume finds.
+  const auto recorded_warning = [&] {
+    const io::result_file written((std::filesystem::path(plan.dir) / io::sensitivity_file).string());
+    return written.attribute("warning");
+  };
   try {
     const auto out = run::sweep_into(spec, plan,
                                      io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
@@ -131,9 +137,7 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
     if (out.already_complete) {
       fmt::print(stderr, "stickslip: {} already holds this study's complete results: nothing "
                          "to do (summary.json has them)\n", plan.dir);
-      // the run's warning again (undefined indices), from its sensitivity.nc
-      const io::result_file finished((std::filesystem::path(plan.dir) / io::sensitivity_file).string());
-      if (const auto note = finished.attribute("warning"); !note.empty())
+      if (const auto note = recorded_warning(); !note.empty())
         fmt::print(stderr, "stickslip: warning: {}\n", note);
       if (o.format == "json") {  // the finished study's numbers, as a run would print them
         std::ifstream in(std::filesystem::path(plan.dir) / io::summary_json_file);
@@ -142,9 +146,7 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
       return;
     }
     const result_set& rs = *out.results;
-    const auto undefined =
-        undefined_indices_note(sobol_indices(rs.points.front().stats.sensitivity),
-                               sensitivity_quantity(rs.spec).summary_name);
+    const auto undefined = recorded_warning();
     if (!undefined.empty())  // and no figure: there are no bars to draw
       fmt::print(stderr, "stickslip: warning: {}; no figure is drawn\n", undefined);
     if (!o.no_figure && undefined.empty()) {

@@ -140,10 +140,10 @@ void note_unused_model_flags(const CLI::App& cmd, const model_flags& f,
     fmt::print(stderr, "stickslip: warning: {}\n", note);
 }
 
-// The refinements of the given flags' symbols (mu_s, mu_k of --mu) that
-// `spec` still sets after the flags: in practice an axis or a law from
-// --config, since a configuration's value of mu_s or mu_k is cleared by a
-// --mu number, which then sets the friction (flags come after the file).
+// The refinements of the given flags' symbols (mu_s, mu_k of --mu) that a
+// --config file's axis or law sets, and no flag. (A file's value of mu_s or
+// mu_k is cleared by a --mu number, which then sets the friction: flags come
+// after the file.)
 std::vector<std::string> refinements_set_in(const CLI::App& cmd, const model_flags& f,
                                             const sweep_spec& spec) {
   std::vector<std::string> out;
@@ -153,10 +153,9 @@ std::vector<std::string> refinements_set_in(const CLI::App& cmd, const model_fla
       const auto named = [&](const auto& x) { return x.symbol == r; };
       if (std::any_of(flags.begin(), flags.end(), [&](const auto* h) { return h->symbol == r; }))
         continue;  // a flag gives it
-      const bool in_base = spec.base.*info_for(r).field > 0.0;
       const bool on_axis = std::any_of(spec.axes.begin(), spec.axes.end(),
                                        [&](const axis& a) { return a.name == r; });
-      if (in_base || on_axis || std::any_of(spec.uncertain.begin(), spec.uncertain.end(), named))
+      if (on_axis || std::any_of(spec.uncertain.begin(), spec.uncertain.end(), named))
         out.push_back(r);
     }
   return out;

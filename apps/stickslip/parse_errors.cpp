@@ -53,10 +53,6 @@ CLI::App* chosen_subcommand(CLI::App& app, const std::vector<std::string>& args)
   return nullptr;
 }
 
-std::string did_you_mean(const std::string& guess) {
-  return guess.empty() ? "" : fmt::format("; did you mean {}?", guess);
-}
-
 }  // namespace
 
 int report_parse_error(CLI::App& app, const CLI::ParseError& e,

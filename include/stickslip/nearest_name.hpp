@@ -17,4 +17,7 @@ namespace stickslip {
 [[nodiscard]] std::string nearest_name(const std::string& word,
                                        const std::vector<std::string>& candidates);
 
+// "; did you mean GUESS?" for a message's end, or "" without a guess.
+[[nodiscard]] std::string did_you_mean(const std::string& guess);
+
 }  // namespace stickslip

@@ -34,4 +34,8 @@ std::string nearest_name(const std::string& word, const std::vector<std::string>
   return best;
 }
 
+std::string did_you_mean(const std::string& guess) {
+  return guess.empty() ? "" : "; did you mean " + guess + "?";
+}
+
 }  // namespace stickslip

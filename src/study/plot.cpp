@@ -232,7 +232,7 @@ const io::result_variable& histogram_of(const io::result_file& f, const std::str
   const auto guess = nearest_name(name, candidates);
   throw invalid_value("--histogram", name,
                       "a statistic with a histogram in " + f.path() + ": " + names +
-                          (guess.empty() ? "" : "; did you mean " + guess + "?"));
+                          did_you_mean(guess));
 }
 
 // Curves of `q` along its own dimension `x_dim` (time, bins, durations) at

@@ -109,25 +109,22 @@ quantity find_quantity(const io::result_file& f, const std::string& flag, const 
       return name == k.name || name == k.summary_name || name == std::string_view(k.symbol);
     });
     const auto names = along.empty() ? std::vector<std::string>{} : names_along(f, along);
-    const auto guess =
-        known ? std::string() : nearest_name(name, along.empty() ? statistic_names(f) : names);
+    const std::string selected = f.attribute("statistics");
     const std::string hint =
         known ? fmt::format("; {} is a statistic this sweep did not select: rerun it with "
                             "--statistics {},{}",
-                            name, f.attribute("statistics").empty() ? "paper" : f.attribute("statistics"), name)
-              : guess.empty() ? "" : fmt::format("; did you mean {}?", guess);
+                            name, selected.empty() ? "paper" : selected, name)
+              : did_you_mean(nearest_name(name, along.empty() ? statistic_names(f) : names));
     if (!along.empty())
       throw invalid_value(flag, name,
                           fmt::format("a statistic of {} over {}: {}{}", f.path(), along,
                                       joined(names), hint));
+    const std::string not_there =
+        known ? "" : "; a statistic the sweep did not select is not there: rerun it with --statistics";
     throw invalid_value(flag, name,
                         fmt::format("a statistic of {}: {}; or another variable of it over the "
-                                    "grid (ncdump -h lists them){}",
-                                    f.path(), statistic_list(f),
-                                    hint.empty() || !known
-                                        ? "; a statistic the sweep did not select is not there: "
-                                          "rerun it with --statistics" + hint
-                                        : hint));
+                                    "grid (ncdump -h lists them){}{}",
+                                    f.path(), statistic_list(f), not_there, hint));
   }
   const std::string& var = q.value->name;
   const std::string base = ends_with(var, "_mean") ? var.substr(0, var.size() - 5) : var;

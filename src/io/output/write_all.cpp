@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "stickslip/error.hpp"
+#include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "writers_detail.hpp"
@@ -84,10 +85,7 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
   // way round; a study's figure, which `sensitivity` draws after this, or
   // not with --no-figure): once this set is in place, it goes (a new
   // user's --overwrite left them).
-  std::vector<std::string> earlier;
-  for (const char* name : {results_file, summary_json_file, summary_csv_file, records_csv_file,
-                           sensitivity_file})
-    earlier.push_back(in_dir(name));
+  std::vector<std::string> earlier = existing_sweep_results(dir);
   if (earlier_study)
     for (const char* ext : figure_extensions)
       earlier.push_back(in_dir(sensitivity_figure_stem) + ext);
