@@ -125,7 +125,7 @@ bad "invalid --min-samples: '1000 (the default)'|give --min-samples too" \
 # figure. (It reported a NaN mean, exit 0 without a word.)
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' \
   --statistic damping_power --samples 64 -o constant
-grep -qF "warning: damping_power is constant over the design (mean 0, variance 0)" "$WORK/stderr" ||
+grep -qF "warning: damping_power is constant over the design's 64 rows (mean 0, variance 0)" "$WORK/stderr" ||
   fail "no warning of a constant statistic: $(cat "$WORK/stderr")"
 checks=$((checks + 1))
 "$PY" - <<'PY' || fail "summary.json of a constant statistic"
@@ -136,6 +136,14 @@ assert "constant over the design" in d["warning"]
 assert all(i["first_order"] is None for i in d["indices"])
 PY
 [[ -e constant/sensitivity.png || -e constant/sensitivity.dat ]] && fail "a figure of undefined indices"
+# With --target-halfwidth it stops at --min-samples: no number of rows gives
+# 0 / 0 a half-width (it ran to --max-samples, 10^6 rows by default).
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' \
+  --statistic damping_power --target-halfwidth 0.01 --min-samples 64 --block-size 32 -o constant_target
+grep -qF "constant over the design's 64 rows" "$WORK/stderr" ||
+  fail "--target-halfwidth of a constant statistic: $(cat "$WORK/stderr")"
+expect_eq "rows of a constant statistic under --target-halfwidth" \
+  "$("$PY" -c 'import json; print(json.load(open("constant_target/summary.json"))["samples"])')" "64"
 # --resume of the finished study: nothing runs, and the warning is given again
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' \
   --statistic damping_power --samples 64 -o constant --resume

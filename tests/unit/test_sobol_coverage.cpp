@@ -388,8 +388,8 @@ TEST(SobolMoments, AConstantStatisticHasItsMeanAndNoIndices) {
   EXPECT_TRUE(std::isnan(z.first_order[0].value) && std::isnan(z.total_order[1].high));
   EXPECT_TRUE(std::isnan(z.parameter_share.value) && std::isnan(z.intrinsic_share.value));
   EXPECT_EQ(stickslip::undefined_indices_note(z, "damping_power"),
-            "damping_power is constant over the design (mean 0, variance 0): its Sobol' "
-            "indices and shares are 0 / 0, undefined, and written as NaN");
+            "damping_power is constant over the design's 10 rows (mean 0, variance 0): its "
+            "Sobol' indices and shares are 0 / 0, undefined, and written as NaN");
   sobol_moments two(1);
   for (int j = 0; j < 10; ++j) two.add(2.5, 2.5, 2.5, std::vector<double>{2.5});
   EXPECT_EQ(sobol_indices(two).mean, 2.5);

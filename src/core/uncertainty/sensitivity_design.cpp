@@ -133,8 +133,13 @@ block_result simulate_block_sensitivity(const sweep_spec& s, const work_unit& u)
 bool meets_sensitivity_target(const sweep_spec& s, const point_statistics& p) {
   if (!is_sensitivity(s) || !(s.target_halfwidth > 0.0)) return false;
   if (p.sensitivity.rows() < s.min_realizations) return false;
-  const double h = sobol_indices(p.sensitivity).max_half_width();
-  return h <= s.target_halfwidth;  // false for NaN
+  const auto est = sobol_indices(p.sensitivity);
+  // A statistic constant over every row so far has indices 0 / 0: NaN, whose
+  // half-width no number of rows brings under the target. Stop at the
+  // minimum, where the warning of undefined indices says why (it ran to the
+  // maximum, 10^6 rows by default, for nothing).
+  if (est.constant_statistic) return true;
+  return est.max_half_width() <= s.target_halfwidth;  // false for NaN
 }
 
 }  // namespace stickslip

@@ -284,9 +284,9 @@ std::string undefined_indices_note(const sobol_estimates& e, std::string_view st
         "too few rows ({}) for Sobol' indices, which are written as NaN; run more --samples",
         statistic, e.rows);
   return fmt::format(
-      "{} is constant over the design (mean {}, variance 0): its Sobol' indices and shares are "
-      "0 / 0, undefined, and written as NaN",
-      statistic, e.mean);
+      "{} is constant over the design's {} rows (mean {}, variance 0): its Sobol' indices and "
+      "shares are 0 / 0, undefined, and written as NaN",
+      statistic, e.rows, e.mean);
 }
 
 }  // namespace stickslip
