@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "run_wiring.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/journal.hpp"
 #include "stickslip/run/merge.hpp"
@@ -63,8 +64,8 @@ void run_merge(const merge_options& o) {
     fmt::print(stderr, "stickslip: merge: {} units were in more than one journal (identical; "
                        "used once)\n", merged.duplicates);
   try {
-    io::write_all(merged.results, merged.metadata, o.out_dir,
-                  io::output_options{.json_joint_histograms = o.json_histograms});
+    note_removed_outputs(io::write_all(merged.results, merged.metadata, o.out_dir,
+                                       io::output_options{.json_joint_histograms = o.json_histograms}));
   } catch (const error& e) {
     if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
     throw;

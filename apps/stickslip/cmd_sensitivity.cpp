@@ -145,6 +145,7 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
       }
       return;
     }
+    note_removed_outputs(out.removed_outputs);
     const result_set& rs = *out.results;
     const auto undefined = recorded_warning();
     if (!undefined.empty())  // and no figure: there are no bars to draw

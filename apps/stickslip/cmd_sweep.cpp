@@ -239,6 +239,7 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
     auto out = run::sweep_into(spec, plan, io::make_metadata(inv.argc, inv.argv, io::to_toml(spec)),
                                exec.runner(), o.keep_journal);
     bar.finish();
+    note_removed_outputs(out.removed_outputs);
     report(spec, plan, out, exec.runner());
     keep_until_exit(std::move(out));
   } catch (const error& e) {

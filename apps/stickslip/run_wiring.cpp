@@ -35,4 +35,13 @@ void end_failed_run(const error& e, progress_bar& bar, execution& exec) {
   throw;
 }
 
+void note_removed_outputs(const std::vector<std::string>& removed) {
+  if (removed.empty()) return;
+  std::string names;
+  for (const auto& p : removed) names += (names.empty() ? "'" : ", '") + p + "'";
+  fmt::print(stderr, "stickslip: note: --overwrite removed {}: {} an earlier run's, which this run "
+                     "does not write\n",
+             names, removed.size() == 1 ? "it was" : "they were");
+}
+
 }  // namespace stickslip::app

@@ -3,6 +3,7 @@
 // journal notes on stderr and the progress bar; and a failure's ending.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "execution.hpp"
 #include "progress.hpp"
@@ -21,5 +22,10 @@ void wire_run_plan(run::run_plan& plan, const std::string& checkpoint_interval,
 // write leaves through exit_after_failed_write (after releasing the MPI
 // workers); anything else is rethrown.
 [[noreturn]] void end_failed_run(const error& e, progress_bar& bar, execution& exec);
+
+// One "stickslip: note:" line naming the outputs of an earlier run that
+// --overwrite removed because this run does not write them (write_all);
+// nothing when there are none.
+void note_removed_outputs(const std::vector<std::string>& removed);
 
 }  // namespace stickslip::app

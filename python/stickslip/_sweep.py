@@ -132,7 +132,10 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
         (records.csv) there, journaling every finished unit. Finished
         results already there are never replaced unless overwrite=True
         (stickslip.Error, exit_code 2, as `stickslip sweep -o`).
-    overwrite: with output, replace the results of an earlier run.
+    overwrite: with output, replace the results of an earlier run; its
+        outputs that this run does not write (records.csv without
+        records=True, a study's files) are removed, and a UserWarning
+        names them.
     resume: with output, continue an interrupted sweep from its journal; with
         no journal, the folder's finished results must be this
         configuration's (then they are read back untouched), else refused.

@@ -223,10 +223,11 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   return out;
 }
 
-void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal,
-                   const io::output_options& options) {
+std::vector<std::string> write_outputs(const run_outcome& out, const std::string& dir,
+                                       bool keep_journal, const io::output_options& options) {
+  std::vector<std::string> removed;
   try {
-    io::write_all(*out.results, out.metadata, dir, options);
+    removed = io::write_all(*out.results, out.metadata, dir, options);
   } catch (const error& e) {
     if (e.code() != exit_code::io_failure) throw;
     throw error(e.code(), std::string(e.what()) +
@@ -235,6 +236,7 @@ void write_outputs(const run_outcome& out, const std::string& dir, bool keep_jou
                               "after that checkpoint are computed again)");
   }
   if (!keep_journal) io::remove_journal(dir);
+  return removed;
 }
 
 std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
@@ -325,7 +327,7 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
     run_plan then_outputs = plan;
     then_outputs.outputs_follow = true;
     auto out = run_journaled(spec, then_outputs, fresh, r);
-    if (out.results) write_outputs(out, plan.dir, keep_journal, plan.outputs);
+    if (out.results) out.removed_outputs = write_outputs(out, plan.dir, keep_journal, plan.outputs);
     return out;
   } catch (const error& e) {
     // The shards of one directory share it and its journal: a failed shard

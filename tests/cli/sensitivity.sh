@@ -163,9 +163,16 @@ run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 64 -o over
 [[ -e over/sensitivity.dat ]] || fail "no figure data in over/"
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
 expect_eq "files after --overwrite --no-figure" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
+# and names what it removed (it did so without a word)
+# (the .png and .svg only where gnuplot rendered them)
+grep -qE "^stickslip: note: --overwrite removed 'over/sensitivity.dat', 'over/sensitivity.gp'(, 'over/sensitivity.png', 'over/sensitivity.svg')?: they were an earlier run's, which this run does not write$" "$WORK/stderr" ||
+  fail "the note of removed outputs: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
 run_ok sweep --lambda 1 --realizations 10 --records --overwrite -o over
 expect_eq "files after a sweep over a study" "$(ls over | tr '\n' ' ')" \
   "records.csv results.nc summary.csv summary.json "
+expect_eq "the note of a removed study" "$(grep -F 'removed' "$WORK/stderr")" \
+  "stickslip: note: --overwrite removed 'over/sensitivity.nc': it was an earlier run's, which this run does not write"
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
 expect_eq "files after a study over a sweep" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
 # the refusal names every output an --overwrite would replace or remove

@@ -18,6 +18,13 @@ cmp -s out/summary.csv first.csv || fail "the refused sweep changed out/summary.
 
 run_ok sweep "${A[@]}" --seed 2 -o out --overwrite
 cmp -s out/summary.csv first.csv && fail "--overwrite did not replace the results"
+grep -qF "removed" "$WORK/stderr" && fail "a note of removed outputs where none was: $(cat "$WORK/stderr")"
+# records.csv of an earlier --records run goes, and is named
+run_ok sweep "${A[@]}" --records -o out --overwrite
+run_ok sweep "${A[@]}" -o out --overwrite
+[[ -e out/records.csv ]] && fail "--overwrite without --records left the earlier records.csv"
+expect_eq "the note of a removed records.csv" "$(grep -F 'removed' "$WORK/stderr")" \
+  "stickslip: note: --overwrite removed 'out/records.csv': it was an earlier run's, which this run does not write"
 
 # A folder with other files but no results is fine.
 mkdir other && touch other/notes.txt

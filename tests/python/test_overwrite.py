@@ -51,6 +51,24 @@ def test_overwrite_true_replaces(finished):
     assert stickslip.open(out).attrs["seed"] == 5
 
 
+def test_overwrite_true_names_the_earlier_outputs_it_removes(tmp_path):
+    # records.csv of an earlier records=True run is not this run's: it goes,
+    # and a UserWarning names it (the CLI's note); a plain replacement warns
+    # of nothing.
+    out = tmp_path / "rec"
+    stickslip.sweep(**FIRST, output=str(out), records=True)
+    with pytest.warns(UserWarning) as caught:
+        stickslip.sweep(**FIRST, output=str(out), overwrite=True)
+    assert [str(w.message) for w in caught] == [
+        f"overwrite=True removed '{out / 'records.csv'}': an earlier run's output, which this "
+        "run does not write"]
+    assert not (out / "records.csv").exists()
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        stickslip.sweep(**FIRST, output=str(out), overwrite=True)
+
+
 def test_resume_into_another_configurations_results_is_refused(finished):
     out, before = finished
     with pytest.raises(stickslip.Error, match="another configuration") as e:

@@ -3,6 +3,7 @@
 // file. They throw stickslip::error (exit_code::io_failure) naming the path.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/sweep.hpp"
@@ -66,7 +67,10 @@ void write_records_csv(const result_set& rs, const std::string& path);
 // sensitivity study). Writes every file to a temporary name first
 // and renames them only when all succeeded. On failure nothing new is left in
 // `dir` (and `dir` itself is removed again if this call created it).
-void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,
+// Once they are in place, it removes the outputs of an earlier run in `dir`
+// that this one did not write (records.csv without records, a sweep's
+// files under a study's): returns their paths, for the caller to name.
+std::vector<std::string> write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,
                const output_options& options = {});
 
 }  // namespace stickslip::io

@@ -17,6 +17,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
@@ -77,6 +78,10 @@ struct run_outcome {
   // --resume found this spec's finished outputs in DIR and no journal:
   // nothing ran, nothing was written; `metadata` is the finished outputs'.
   bool already_complete = false;
+  // The outputs of an earlier run in DIR that this one did not write and
+  // removed (--overwrite: records.csv without --records, a study's files
+  // under a sweep's), for the front end to name.
+  std::vector<std::string> removed_outputs;
 };
 
 // A resume into `dir` that holds no journal: the finished outputs there, if
@@ -115,8 +120,9 @@ struct run_outcome {
 // keep_journal. An io_failure says that the units of the journal's last
 // checkpoint, if any, stay in it (a sweep_into run skips its last
 // checkpoint when none is due: run_plan::outputs_follow).
-void write_outputs(const run_outcome& out, const std::string& dir, bool keep_journal,
-                   const io::output_options& options = {});
+// Returns what write_all removed of an earlier run's outputs.
+std::vector<std::string> write_outputs(const run_outcome& out, const std::string& dir,
+                                       bool keep_journal, const io::output_options& options = {});
 
 // What DIR held before a run, so that a failed run can remove what it created.
 struct directory_state {

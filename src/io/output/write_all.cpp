@@ -18,7 +18,7 @@
 namespace stickslip::io {
 namespace fs = std::filesystem;
 
-void write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,
+std::vector<std::string> write_all(const result_set& rs, const run_metadata& meta, const std::string& dir,
                const output_options& options) {
   detail::check_shape(rs);
   const auto created = detail::create_directories(dir);
@@ -89,9 +89,13 @@ void write_all(const result_set& rs, const run_metadata& meta, const std::string
   if (earlier_study)
     for (const char* ext : figure_extensions)
       earlier.push_back(in_dir(sensitivity_figure_stem) + ext);
+  std::vector<std::string> removed;
   for (const auto& path : earlier)
-    if (std::none_of(outputs.begin(), outputs.end(), [&](const output& o) { return o.path == path; }))
-      detail::remove_file_quietly(path);
+    if (std::none_of(outputs.begin(), outputs.end(), [&](const output& o) { return o.path == path; })) {
+      std::error_code ec;  // a file that cannot be removed stays, and is not named as removed
+      if (fs::is_regular_file(path, ec) && fs::remove(path, ec)) removed.push_back(path);
+    }
+  return removed;
 }
 
 }  // namespace stickslip::io
