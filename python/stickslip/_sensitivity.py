@@ -34,7 +34,8 @@ def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_sampl
         journaling every finished unit (resume, keep_journal,
         checkpoint_interval and overwrite as for stickslip.sweep).
 
-    Returns a dict: "statistic", "realizations", "samples", "laws", "mean",
+    Returns a dict: "statistic", "realizations", "samples", "laws", "base"
+        (the fixed parameters, None for those the laws set), "mean",
     "variance", "intrinsic_variance", "indices" (per input, "of": "mean" with
     first and total order of E[STAT | theta], and "of": "response" with the
     first order in STAT, each with its "_ci95"), "shares" (parameters,

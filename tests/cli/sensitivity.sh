@@ -134,6 +134,10 @@ d = json.load(open("constant/summary.json"))
 assert d["mean"] == 0 and d["variance"] == 0, (d["mean"], d["variance"])
 assert "constant over the design" in d["warning"]
 assert all(i["first_order"] is None for i in d["indices"])
+# the fixed parameters beside the laws (k = 40 was only in the command line)
+b = d["base"]
+assert b["k"] == 40 and b["ta"] == 50 and b["c"] == 0, b
+assert b["mu"] is None and b["mu_s"] is None and b["lambda"] is None, b
 PY
 [[ -e constant/sensitivity.png || -e constant/sensitivity.dat ]] && fail "a figure of undefined indices"
 # With --target-halfwidth it stops at --min-samples: no number of rows gives
