@@ -138,6 +138,10 @@ assert all(i["first_order"] is None for i in d["indices"])
 b = d["base"]
 assert b["k"] == 40 and b["ta"] == 50 and b["c"] == 0, b
 assert b["mu"] is None and b["mu_s"] is None and b["lambda"] is None, b
+# resolved_config's realizations are the design's rows, and it says so
+import xarray as xr
+config = xr.open_dataset("constant/sensitivity.nc").attrs["resolved_config"]
+assert "realizations = 64  # the design's rows (--samples), 5 realizations each" in config, config
 PY
 [[ -e constant/sensitivity.png || -e constant/sensitivity.dat ]] && fail "a figure of undefined indices"
 # With --target-halfwidth it stops at --min-samples: no number of rows gives

@@ -17,6 +17,7 @@
 #include "config_detail.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
 
 namespace stickslip::io {
 namespace {
@@ -538,10 +539,19 @@ std::string to_toml(const sweep_spec& s) {
     out += "]\n";
   }
 
+  // A study's realizations are its design's rows (--samples): say so beside
+  // the key, which the reader keeps (a user read "realizations = 64" beside
+  // sensitivity.nc's realizations = 256).
+  const std::string rows_note =
+      s.sensitivity_statistic.empty()
+          ? std::string()
+          : fmt::format("  # the design's {} (--{}), {} realizations each",
+                        s.target_halfwidth > 0.0 ? "most rows" : "rows",
+                        s.target_halfwidth > 0.0 ? "max-samples" : "samples", runs_per_row(s));
   out += fmt::format(
-      "\n[sweep]\nrealizations = {}\nseed = {}\nblock_size = {}\nmax_events = {}\n"
+      "\n[sweep]\nrealizations = {}{}\nseed = {}\nblock_size = {}\nmax_events = {}\n"
       "keep_records = {}\nengine = \"{}\"\n",
-      toml_u64(s.realizations), toml_u64(s.seed), toml_u64(s.block_size), s.max_events,
+      toml_u64(s.realizations), rows_note, toml_u64(s.seed), toml_u64(s.block_size), s.max_events,
       s.keep_records, to_string(s.engine));
   // Written only when set, so configurations without them read as before.
   if (s.common_random_numbers) out += "common_random_numbers = true\n";
