@@ -32,6 +32,7 @@
 #include "stickslip/sweep.hpp"
 #include "stickslip/uncertainty/parameter_law.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
+#include "stickslip/uncertainty/sobol.hpp"
 
 namespace stickslip::app {
 namespace {
@@ -147,10 +148,13 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
     }
     note_removed_outputs(out.removed_outputs);
     const result_set& rs = *out.results;
-    const auto undefined = recorded_warning();
-    if (!undefined.empty())  // and no figure: there are no bars to draw
-      fmt::print(stderr, "stickslip: warning: {}; no figure is drawn\n", undefined);
-    if (!o.no_figure && undefined.empty()) {
+    // Undefined indices (variance 0) have no bars to draw: no figure. Wide
+    // ones are drawn, with their warning.
+    const auto warning = recorded_warning();
+    const bool undefined = sobol_indices(rs.points.front().stats.sensitivity).variance == 0.0;
+    if (!warning.empty())
+      fmt::print(stderr, "stickslip: warning: {}{}\n", warning, undefined ? "; no figure is drawn" : "");
+    if (!o.no_figure && !undefined) {
       const auto f = study::write_sensitivity_figure(rs, o.out_dir, true);
       if (!f.rendered)
         fmt::print(stderr, "stickslip: note: the figure was not rendered (gnuplot with pngcairo "

@@ -82,6 +82,6 @@ def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_sampl
         data.pop("run", None)
     else:
         data = json.loads(result)
-    if "warning" in data:  # a constant statistic: the CLI's warning (undefined indices)
+    if "warning" in data:  # the CLI's warning: undefined indices, or intervals wider than [0, 1]
         warnings.warn(data["warning"], UserWarning, stacklevel=2)
     return data

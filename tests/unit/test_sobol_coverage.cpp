@@ -372,6 +372,36 @@ TEST(SobolMoments, TooFewRowsOrNoVarianceGiveNaN) {
                                  "though not in the others: too few rows (10)"));
 }
 
+// An interval wider than [0, 1], the range of an index, gets its warning
+// (a new user's --samples 2 gave a share of -5.8 without a word); narrower
+// ones and undefined ones do not; sensitivity_warning takes the undefined
+// note first.
+TEST(SobolMoments, IntervalsWiderThanTheRangeOfAnIndexAreWarnedOf) {
+  sobol_estimates e;
+  e.rows = 16;
+  e.variance = 1.0;
+  e.first_order = {{0.4, 0.1, 0.7}};
+  e.total_order = {{0.5, 0.2, 0.8}};
+  e.response_first_order = {{0.4, 0.1, 0.7}};
+  e.parameter_share = {0.8, 0.75, 0.85};
+  e.intrinsic_share = {0.2, 0.15, 0.25};
+  EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"), "");
+  e.total_order[0] = {0.5, -0.01, 1.0};  // wider than 1 by 0.01
+  EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"),
+            "the Sobol' estimates of R from 16 rows say little: a 95 % interval is wider than "
+            "[0, 1], the range of an index (largest half-width 0.505), and these intervals, "
+            "asymptotic (delta method), may not hold at so few rows; run more --samples, or use "
+            "--target-halfwidth");
+  EXPECT_EQ(stickslip::sensitivity_warning(e, "R"), stickslip::uninformative_indices_note(e, "R"));
+  e.first_order[0].value = e.first_order[0].high = NAN;  // NaN: not "wide"
+  EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"), "");
+  sobol_moments zero(1);
+  for (int j = 0; j < 10; ++j) zero.add(0, 0, 0, std::vector<double>{0});
+  const auto z = sobol_indices(zero);
+  EXPECT_EQ(stickslip::sensitivity_warning(z, "c"), stickslip::undefined_indices_note(z, "c"));
+  EXPECT_NE(stickslip::sensitivity_warning(z, "c"), "");
+}
+
 // A statistic constant over the design (damping_power without damping):
 // its mean and variance 0 are estimates like any other, only the indices
 // and shares are 0 / 0 (a new user found the mean reported as NaN, and no

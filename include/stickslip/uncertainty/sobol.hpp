@@ -158,4 +158,16 @@ inline constexpr double sobol_z95 = 1.959963984540054;
 [[nodiscard]] std::string undefined_indices_note(const sobol_estimates& e,
                                                  std::string_view statistic);
 
+// When some index's or share's 95 % interval is wider than [0, 1], the
+// range of an index (max_half_width > 1/2): the estimates say little, and
+// the delta method's intervals, asymptotic, may not hold at so few rows (a
+// new user's --samples 2 reported a parameter share of -5.8 without a
+// word). One line; empty otherwise, and for undefined (NaN) indices.
+[[nodiscard]] std::string uninformative_indices_note(const sobol_estimates& e,
+                                                     std::string_view statistic);
+
+// What a study's outputs record as its "warning": undefined_indices_note,
+// else uninformative_indices_note; empty when neither applies.
+[[nodiscard]] std::string sensitivity_warning(const sobol_estimates& e, std::string_view statistic);
+
 }  // namespace stickslip

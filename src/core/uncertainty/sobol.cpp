@@ -289,4 +289,19 @@ std::string undefined_indices_note(const sobol_estimates& e, std::string_view st
       statistic, e.rows, e.mean);
 }
 
+std::string uninformative_indices_note(const sobol_estimates& e, std::string_view statistic) {
+  const double h = e.max_half_width();
+  if (!(h > 0.5)) return {};  // NaN too
+  return fmt::format(
+      "the Sobol' estimates of {} from {} rows say little: a 95 % interval is wider than [0, 1], "
+      "the range of an index (largest half-width {:.3g}), and these intervals, asymptotic (delta "
+      "method), may not hold at so few rows; run more --samples, or use --target-halfwidth",
+      statistic, e.rows, h);
+}
+
+std::string sensitivity_warning(const sobol_estimates& e, std::string_view statistic) {
+  auto note = undefined_indices_note(e, statistic);
+  return note.empty() ? uninformative_indices_note(e, statistic) : note;
+}
+
 }  // namespace stickslip

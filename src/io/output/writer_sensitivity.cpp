@@ -64,7 +64,7 @@ void emit_sensitivity(json_emitter& j, const result_set& rs) {
   j.member("mean", est.mean);
   j.member("variance", est.variance);
   j.member("intrinsic_variance", est.intrinsic_variance);
-  if (const auto note = undefined_indices_note(est, q.summary_name); !note.empty())
+  if (const auto note = sensitivity_warning(est, q.summary_name); !note.empty())
     j.member("warning", note);
   j.key("indices");
   j.begin_array(layout::multi_line);
@@ -143,7 +143,7 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
-  if (const auto note = undefined_indices_note(est, sensitivity_quantity(rs.spec).summary_name);
+  if (const auto note = sensitivity_warning(est, sensitivity_quantity(rs.spec).summary_name);
       !note.empty())
     f.putAtt("warning", note);
   f.putAtt("estimators",
