@@ -24,6 +24,8 @@
 #include "stickslip/io/output_lock.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
+#include "stickslip/uncertainty/sobol.hpp"
 
 namespace stickslip::app {
 namespace {
@@ -73,6 +75,13 @@ void run_merge(const merge_options& o) {
   const auto& spec = merged.results.spec;
   fmt::print(stderr, "merged {} units from {} journals ({} grid points) -> {}\n",
              unit_count(spec), o.inputs.size(), point_count(spec), o.out_dir);
+  // A study's warning, as `sensitivity` gives it (the review: merged shards
+  // said nothing of undefined or wide indices; summary.json had it).
+  if (is_sensitivity(spec))
+    if (const auto w = sensitivity_warning(sobol_indices(merged.results.points.front().stats.sensitivity),
+                                           sensitivity_quantity(spec).summary_name);
+        !w.empty())
+      fmt::print(stderr, "stickslip: warning: {}\n", w);
 }
 
 }  // namespace

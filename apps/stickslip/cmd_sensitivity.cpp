@@ -146,7 +146,6 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
       }
       return;
     }
-    note_removed_outputs(out.removed_outputs);
     const result_set& rs = *out.results;
     // Undefined indices (variance 0) have no bars to draw: no figure. Wide
     // ones are drawn, with their warning.
@@ -160,6 +159,8 @@ void run_sensitivity_command(const CLI::App& cmd, const sensitivity_options& o,
         fmt::print(stderr, "stickslip: note: the figure was not rendered (gnuplot with pngcairo "
                            "and svg is needed); its data and script are in {}\n", o.out_dir);
     }
+    // After the figure: its files, drawn again, are not named as removed.
+    note_removed_outputs(out.removed_outputs);
     if (o.format == "json")
       fmt::print("{}", io::sensitivity_json(rs));
     else
@@ -191,7 +192,8 @@ void add_sensitivity_command(CLI::App& app, const invocation& inv) {
                       ->type_name("N");
   o.target_opt = cmd->add_option("--target-halfwidth", o.target_halfwidth,
                                  "run rows until every index and share has a 95% half-width "
-                                 "<= H")
+                                 "<= H, or the statistic has been constant over every row at "
+                                 "--min-samples (its indices are then undefined)")
                      ->type_name("H");
   o.max_opt = cmd->add_option("--max-samples", o.max_samples,
                               "with --target-halfwidth: at most N rows (default 1000000)")

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "stickslip/io/config.hpp"
+#include "stickslip/io/output_files.hpp"
 
 namespace stickslip::app {
 
@@ -36,12 +37,8 @@ void end_failed_run(const error& e, progress_bar& bar, execution& exec) {
 }
 
 void note_removed_outputs(const std::vector<std::string>& removed) {
-  if (removed.empty()) return;
-  std::string names;
-  for (const auto& p : removed) names += (names.empty() ? "'" : ", '") + p + "'";
-  fmt::print(stderr, "stickslip: note: --overwrite removed {}: {} an earlier run's, which this run "
-                     "does not write\n",
-             names, removed.size() == 1 ? "it was" : "they were");
+  if (const auto note = io::removed_outputs_note(removed); !note.empty())
+    fmt::print(stderr, "stickslip: note: {}\n", note);
 }
 
 }  // namespace stickslip::app

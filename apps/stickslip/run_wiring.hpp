@@ -24,7 +24,9 @@ void wire_run_plan(run::run_plan& plan, const std::string& checkpoint_interval,
 [[noreturn]] void end_failed_run(const error& e, progress_bar& bar, execution& exec);
 
 // One "stickslip: note:" line naming the outputs of an earlier run that
-// --overwrite removed because this run does not write them (write_all);
+// write_all removed because this run does not write them (--overwrite, or a
+// resume of a run started with it) and that are still gone
+// (io::removed_outputs_note: call it after the last output is written);
 // nothing when there are none.
 void note_removed_outputs(const std::vector<std::string>& removed);
 

@@ -208,13 +208,8 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   }
   // overwrite=True: name the earlier run's outputs that this one does not
   // write and removed (the CLI's note; records.csv without records=True).
-  if (!removed.empty()) {
-    std::string names;
-    for (const auto& p : removed) names += (names.empty() ? "'" : ", '") + p + "'";
-    const auto text = "overwrite=True removed " + names + ": an earlier run's output" +
-                      (removed.size() == 1 ? "" : "s") + ", which this run does not write";
-    if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
-  }
+  if (const auto note = io::removed_outputs_note(removed); !note.empty())
+    if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 2) != 0) throw py::error_already_set();
   py::gil_scoped_release release;
   return is_sensitivity(spec) ? io::sensitivity_json(*outcome.results) : std::string();
 }

@@ -129,6 +129,22 @@ grep -qF "no figure" "$WORK/stderr" && fail "2 rows: the figure was refused"
 [[ -e two_rows/sensitivity.dat ]] || fail "2 rows: no figure data"
 "$PY" -c 'import json; assert "say little" in json.load(open("two_rows/summary.json"))["warning"]' ||
   fail "2 rows: summary.json's warning"
+# a narrow law (a parameter share of ~0.06): the mean response's indices are
+# wide at any number of rows, and the warning says why, not "few rows"
+run_ok sensitivity --k 40 --mu 'uniform(3,3.05)' --samples 1000 --no-figure -o narrow
+grep -qF "warning: the Sobol' indices of E[R | theta] have 95 % intervals wider than [0, 1]" "$WORK/stderr" &&
+  grep -qF "which is small (below 1/4)" "$WORK/stderr" ||
+  fail "a small parameter share: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
+# merged shards give the same warning (they said nothing)
+for i in 0 1; do
+  run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 2 \
+    --block-size 1 --shard $i/2 -o two_shard$i
+done
+run_ok merge two_shard0 two_shard1 -o two_merged
+grep -qF "warning: the Sobol' estimates of R from 2 rows say little" "$WORK/stderr" ||
+  fail "merge of a 2-row study: no warning: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 1000 -o many
 grep -qF "warning" "$WORK/stderr" && fail "1000 rows warned: $(cat "$WORK/stderr")"
 checks=$((checks + 1))
@@ -181,19 +197,24 @@ grep -qF "every value is NaN (undefined): damping_power is constant" "$WORK/stde
 # figure under --no-figure, a sweep's files under a study and the other way
 # round (a new user found them left).
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 64 -o over
+# a study overwritten with its figure: the figure is drawn again, and not
+# named as removed (a review: the note named all four figure files)
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 48 --overwrite -o over
+grep -qF "removed" "$WORK/stderr" && fail "a redrawn figure named as removed: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
 [[ -e over/sensitivity.dat ]] || fail "no figure data in over/"
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
 expect_eq "files after --overwrite --no-figure" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
 # and names what it removed (it did so without a word)
 # (the .png and .svg only where gnuplot rendered them)
-grep -qE "^stickslip: note: --overwrite removed 'over/sensitivity.dat', 'over/sensitivity.gp'(, 'over/sensitivity.png', 'over/sensitivity.svg')?: they were an earlier run's, which this run does not write$" "$WORK/stderr" ||
+grep -qE "^stickslip: note: removed 'over/sensitivity.dat', 'over/sensitivity.gp'(, 'over/sensitivity.png', 'over/sensitivity.svg')?: they were an earlier run's, which this run does not write$" "$WORK/stderr" ||
   fail "the note of removed outputs: $(cat "$WORK/stderr")"
 checks=$((checks + 1))
 run_ok sweep --lambda 1 --realizations 10 --records --overwrite -o over
 expect_eq "files after a sweep over a study" "$(ls over | tr '\n' ' ')" \
   "records.csv results.nc summary.csv summary.json "
 expect_eq "the note of a removed study" "$(grep -F 'removed' "$WORK/stderr")" \
-  "stickslip: note: --overwrite removed 'over/sensitivity.nc': it was an earlier run's, which this run does not write"
+  "stickslip: note: removed 'over/sensitivity.nc': it was an earlier run's, which this run does not write"
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --samples 32 --no-figure --overwrite -o over
 expect_eq "files after a study over a sweep" "$(ls over | tr '\n' ' ')" "sensitivity.nc summary.json "
 # the refusal names every output an --overwrite would replace or remove

@@ -24,7 +24,7 @@ run_ok sweep "${A[@]}" --records -o out --overwrite
 run_ok sweep "${A[@]}" -o out --overwrite
 [[ -e out/records.csv ]] && fail "--overwrite without --records left the earlier records.csv"
 expect_eq "the note of a removed records.csv" "$(grep -F 'removed' "$WORK/stderr")" \
-  "stickslip: note: --overwrite removed 'out/records.csv': it was an earlier run's, which this run does not write"
+  "stickslip: note: removed 'out/records.csv': it was an earlier run's, which this run does not write"
 
 # A folder with other files but no results is fine.
 mkdir other && touch other/notes.txt

@@ -60,12 +60,11 @@ def test_overwrite_true_names_the_earlier_outputs_it_removes(tmp_path):
     with pytest.warns(UserWarning) as caught:
         stickslip.sweep(**FIRST, output=str(out), overwrite=True)
     assert [str(w.message) for w in caught] == [
-        f"overwrite=True removed '{out / 'records.csv'}': an earlier run's output, which this "
-        "run does not write"]
+        f"removed '{out / 'records.csv'}': it was an earlier run's, which this run does not write"]
     assert not (out / "records.csv").exists()
     import warnings
     with warnings.catch_warnings():
-        warnings.simplefilter("error")
+        warnings.simplefilter("error", UserWarning)
         stickslip.sweep(**FIRST, output=str(out), overwrite=True)
 
 

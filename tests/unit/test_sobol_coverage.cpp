@@ -373,9 +373,12 @@ TEST(SobolMoments, TooFewRowsOrNoVarianceGiveNaN) {
 }
 
 // An interval wider than [0, 1], the range of an index, gets its warning
-// (a new user's --samples 2 gave a share of -5.8 without a word); narrower
-// ones and undefined ones do not; sensitivity_warning takes the undefined
-// note first.
+// (a new user's --samples 2 gave a share of -5.8 without a word): over
+// Var Y (the response's indices, the shares) as too few rows; only over
+// Var g (the mean response's indices) as a small parameter share, which no
+// number of rows mends (a review: it said "so few rows" at 4,000). A NaN
+// interval does not hide a wide one; narrow ones and undefined ones get
+// nothing; sensitivity_warning takes the undefined note first.
 TEST(SobolMoments, IntervalsWiderThanTheRangeOfAnIndexAreWarnedOf) {
   sobol_estimates e;
   e.rows = 16;
@@ -386,14 +389,29 @@ TEST(SobolMoments, IntervalsWiderThanTheRangeOfAnIndexAreWarnedOf) {
   e.parameter_share = {0.8, 0.75, 0.85};
   e.intrinsic_share = {0.2, 0.15, 0.25};
   EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"), "");
-  e.total_order[0] = {0.5, -0.01, 1.0};  // wider than 1 by 0.01
+  e.total_order[0] = {0.5, -0.01, 1.0};  // wider than 1 by 0.01, over Var g
+  EXPECT_THAT(stickslip::uninformative_indices_note(e, "R"),  // a share of 0.8: the rows
+              testing::HasSubstr("from 16 rows say little"));
+  e.parameter_share = {0.1, 0.05, 0.15};
+  e.intrinsic_share = {0.9, 0.85, 0.95};
+  EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"),  // a share of 0.1: the share
+            "the Sobol' indices of E[R | theta] have 95 % intervals wider than [0, 1] (largest "
+            "half-width 0.505): they divide by the parameters' share of Var R, here 0.1 "
+            "[0.05, 0.15], which is small (below 1/4) and makes them wide at any number of rows; "
+            "the first order in R and the shares are this study's better-determined estimates");
+  e.response_first_order[0] = {0.4, -0.2, 1.0};  // over Var Y: too few rows
   EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"),
             "the Sobol' estimates of R from 16 rows say little: a 95 % interval is wider than "
-            "[0, 1], the range of an index (largest half-width 0.505), and these intervals, "
-            "asymptotic (delta method), may not hold at so few rows; run more --samples, or use "
-            "--target-halfwidth");
+            "[0, 1], the range of an index (largest half-width 0.6), and these intervals, "
+            "asymptotic (delta method), may not hold at so few rows; run more rows (--samples, "
+            "or a larger --max-samples with --target-halfwidth)");
   EXPECT_EQ(stickslip::sensitivity_warning(e, "R"), stickslip::uninformative_indices_note(e, "R"));
-  e.first_order[0].value = e.first_order[0].high = NAN;  // NaN: not "wide"
+  e.response_first_order[0].value = e.response_first_order[0].high = NAN;  // NaN is not wide...
+  EXPECT_THAT(stickslip::uninformative_indices_note(e, "R"), testing::HasSubstr("E[R | theta]"));
+  e.intrinsic_share = {0.2, -0.5, 0.9};  // ...nor does it hide a wide one
+  EXPECT_THAT(stickslip::uninformative_indices_note(e, "R"), testing::HasSubstr("from 16 rows"));
+  e.total_order[0] = {0.5, 0.2, 0.8};
+  e.intrinsic_share = {0.2, 0.15, 0.25};
   EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"), "");
   sobol_moments zero(1);
   for (int j = 0; j < 10; ++j) zero.add(0, 0, 0, std::vector<double>{0});

@@ -28,6 +28,13 @@ namespace stickslip::io {
 void refuse_to_replace(const std::vector<std::string>& paths, const std::string& what,
                        const std::string& how_to_proceed);
 
+// The outputs of an earlier run that write_all removed (it returns them)
+// and that are still gone, in one line for a note: "removed 'a', 'b': they
+// were an earlier run's, which this run does not write"; empty when there
+// are none. A file written again since (a study's figure, drawn after
+// write_all) is not named.
+[[nodiscard]] std::string removed_outputs_note(const std::vector<std::string>& removed);
+
 // One output file: the flag that names it (for messages), its path, and
 // the function that prints its text.
 struct text_output {

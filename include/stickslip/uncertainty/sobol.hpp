@@ -158,11 +158,16 @@ inline constexpr double sobol_z95 = 1.959963984540054;
 [[nodiscard]] std::string undefined_indices_note(const sobol_estimates& e,
                                                  std::string_view statistic);
 
-// When some index's or share's 95 % interval is wider than [0, 1], the
-// range of an index (max_half_width > 1/2): the estimates say little, and
-// the delta method's intervals, asymptotic, may not hold at so few rows (a
-// new user's --samples 2 reported a parameter share of -5.8 without a
-// word). One line; empty otherwise, and for undefined (NaN) indices.
+// When a 95 % interval is wider than [0, 1], the range of an index (a
+// finite half-width > 1/2; NaN ones are left out), one line on why:
+// - an index of the response or a share (over Var Y), or one of the mean
+//   response with a parameter share of 1/4 or more: too few rows, and the
+//   delta method's intervals, asymptotic, may not hold (a new user's
+//   --samples 2 reported a parameter share of -5.8 without a word);
+// - else an index of the mean response (over Var g) with a share below 1/4:
+//   the share is small, and those indices divide by it at any number of
+//   rows.
+// Empty otherwise, and for a zero variance (undefined_indices_note).
 [[nodiscard]] std::string uninformative_indices_note(const sobol_estimates& e,
                                                      std::string_view statistic);
 

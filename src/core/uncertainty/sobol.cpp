@@ -289,14 +289,52 @@ std::string undefined_indices_note(const sobol_estimates& e, std::string_view st
       statistic, e.rows, e.mean);
 }
 
+namespace {
+
+// The largest finite half-width of some intervals (0 when none is finite):
+// a NaN index (V - s2 = 0) does not hide the others' width.
+struct widest_finite {
+  double width = 0.0;
+  void operator()(const interval_estimate& e) {
+    if (const double h = e.half_width(); std::isfinite(h)) width = std::max(width, h);
+  }
+  void operator()(const std::vector<interval_estimate>& es) {
+    for (const auto& e : es) (*this)(e);
+  }
+};
+
+}  // namespace
+
 std::string uninformative_indices_note(const sobol_estimates& e, std::string_view statistic) {
-  const double h = e.max_half_width();
-  if (!(h > 0.5)) return {};  // NaN too
-  return fmt::format(
-      "the Sobol' estimates of {} from {} rows say little: a 95 % interval is wider than [0, 1], "
-      "the range of an index (largest half-width {:.3g}), and these intervals, asymptotic (delta "
-      "method), may not hold at so few rows; run more --samples, or use --target-halfwidth",
-      statistic, e.rows, h);
+  if (!(e.variance > 0.0)) return {};  // undefined_indices_note's case
+  // Over Var Y, which the rows estimate well: the response's first-order
+  // indices and the shares. Wide here means too few rows.
+  widest_finite response;
+  response(e.response_first_order), response(e.parameter_share), response(e.intrinsic_share);
+  // The mean response's indices divide by Var g = Var Y - s2, the
+  // parameters' share of Var Y: their intervals are those over Var Y
+  // magnified by about 1 / share. Below a share of 1/4 (a magnification
+  // over 4) the share is why they are wide, at any number of rows (a review:
+  // "so few rows" was said at 4,000); above it, the rows are.
+  widest_finite mean;
+  mean(e.first_order), mean(e.total_order);
+  const bool small_share = e.parameter_share.value < 0.25;
+  if (response.width > 0.5 || (mean.width > 0.5 && !small_share))
+    return fmt::format(
+        "the Sobol' estimates of {} from {} rows say little: a 95 % interval is wider than "
+        "[0, 1], the range of an index (largest half-width {:.3g}), and these intervals, "
+        "asymptotic (delta method), may not hold at so few rows; run more rows (--samples, or "
+        "a larger --max-samples with --target-halfwidth)",
+        statistic, e.rows, std::max(response.width, mean.width));
+  if (mean.width > 0.5)
+    return fmt::format(
+        "the Sobol' indices of E[{0} | theta] have 95 % intervals wider than [0, 1] (largest "
+        "half-width {1:.3g}): they divide by the parameters' share of Var {0}, here {2:.3g} "
+        "[{3:.3g}, {4:.3g}], which is small (below 1/4) and makes them wide at any number of "
+        "rows; the first order in {0} and the shares are this study's better-determined "
+        "estimates",
+        statistic, mean.width, e.parameter_share.value, e.parameter_share.low, e.parameter_share.high);
+  return {};
 }
 
 std::string sensitivity_warning(const sobol_estimates& e, std::string_view statistic) {

@@ -545,8 +545,9 @@ std::string to_toml(const sweep_spec& s) {
   const std::string rows_note =
       s.sensitivity_statistic.empty()
           ? std::string()
-          : fmt::format("  # the design's {} (--{}), {} realizations each",
-                        s.target_halfwidth > 0.0 ? "most rows" : "rows",
+          : fmt::format("  # {} (--{}), {} realizations each",
+                        s.target_halfwidth > 0.0 ? "at most this many of the design's rows"
+                                                 : "the design's rows",
                         s.target_halfwidth > 0.0 ? "max-samples" : "samples", runs_per_row(s));
   out += fmt::format(
       "\n[sweep]\nrealizations = {}{}\nseed = {}\nblock_size = {}\nmax_events = {}\n"
@@ -563,7 +564,10 @@ std::string to_toml(const sweep_spec& s) {
     out += fmt::format("target_halfwidth = {}\n", toml_float(s.target_halfwidth));
   if (!s.target_statistic.empty() || s.target_halfwidth != 0.0 ||
       s.min_realizations != sweep_spec{}.min_realizations)
-    out += fmt::format("min_realizations = {}\n", toml_u64(s.min_realizations));
+    out += fmt::format("min_realizations = {}{}\n", toml_u64(s.min_realizations),
+                       s.sensitivity_statistic.empty()
+                           ? ""
+                           : "  # the design's rows before the stop rule (--min-samples)");
   if (!s.sensitivity_statistic.empty())
     out += fmt::format("sensitivity_statistic = \"{}\"\n", s.sensitivity_statistic);
   if (!(s.statistics == statistics_selection{})) {

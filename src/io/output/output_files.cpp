@@ -46,6 +46,17 @@ void refuse_to_replace(const std::vector<std::string>& paths, const std::string&
                           how_to_proceed));
 }
 
+std::string removed_outputs_note(const std::vector<std::string>& removed) {
+  std::vector<std::string> gone;
+  for (const auto& p : removed) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(p, ec))) gone.push_back(fmt::format("'{}'", p));
+  }
+  if (gone.empty()) return {};
+  return fmt::format("removed {}: {} an earlier run's, which this run does not write",
+                     fmt::join(gone, ", "), gone.size() == 1 ? "it was" : "they were");
+}
+
 namespace {
 
 void check_targets(const std::vector<text_output>& files) {

@@ -284,12 +284,7 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   const auto swept = swept_symbols(s);
   auto without_value = swept;
   for (auto& sym : symbols_set_by_laws(s.uncertain)) without_value.push_back(sym);
-  j.key("base");
-  j.begin_object();
-  const auto belt = same_belt_everywhere(rs);
-  emit_model_members(j, resolved_base(rs), without_value, meaningless_parameters(rs), belt.levels,
-                     belt.generator);
-  j.end_object();
+  emit_base(j, rs, without_value);
   j.key("swept");
   j.begin_array();
   for (const auto& sym : swept) j.value(sym);

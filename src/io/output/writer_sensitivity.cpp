@@ -53,14 +53,10 @@ void emit_sensitivity(json_emitter& j, const result_set& rs) {
   j.begin_object();
   for (const auto& u : rs.spec.uncertain) j.member(u.symbol, to_string(u.law));
   j.end_object();
-  // The fixed parameters, as a sweep's summary.json writes them (null for
-  // those the laws set; a new user found k = 40 only in the command line).
-  j.key("base");
-  j.begin_object();
-  const auto belt = same_belt_everywhere(rs);
-  emit_model_members(j, resolved_base(rs), symbols_set_by_laws(rs.spec.uncertain),
-                     meaningless_parameters(rs), belt.levels, belt.generator);
-  j.end_object();
+  // The fixed parameters, as a sweep's summary.json writes its
+  // parameters.base (null for those the laws set; a new user found k = 40
+  // only in the command line).
+  emit_base(j, rs, symbols_set_by_laws(rs.spec.uncertain));
   j.member("mean", est.mean);
   j.member("variance", est.variance);
   j.member("intrinsic_variance", est.intrinsic_variance);

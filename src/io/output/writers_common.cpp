@@ -5,6 +5,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
+#include "json_emitter.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io::detail {
@@ -62,6 +63,15 @@ belt_sameness same_belt_everywhere(const result_set& rs) {
     same.generator = same.generator && moved.generator() == generator;
   }
   return same;
+}
+
+void emit_base(json_emitter& j, const result_set& rs, const std::vector<std::string>& without_value) {
+  j.key("base");
+  j.begin_object();
+  const auto belt = same_belt_everywhere(rs);
+  emit_model_members(j, resolved_base(rs), without_value, meaningless_parameters(rs), belt.levels,
+                     belt.generator);
+  j.end_object();
 }
 
 std::vector<std::string> point_parameter_symbols(const result_set& rs) {

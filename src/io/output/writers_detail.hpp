@@ -46,6 +46,12 @@ struct belt_sameness {
   bool levels = true, generator = true;
 };
 [[nodiscard]] belt_sameness same_belt_everywhere(const result_set& rs);
+// summary.json's "base": {...}, the model of the result set (resolved_base,
+// same_belt_everywhere, meaningless_parameters left out), null for each
+// symbol of `without_value` (swept, or set by a law): a sweep's
+// parameters.base, a sensitivity study's base.
+class json_emitter;
+void emit_base(json_emitter& j, const result_set& rs, const std::vector<std::string>& without_value);
 // The parameters every summary point carries: lambda and mu (swept or not,
 // unless meaningless_parameters), then the other swept symbols in axis order.
 [[nodiscard]] std::vector<std::string> point_parameter_symbols(const result_set& rs);
