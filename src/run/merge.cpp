@@ -8,6 +8,7 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/serialize.hpp"
+#include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "grid_windows.hpp"
 
 namespace stickslip::run {
@@ -88,9 +89,10 @@ void check_coverage(const sweep_spec& spec, combined& all) {
   if (missing == 0) return;
   throw error(exit_code::invalid_input,
               fmt::format("merge: {} of {} work units are missing (unit indices {}{}); run the "
-                          "missing shards (`stickslip sweep ... --shard i/n --resume -o DIR`) "
+                          "missing shards (`stickslip {} ... --shard i/n --resume -o DIR`) "
                           "and merge again",
-                          missing, total, fmt::join(first, ", "), missing > first.size() ? ", ..." : ""));
+                          missing, total, fmt::join(first, ", "), missing > first.size() ? ", ..." : "",
+                          is_sensitivity(spec) ? "sensitivity" : "sweep"));
 }
 
 }  // namespace

@@ -141,6 +141,11 @@ for i in 0 1; do
   run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 2 \
     --block-size 1 --shard $i/2 -o two_shard$i
 done
+# (one shard alone: the missing one is named with the study's command)
+"$BIN" merge two_shard0 -o two_half >/dev/null 2>"$WORK/stderr"
+grep -qF "run the missing shards (\`stickslip sensitivity ... --shard i/n --resume -o DIR\`)" "$WORK/stderr" ||
+  fail "merge of half a study: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
 run_ok merge two_shard0 two_shard1 -o two_merged
 grep -qF "warning: the Sobol' estimates of R from 2 rows say little" "$WORK/stderr" ||
   fail "merge of a 2-row study: no warning: $(cat "$WORK/stderr")"
