@@ -49,6 +49,16 @@ p = points("paper")[0]
 check("dmean_dlambda" in p and "control_variate" in p and "dmean_drates" not in p,
       f"paper summary.json point: {sorted(p)}")
 
+# A swept mu: mu_s and mu_k resolve to it, point by point. They have no one
+# value: no global attribute, null in summary.json's base (a new user found
+# the first point's mu_s = 4 in both), their variables over the grid.
+ds, v = data_vars("paper/results.nc")
+check("mu_s" not in ds.ncattrs() and "mu_k" not in ds.ncattrs(),
+      f"paper: mu_s/mu_k attributes {[a for a in ds.ncattrs() if a.startswith('mu')]}")
+check(sorted(set(v["static_friction"][:].ravel().tolist())) == [4.0, 6.0], "paper: mu_s values")
+base = json.load(open("paper/summary.json"))["parameters"]["base"]
+check(base["mu_s"] is None and base["mu_k"] is None and base["mu"] is None, f"paper: base {base}")
+
 # mu_s/mu_k: "mu" is no parameter of this model: no variable, attribute,
 # JSON member or CSV column; mu_s and mu_k are.
 ds, v = data_vars("split/results.nc")

@@ -175,7 +175,8 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     f.putAtt(u.symbol + "_law", to_string(u.law));
   }
   if (!uncertain.empty()) f.putAtt("uncertain_parameters", uncertain);
-  const auto sw = swept_symbols(s);
+  auto sw = swept_symbols(s);
+  for (auto& sym : varying_parameters(rs)) sw.push_back(std::move(sym));  // no one value either
   const auto omitted = meaningless_parameters(rs);
   const auto by_laws = symbols_set_by_laws(s.uncertain);
   const auto is_uncertain = [&](const char* sym) {

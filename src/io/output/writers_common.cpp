@@ -39,6 +39,21 @@ std::vector<std::string> meaningless_parameters(const result_set& rs) {
   return out;
 }
 
+std::vector<std::string> varying_parameters(const result_set& rs) {
+  const auto swept = swept_symbols(rs.spec);
+  std::vector<std::string> out;
+  for (const char* sym : recorded_parameter_names) {
+    if (std::find(swept.begin(), swept.end(), sym) != swept.end() || rs.points.empty()) continue;
+    const double first = parameter_value(rs.points.front().parameters, sym);
+    for (const auto& p : rs.points)
+      if (parameter_value(p.parameters, sym) != first) {
+        out.emplace_back(sym);
+        break;
+      }
+  }
+  return out;
+}
+
 const model_parameters& resolved_base(const result_set& rs) {
   return rs.points.empty() ? rs.spec.base : rs.points.front().parameters;
 }
@@ -65,7 +80,8 @@ belt_sameness same_belt_everywhere(const result_set& rs) {
   return same;
 }
 
-void emit_base(json_emitter& j, const result_set& rs, const std::vector<std::string>& without_value) {
+void emit_base(json_emitter& j, const result_set& rs, std::vector<std::string> without_value) {
+  for (auto& sym : varying_parameters(rs)) without_value.push_back(std::move(sym));
   j.key("base");
   j.begin_object();
   const auto belt = same_belt_everywhere(rs);

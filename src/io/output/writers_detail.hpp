@@ -36,6 +36,12 @@ namespace stickslip::io::detail {
 // not swept are read from, so that "mu" of --mu-s 2 --mu-k 2 is 2, not the
 // unused default 5. The spec's base when there are no points.
 [[nodiscard]] const model_parameters& resolved_base(const result_set& rs);
+// The recorded scalars that are not swept but whose resolved value differs
+// between points: mu_s and mu_k that resolve to a swept mu. They have no one
+// value for the grid (their variables over the grid hold them): no global
+// attribute, null in summary.json's base (a new user found mu_s = 0.5, the
+// first point's, in a sweep over mu = 0.5 .. 7).
+[[nodiscard]] std::vector<std::string> varying_parameters(const result_set& rs);
 // Whether the belt's levels v_i and its generator Q are one for the whole
 // result set: not when they differ between points (a swept lambda, V, vI or
 // rI) or follow a law drawn per realization. The outputs' one belt of the
@@ -48,10 +54,10 @@ struct belt_sameness {
 [[nodiscard]] belt_sameness same_belt_everywhere(const result_set& rs);
 // summary.json's "base": {...}, the model of the result set (resolved_base,
 // same_belt_everywhere, meaningless_parameters left out), null for each
-// symbol of `without_value` (swept, or set by a law): a sweep's
-// parameters.base, a sensitivity study's base.
+// symbol of `without_value` (swept, or set by a law) and of
+// varying_parameters: a sweep's parameters.base, a sensitivity study's base.
 class json_emitter;
-void emit_base(json_emitter& j, const result_set& rs, const std::vector<std::string>& without_value);
+void emit_base(json_emitter& j, const result_set& rs, std::vector<std::string> without_value);
 // The parameters every summary point carries: lambda and mu (swept or not,
 // unless meaningless_parameters), then the other swept symbols in axis order.
 [[nodiscard]] std::vector<std::string> point_parameter_symbols(const result_set& rs);
