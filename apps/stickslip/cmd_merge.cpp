@@ -76,12 +76,12 @@ void run_merge(const merge_options& o) {
   fmt::print(stderr, "merged {} units from {} journals ({} grid points) -> {}\n",
              unit_count(spec), o.inputs.size(), point_count(spec), o.out_dir);
   // A study's warning, as `sensitivity` gives it (the review: merged shards
-  // said nothing of undefined or wide indices; summary.json had it).
-  if (is_sensitivity(spec))
-    if (const auto w = sensitivity_warning(sobol_indices(merged.results.points.front().stats.sensitivity),
-                                           sensitivity_quantity(spec).summary_name);
-        !w.empty())
-      fmt::print(stderr, "stickslip: warning: {}\n", w);
+  // said nothing of undefined or wide indices; summary.json had it), and a
+  // sweep's unmet --target-ci, as `sweep` gives it.
+  const auto w = is_sensitivity(spec)
+                     ? study_warning(spec, sobol_indices(merged.results.points.front().stats.sensitivity))
+                     : unmet_target_note(merged.results);
+  if (!w.empty()) fmt::print(stderr, "stickslip: warning: {}\n", w);
 }
 
 }  // namespace

@@ -192,6 +192,9 @@ void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_ou
   const auto points = point_count(spec);
   fmt::print(stderr, "{} realizations in {:.3g} s ({} grid point{}, {}{}) -> {}\n", n,
              out.elapsed_this_run, points, points == 1 ? "" : "s", where, resumed, plan.dir);
+  if (out.results)
+    if (const auto note = unmet_target_note(*out.results); !note.empty())
+      fmt::print(stderr, "stickslip: warning: {}\n", note);
 }
 
 // The command's results, kept until the process ends: it ends right after

@@ -130,11 +130,20 @@ grep -qF "no figure" "$WORK/stderr" && fail "2 rows: the figure was refused"
 "$PY" -c 'import json; assert "say little" in json.load(open("two_rows/summary.json"))["warning"]' ||
   fail "2 rows: summary.json's warning"
 # a narrow law (a parameter share of ~0.06): the mean response's indices are
-# wide at any number of rows, and the warning says why, not "few rows"
+# wide, magnified by ~1 / share, and the warning says why, not "few rows"
 run_ok sensitivity --k 40 --mu 'uniform(3,3.05)' --samples 1000 --no-figure -o narrow
 grep -qF "warning: the Sobol' indices of E[R | theta] have 95 % intervals wider than [0, 1]" "$WORK/stderr" &&
   grep -qF "which is small (below 1/4)" "$WORK/stderr" ||
   fail "a small parameter share: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
+# an unreachable --target-halfwidth: the study stops at --max-samples and
+# says so (exit 0 and no word before); summary.json records the target
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' \
+  --target-halfwidth 0.005 --min-samples 256 --max-samples 512 --no-figure -o capped
+grep -qE "^stickslip: warning: the target 95 % half-width 0.005 was not reached within --max-samples 512 rows: the largest is [0-9.]+; raise --max-samples$" "$WORK/stderr" ||
+  fail "an unmet --target-halfwidth: $(cat "$WORK/stderr")"
+"$PY" -c 'import json; d = json.load(open("capped/summary.json")); assert d["target_halfwidth"] == 0.005 and d["target_met"] is False and "not reached" in d["warning"], d' ||
+  fail "capped/summary.json"
 checks=$((checks + 1))
 # merged shards give the same warning (they said nothing)
 for i in 0 1; do

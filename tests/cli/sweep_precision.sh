@@ -10,6 +10,14 @@ for t in 1 2; do
     -o "tci$t"
 done
 cmp -s tci1/summary.csv tci2/summary.csv || fail "summary.csv differs between --threads 1 and 2"
+grep -qF "did not reach the target" "$WORK/stderr" && fail "a met target warned: $(cat "$WORK/stderr")"
+# An unreachable target: every point stops at its cap, and the run says so
+# (it ended with exit 0 and no word), naming the widest point.
+run_ok sweep --k 40 --lambda 1,10 --mu 2,5 --target-ci R:0.0001 --max-realizations 2000 \
+  --min-realizations 100 -o unmet
+grep -qE "^stickslip: warning: 4 of 4 grid points did not reach the target 95 % half-width 0.0001 of the mean of R within --max-realizations 2000 \(the widest: [0-9.e-]+, at lambda = [0-9.]+, mu = [0-9.]+\); raise --max-realizations" "$WORK/stderr" ||
+  fail "an unmet --target-ci: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
 "$PY" - <<'PY' || fail "target CI checks"
 import json, sys
 docs = [json.load(open(f"tci{t}/summary.json")) for t in (1, 2)]

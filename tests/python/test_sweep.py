@@ -256,6 +256,15 @@ def test_common_random_numbers_and_target_ci_equal_the_cli(cli, tmp_path):
     assert len(set(ds.realizations.values.ravel().tolist())) > 1
 
 
+def test_an_unreachable_target_ci_warns_as_the_cli_does():
+    # every point stops at its cap: a UserWarning names how many, and the widest
+    with pytest.warns(UserWarning, match=r"2 of 2 grid points did not reach the target 95 % "
+                                         r"half-width 0.0001 of the mean of R within "
+                                         r"--max-realizations 400 \(the widest: "):
+        stickslip.sweep(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=400, seed=3,
+                        target_ci="R:0.0001", min_realizations=100)
+
+
 def test_simulate_replays_a_common_random_number_realization():
     ds = stickslip.sweep(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=50, seed=3,
                          common_random_numbers=True)

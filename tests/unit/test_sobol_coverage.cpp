@@ -397,8 +397,12 @@ TEST(SobolMoments, IntervalsWiderThanTheRangeOfAnIndexAreWarnedOf) {
   EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"),  // a share of 0.1: the share
             "the Sobol' indices of E[R | theta] have 95 % intervals wider than [0, 1] (largest "
             "half-width 0.505): they divide by the parameters' share of Var R, here 0.1 "
-            "[0.05, 0.15], which is small (below 1/4) and makes them wide at any number of rows; "
-            "the first order in R and the shares are this study's better-determined estimates");
+            "[0.05, 0.15], which is small (below 1/4) and magnifies their intervals by about 1 / "
+            "share, so that more rows narrow them only slowly; the first order in R and the "
+            "shares are this study's better-determined estimates");
+  e.parameter_share = {0.1, -0.2, 0.4};  // a share whose interval reaches 1/4: the rows
+  EXPECT_THAT(stickslip::uninformative_indices_note(e, "R"), testing::HasSubstr("from 16 rows"));
+  e.parameter_share = {0.1, 0.05, 0.15};
   e.response_first_order[0] = {0.4, -0.2, 1.0};  // over Var Y: too few rows
   EXPECT_EQ(stickslip::uninformative_indices_note(e, "R"),
             "the Sobol' estimates of R from 16 rows say little: a 95 % interval is wider than "

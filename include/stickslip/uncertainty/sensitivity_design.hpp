@@ -15,11 +15,13 @@
 // at the realization's own window).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <optional>
 #include <string>
 
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep_spec.hpp"
+#include "stickslip/uncertainty/sobol.hpp"
 
 namespace stickslip {
 
@@ -80,5 +82,16 @@ void validate_sensitivity(const sweep_spec& s);
 // min_realizations rows and every index and share's 95 % half-width <=
 // target_halfwidth.
 [[nodiscard]] bool meets_sensitivity_target(const sweep_spec& s, const point_statistics& p);
+
+// What a study's outputs record as its "warning" (sensitivity.nc,
+// summary.json; the CLI, merge and Python give it): sensitivity_warning of
+// its estimates, else, with --target-halfwidth, that the target was not
+// reached within --max-samples rows (the largest half-width, and what to
+// raise); empty otherwise. (A new user's unreachable target ended with exit
+// 0 and no word.)
+[[nodiscard]] std::string study_warning(const sweep_spec& s, const sobol_estimates& e);
+// Whether the study met its --target-halfwidth (false without one; true for
+// a constant statistic, where the stop rule stops).
+[[nodiscard]] bool study_target_met(const sweep_spec& s, const sobol_estimates& e);
 
 }  // namespace stickslip

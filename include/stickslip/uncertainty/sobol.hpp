@@ -161,12 +161,12 @@ inline constexpr double sobol_z95 = 1.959963984540054;
 // When a 95 % interval is wider than [0, 1], the range of an index (a
 // finite half-width > 1/2; NaN ones are left out), one line on why:
 // - an index of the response or a share (over Var Y), or one of the mean
-//   response with a parameter share of 1/4 or more: too few rows, and the
-//   delta method's intervals, asymptotic, may not hold (a new user's
-//   --samples 2 reported a parameter share of -5.8 without a word);
-// - else an index of the mean response (over Var g) with a share below 1/4:
-//   the share is small, and those indices divide by it at any number of
-//   rows.
+//   response unless the parameter share's interval is below 1/4: too few
+//   rows, and the delta method's intervals, asymptotic, may not hold (a new
+//   user's --samples 2 reported a parameter share of -5.8 without a word);
+// - else an index of the mean response (over Var g) with a share whose
+//   interval is below 1/4: those indices divide by the share, which
+//   magnifies their intervals by about 1 / share.
 // Empty otherwise, and for a zero variance (undefined_indices_note).
 [[nodiscard]] std::string uninformative_indices_note(const sobol_estimates& e,
                                                      std::string_view statistic);

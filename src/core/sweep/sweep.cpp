@@ -2,6 +2,8 @@
 // a precision target.
 #include "stickslip/sweep.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 
@@ -15,6 +17,33 @@ const quantity_info* target_quantity(const sweep_spec& s) {
   if (const auto* q = find_mean_statistic(s.target_statistic)) return q;
   throw invalid_value("target CI statistic", s.target_statistic,
                       "a statistic with one value per realization: " + mean_statistic_names());
+}
+
+std::string unmet_target_note(const result_set& rs) {
+  const sweep_spec& s = rs.spec;
+  const quantity_info* q = is_sensitivity(s) ? nullptr : target_quantity(s);
+  if (!q) return {};
+  std::size_t unmet = 0;
+  const point_result* widest = nullptr;
+  double widest_h = 0.0;
+  for (const auto& p : rs.points) {
+    const double h = (p.stats.*q->moments).ci95_half_width();
+    if (h <= s.target_halfwidth) continue;
+    ++unmet;
+    if (!widest || !(h <= widest_h)) widest = &p, widest_h = h;  // NaN counts as widest
+  }
+  if (unmet == 0) return {};
+  std::string at;
+  for (const auto& ax : s.axes) {
+    const std::string sym = canonical_symbol(ax.name);
+    at += fmt::format("{}{} = {}", at.empty() ? "" : ", ", sym, parameter_value(widest->parameters, sym));
+  }
+  return fmt::format(
+      "{} of {} grid point{} did not reach the target 95 % half-width {} of the mean of {} within "
+      "--max-realizations {} (the widest: {:.3g}{}{}); raise --max-realizations, or read each "
+      "point's interval in summary.csv",
+      unmet, rs.points.size(), rs.points.size() == 1 ? "" : "s", s.target_halfwidth,
+      q->summary_name, s.realizations, widest_h, at.empty() ? "" : ", at ", at);
 }
 
 bool meets_target(const sweep_spec& s, const point_statistics& p) {

@@ -1,5 +1,7 @@
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -128,6 +130,20 @@ block_result simulate_block_sensitivity(const sweep_spec& s, const work_unit& u)
     ++out.stats.realizations;  // rows: the spec's realizations (check_block_shape)
   }
   return out;
+}
+
+bool study_target_met(const sweep_spec& s, const sobol_estimates& e) {
+  if (!(s.target_halfwidth > 0.0)) return false;
+  return e.constant_statistic || e.max_half_width() <= s.target_halfwidth;
+}
+
+std::string study_warning(const sweep_spec& s, const sobol_estimates& e) {
+  auto note = sensitivity_warning(e, sensitivity_quantity(s).summary_name);
+  if (!note.empty() || !(s.target_halfwidth > 0.0) || study_target_met(s, e)) return note;
+  return fmt::format(
+      "the target 95 % half-width {} was not reached within --max-samples {} rows: the largest "
+      "is {:.3g}; raise --max-samples",
+      s.target_halfwidth, e.rows, e.max_half_width());
 }
 
 bool meets_sensitivity_target(const sweep_spec& s, const point_statistics& p) {

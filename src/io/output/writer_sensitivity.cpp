@@ -60,8 +60,11 @@ void emit_sensitivity(json_emitter& j, const result_set& rs) {
   j.member("mean", est.mean);
   j.member("variance", est.variance);
   j.member("intrinsic_variance", est.intrinsic_variance);
-  if (const auto note = sensitivity_warning(est, q.summary_name); !note.empty())
-    j.member("warning", note);
+  if (rs.spec.target_halfwidth > 0.0) {  // --target-halfwidth, and whether it was reached
+    j.member("target_halfwidth", rs.spec.target_halfwidth);
+    j.member("target_met", study_target_met(rs.spec, est));
+  }
+  if (const auto note = study_warning(rs.spec, est); !note.empty()) j.member("warning", note);
   j.key("indices");
   j.begin_array(layout::multi_line);
   for (std::size_t i = 0; i < rs.spec.uncertain.size(); ++i) {
@@ -139,9 +142,11 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   f.putAtt("threads", nc::ncInt, static_cast<int>(rs.threads));
   f.putAtt("ranks", nc::ncInt, static_cast<int>(rs.ranks));
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
-  if (const auto note = sensitivity_warning(est, sensitivity_quantity(rs.spec).summary_name);
-      !note.empty())
-    f.putAtt("warning", note);
+  if (rs.spec.target_halfwidth > 0.0) {
+    f.putAtt("target_halfwidth", nc::ncDouble, rs.spec.target_halfwidth);
+    f.putAtt("target_met", study_target_met(rs.spec, est) ? "true" : "false");
+  }
+  if (const auto note = study_warning(rs.spec, est); !note.empty()) f.putAtt("warning", note);
   f.putAtt("estimators",
            "first order: OpenTURNS's Saltelli form, centred by the mean of all outputs "
            "(Saltelli 2010's uncentred form estimates the same quantity); total order: Jansen "
