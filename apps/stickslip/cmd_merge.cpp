@@ -73,8 +73,13 @@ void run_merge(const merge_options& o) {
     throw;
   }
   const auto& spec = merged.results.spec;
-  fmt::print(stderr, "merged {} units from {} journals ({} grid points) -> {}\n",
-             unit_count(spec), o.inputs.size(), point_count(spec), o.out_dir);
+  const auto units = unit_count(spec), points = point_count(spec);
+  const auto journals = o.inputs.size();
+  fmt::print(stderr, "merged {} unit{} from {} journal{} ({}) -> {}\n", units,
+             units == 1 ? "" : "s", journals, journals == 1 ? "" : "s",
+             is_sensitivity(spec) ? fmt::format("a sensitivity study; its figure: `stickslip plot {}`", o.out_dir)
+                                  : fmt::format("{} grid point{}", points, points == 1 ? "" : "s"),
+             o.out_dir);
   // A study's warning, as `sensitivity` gives it (the review: merged shards
   // said nothing of undefined or wide indices; summary.json had it), and a
   // sweep's unmet --target-ci, as `sweep` gives it.

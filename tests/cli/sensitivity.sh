@@ -156,9 +156,15 @@ grep -qF "run the missing shards (\`stickslip sensitivity ... --shard i/n --resu
   fail "merge of half a study: $(cat "$WORK/stderr")"
 checks=$((checks + 1))
 run_ok merge two_shard0 two_shard1 -o two_merged
+expect_eq "merge's line for a study" "$(grep -F merged "$WORK/stderr")" \
+  "merged 2 units from 2 journals (a sensitivity study; its figure: \`stickslip plot two_merged\`) -> two_merged"
 grep -qF "warning: the Sobol' estimates of R from 2 rows say little" "$WORK/stderr" ||
   fail "merge of a 2-row study: no warning: $(cat "$WORK/stderr")"
 checks=$((checks + 1))
+# a resume with other --samples names the design's rows, not "realizations"
+"$BIN" sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 4 -o two_rows \
+  --resume >/dev/null 2>"$WORK/stderr"
+grep -qF "design rows (--samples): 2 vs 4" "$WORK/stderr" || fail "a study's mismatch: $(cat "$WORK/stderr")"
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 1000 -o many
 grep -qF "warning" "$WORK/stderr" && fail "1000 rows warned: $(cat "$WORK/stderr")"
 checks=$((checks + 1))

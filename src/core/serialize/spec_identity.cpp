@@ -55,8 +55,15 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
         return fmt::format("grid axis {} value #{}: {} vs {}", a.axes[i].name, k + 1,
                            num(a.axes[i].values[k]), num(b.axes[i].values[k]));
   }
+  // A sensitivity study's realizations are its design's rows (a new user
+  // read "realizations: 256 vs 512" after giving --samples).
+  const bool study = !a.sensitivity_statistic.empty() && !b.sensitivity_statistic.empty();
   if (a.realizations != b.realizations)
-    return fmt::format("realizations: {} vs {}", a.realizations, b.realizations);
+    return fmt::format("{}: {} vs {}",
+                       !study ? "realizations"
+                       : a.target_halfwidth > 0.0 ? "the most design rows (--max-samples)"
+                                                  : "design rows (--samples)",
+                       a.realizations, b.realizations);
   if (a.seed != b.seed) return fmt::format("seed: {} vs {}", a.seed, b.seed);
   if (a.block_size != b.block_size)
     return fmt::format("block size: {} vs {}", a.block_size, b.block_size);
@@ -68,6 +75,9 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
   if (a.common_random_numbers != b.common_random_numbers)
     return fmt::format("common random numbers: {} vs {}", a.common_random_numbers,
                        b.common_random_numbers);
+  if (study && (a.target_halfwidth != b.target_halfwidth || a.min_realizations != b.min_realizations))
+    return fmt::format("target half-width: {} (min rows {}) vs {} (min rows {})", a.target_halfwidth,
+                       a.min_realizations, b.target_halfwidth, b.min_realizations);
   if (a.target_statistic != b.target_statistic || a.target_halfwidth != b.target_halfwidth ||
       a.min_realizations != b.min_realizations)
     return fmt::format("target CI: {}:{} (min {}) vs {}:{} (min {})", a.target_statistic,
