@@ -11,6 +11,7 @@ run_ok sweep --belt-levels 1,-0.5 --belt-rates 1,2 --mu 3,4 "${C[@]}" -o rates
 run_ok sweep --c 0,0.5 --mu-s 6 --mu-k 4 --belt-levels 1,-0.5,0 \
   --belt-generator '-2,1.5,0.5;0.25,-0.75,0.5;1,2,-3' "${C[@]}" -o generator
 run_ok sweep --lambda 1,2 --mu-s 2 --mu-k 2 --c 0 --belt-levels 1,-1 "${C[@]}" -o spelled
+run_ok sweep --lambda 1 --mu 4 --realizations 20 -o default_selection
 
 "$PY" - <<'PYEOF' || fail "see the lines above"
 import json, sys
@@ -58,6 +59,14 @@ check("mu_s" not in ds.ncattrs() and "mu_k" not in ds.ncattrs(),
 check(sorted(set(v["static_friction"][:].ravel().tolist())) == [4.0, 6.0], "paper: mu_s values")
 base = json.load(open("paper/summary.json"))["parameters"]["base"]
 check(base["mu_s"] is None and base["mu_k"] is None and base["mu"] is None, f"paper: base {base}")
+
+# The file's comment names what it holds: a default sweep's paper statistics,
+# not the family's X, W_f, W_c it does not write (a new user read them there).
+ds, v = data_vars("default_selection/results.nc")
+comment = ds.getncattr("comment")
+check("95% CI of R, S_T/t_a, S_L/t_a, D, D_1, H;" in comment and "W_f" not in comment,
+      f"default_selection: comment {comment[:160]}")
+check("X_mean" not in v and "friction_power_mean" not in v, "default_selection: family written")
 
 # mu_s/mu_k: "mu" is no parameter of this model: no variable, attribute,
 # JSON member or CSV column; mu_s and mu_k are.

@@ -22,6 +22,7 @@
 #include "stickslip/io/writers.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
+#include "stickslip/statistics_groups.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -117,21 +118,28 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   f.putAtt("Conventions", "CF-1.8");
   f.putAtt("source", fmt::format("stickslip {} (git {})", meta.version, meta.git_revision));
   f.putAtt("history", fmt::format("{}: {}", meta.created_utc, meta.command_line));
+  // What this file holds: the selected statistics only (a new user read
+  // X, W_f and W_c here in a default sweep that does not write them).
   std::string symbols, binned;
   for (const auto& q : quantities()) {
+    if (!selects(s.statistics, q)) continue;
     symbols += fmt::format("{}{}", symbols.empty() ? "" : ", ", q.symbol);
-    if (q.density) binned += fmt::format("{}{}", binned.empty() ? "" : ", ", q.symbol);
+    if (q.density && !s.means_only) binned += fmt::format("{}{}", binned.empty() ? "" : ", ", q.symbol);
   }
   f.putAtt("comment",
            fmt::format("Exact event-driven simulation. Per grid point: mean, std and 95% CI of "
-                       "{}; histograms (densities) of {} over dimension bin, with bin "
-                       "coordinates and bounds; convergence traces over dimension trace. "
+                       "{}; {}; convergence traces over dimension trace. "
                        "Parameters that are not swept are global attributes named by their "
-                       "symbol; every parameter is also a variable over the grid. Only the "
+                       "symbol (unless they follow a swept one: mu_s and mu_k of a swept mu); "
+                       "every parameter is also a variable over the grid. Only the "
                        "parameters that define the model are written (mu only when mu_s = "
                        "mu_k = mu, V only on a (+V, -V) belt, lambda only with Poisson "
                        "switching), and only the derivatives that apply to it.",
-                       symbols, binned));
+                       symbols,
+                       binned.empty() ? std::string("no histograms")
+                                      : fmt::format("histograms (densities) of {} over dimension "
+                                                    "bin, with bin coordinates and bounds",
+                                                    binned)));
   f.putAtt("version", meta.version);
   f.putAtt("git_revision", meta.git_revision);
   f.putAtt("command_line", meta.command_line);
