@@ -212,6 +212,13 @@ def model_arguments(kwargs, axes=False, stacklevel=3):
                 forms = "a number or a 1-D sequence of finite numbers" if axes else "a finite number"
                 raise error(f"invalid {key}: {value!r} (allowed: {forms}, or a law's text such as "
                             "'gamma(mean=5,cv=0.2)'; got text that is neither)")
+            elif not axes and (isinstance(value, (list, tuple)) or
+                               (_is_array(value) and np.ndim(value) > 0)):
+                # a grid where one value or a law is taken (a new user's
+                # lam=[1, 2] in sensitivity was told only "a finite number")
+                raise error(f"invalid {key}: {value!r} (allowed: a finite number, or a law's "
+                            "text such as 'uniform(0.5,10)'; got a sequence: a grid of values "
+                            "is stickslip.sweep's)")
             else:
                 given[sym] = number_or_axis(key, value) if axes else number(key, value)
     note = _stickslip.only_in_the_stream_key(given)

@@ -79,7 +79,10 @@ def test_samples_beside_a_target_are_refused_not_ignored():
 
 
 def test_a_grid_is_refused():
-    with pytest.raises(stickslip.Error):
+    # named as a grid, with the law it could be (it said only "a finite number")
+    with pytest.raises(stickslip.Error, match=r"invalid lam: \[1.0, 2.0\] \(allowed: a finite "
+                                              r"number, or a law's text such as "
+                                              r"'uniform\(0.5,10\)'; got a sequence"):
         stickslip.sensitivity(mu="uniform(2,7)", lam=[1.0, 2.0], samples=10)
 
 
