@@ -75,11 +75,13 @@ void run_merge(const merge_options& o) {
   const auto& spec = merged.results.spec;
   const auto units = unit_count(spec), points = point_count(spec);
   const auto journals = o.inputs.size();
+  std::string what = fmt::format("{} grid point{}", points, points == 1 ? "" : "s");
+  if (is_sensitivity(spec))  // no figure for undefined indices: `plot` refuses them
+    what = sobol_indices(merged.results.points.front().stats.sensitivity).variance == 0.0
+               ? std::string("a sensitivity study with undefined indices: no figure")
+               : fmt::format("a sensitivity study; its figure: `stickslip plot {}`", o.out_dir);
   fmt::print(stderr, "merged {} unit{} from {} journal{} ({}) -> {}\n", units,
-             units == 1 ? "" : "s", journals, journals == 1 ? "" : "s",
-             is_sensitivity(spec) ? fmt::format("a sensitivity study; its figure: `stickslip plot {}`", o.out_dir)
-                                  : fmt::format("{} grid point{}", points, points == 1 ? "" : "s"),
-             o.out_dir);
+             units == 1 ? "" : "s", journals, journals == 1 ? "" : "s", what, o.out_dir);
   // A study's warning, as `sensitivity` gives it (the review: merged shards
   // said nothing of undefined or wide indices; summary.json had it), and a
   // sweep's unmet --target-ci, as `sweep` gives it.

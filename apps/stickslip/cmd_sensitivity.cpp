@@ -192,8 +192,8 @@ void add_sensitivity_command(CLI::App& app, const invocation& inv) {
                       ->type_name("N");
   o.target_opt = cmd->add_option("--target-halfwidth", o.target_halfwidth,
                                  "run rows until every index and share has a 95% half-width "
-                                 "<= H, or the statistic has been constant over every row at "
-                                 "--min-samples (its indices are then undefined)")
+                                 "<= H (0 < H <= 0.5), or the statistic has been constant over "
+                                 "every row at --min-samples (its indices are then undefined)")
                      ->type_name("H");
   o.max_opt = cmd->add_option("--max-samples", o.max_samples,
                               "with --target-halfwidth: at most N rows (default 1000000)")

@@ -153,12 +153,14 @@ struct result_set {
 [[nodiscard]] result_set make_result_set(const sweep_spec& s, ordered_merger&& m);
 
 // With --target-ci: one line on the grid points whose mean's 95 % half-width
-// is still above the target (their cap, --max-realizations, came first),
-// how many, and the widest with its point; empty when every point met it or
-// there is no target. A sensitivity study's: study_target_note
-// (uncertainty/sensitivity_design.hpp). (A new user's unreachable target
-// ended with exit 0 and no word.)
-[[nodiscard]] std::string unmet_target_note(const result_set& rs);
+// is still above the target (their cap came first), how many, and the
+// widest with its point, and how many had fewer than 2 values (no
+// half-width); empty when every point met it or there is no target. `cap`
+// names the cap's option ("--max-realizations"; Python's "realizations").
+// A sensitivity study's: study_warning (uncertainty/sensitivity_design.hpp).
+// (A new user's unreachable target ended with exit 0 and no word.)
+[[nodiscard]] std::string unmet_target_note(const result_set& rs,
+                                            std::string_view cap = "--max-realizations");
 
 // Points in order of decreasing expected work (stable for ties): the cost of
 // a realization is about linear in its events (expected_events), which at

@@ -35,7 +35,9 @@ def sensitivity(*, statistic="R", samples=None, target_halfwidth=None, max_sampl
         checkpoint_interval and overwrite as for stickslip.sweep).
 
     Returns a dict: "statistic", "realizations", "samples", "laws", "base"
-        (the fixed parameters, None for those the laws set), "mean",
+        (the fixed parameters, None for those the laws set), with
+        target_halfwidth "target_halfwidth" and "target_met", "warning" when
+        there is one (also given as a UserWarning), "mean",
     "variance", "intrinsic_variance", "indices" (per input, "of": "mean" with
     first and total order of E[STAT | theta], and "of": "response" with the
     first order in STAT, each with its "_ci95"), "shares" (parameters,

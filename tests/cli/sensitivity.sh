@@ -145,6 +145,22 @@ grep -qE "^stickslip: warning: the target 95 % half-width 0.005 was not reached 
 "$PY" -c 'import json; d = json.load(open("capped/summary.json")); assert d["target_halfwidth"] == 0.005 and d["target_met"] is False and "not reached" in d["warning"], d' ||
   fail "capped/summary.json"
 checks=$((checks + 1))
+# a met target: target_met true, and no warning
+run_ok sensitivity --k 40 --mu 'uniform(2,7)' --target-halfwidth 0.3 --min-samples 64 --no-figure -o met
+grep -qF "warning" "$WORK/stderr" && fail "a met target warned: $(cat "$WORK/stderr")"
+"$PY" -c 'import json; d = json.load(open("met/summary.json")); assert d["target_met"] is True and "warning" not in d, d' ||
+  fail "met/summary.json"
+# a missed target beside a small share: both are said (the share's note hid it)
+run_ok sensitivity --k 40 --mu 'uniform(3,3.05)' --target-halfwidth 0.05 --min-samples 256 \
+  --max-samples 512 --no-figure -o narrow_target
+grep -qF "which is small (below 1/4)" "$WORK/stderr" &&
+  grep -qF "; the target 95 % half-width 0.05 was not reached within --max-samples 512 rows" "$WORK/stderr" ||
+  fail "a missed target beside a small share: $(cat "$WORK/stderr")"
+# a target above 1/2 is refused: an interval wider than [0, 1] could meet it
+"$BIN" sensitivity --mu 'uniform(2,7)' --target-halfwidth 0.7 -o wide_target >/dev/null 2>"$WORK/stderr"
+grep -qF "0 < H <= 0.5" "$WORK/stderr" && [[ ! -e wide_target ]] ||
+  fail "--target-halfwidth 0.7: $(cat "$WORK/stderr")"
+checks=$((checks + 3))
 # merged shards give the same warning (they said nothing)
 for i in 0 1; do
   run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 2 \
@@ -164,7 +180,12 @@ checks=$((checks + 1))
 # a resume with other --samples names the design's rows, not "realizations"
 "$BIN" sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 4 -o two_rows \
   --resume >/dev/null 2>"$WORK/stderr"
-grep -qF "design rows (--samples): 2 vs 4" "$WORK/stderr" || fail "a study's mismatch: $(cat "$WORK/stderr")"
+grep -qF "design: 2 rows (--samples) vs 4 rows (--samples)" "$WORK/stderr" ||
+  fail "a study's mismatch: $(cat "$WORK/stderr")"
+"$BIN" sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --target-halfwidth 0.3 \
+  --min-samples 2 --max-samples 16 -o two_rows --resume >/dev/null 2>"$WORK/stderr"
+grep -qF "design: 2 rows (--samples) vs a target half-width 0.3 in 2 to 16 rows (--target-halfwidth, --min-samples, --max-samples)" "$WORK/stderr" ||
+  fail "a study's mismatch with a stop rule: $(cat "$WORK/stderr")"
 run_ok sensitivity --k 40 --mu 'uniform(2,7)' --lambda 'loguniform(0.5,10)' --samples 1000 -o many
 grep -qF "warning" "$WORK/stderr" && fail "1000 rows warned: $(cat "$WORK/stderr")"
 checks=$((checks + 1))

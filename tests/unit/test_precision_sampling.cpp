@@ -5,6 +5,8 @@
 // Statistical checks use fixed seeds and tolerances from standard errors.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <tuple>
@@ -257,6 +259,37 @@ TEST(TargetCi, EveryPointMeetsTheTargetAtTheFirstBlockThatDoes) {
                 st.stick_fraction.ci95_half_width());
   }
   EXPECT_TRUE(differ) << "the realizations are chosen per point";
+}
+
+// A target no point can reach is named (a new user's ended with exit 0 and
+// no word): how many points stopped at the cap, the widest finite one with
+// its parameters, and those with fewer than 2 values (no half-width: NaN,
+// not "the widest"); nothing when every point met it.
+TEST(TargetCi, AnUnmetTargetIsNamedWithItsWidestPoint) {
+  auto s = figure_spec({0.5, 3.8}, 200, false);
+  s.target_statistic = "R";
+  s.target_halfwidth = 1e-6;
+  s.min_realizations = 100;
+  auto rs = run_sweep(s, 1);
+  const auto* q = find_mean_statistic("R");
+  const double w0 = (rs.points[0].stats.*q->moments).ci95_half_width();
+  const double w1 = (rs.points[1].stats.*q->moments).ci95_half_width();
+  const auto& widest = w0 > w1 ? rs.points[0] : rs.points[1];
+  const std::string note = unmet_target_note(rs);
+  EXPECT_EQ(note.rfind("2 of 2 grid points did not reach the target 95 % half-width 1e-06 of the "
+                       "mean of R within --max-realizations 200 (the widest: ", 0), 0u) << note;
+  EXPECT_NE(note.find(fmt::format("lambda = {}", widest.parameters.switch_rate)), std::string::npos)
+      << note;
+  EXPECT_NE(unmet_target_note(rs, "realizations").find("within realizations 200"), std::string::npos);
+  // a point without two values: counted apart, never "the widest"
+  rs.points[0].stats.*q->moments = mean_variance{};
+  const std::string with_nan = unmet_target_note(rs);
+  EXPECT_NE(with_nan.find("; 1 of them had fewer than 2 values of R, and no half-width"),
+            std::string::npos) << with_nan;
+  EXPECT_EQ(with_nan.find("nan"), std::string::npos) << with_nan;
+  rs.spec.target_halfwidth = 1.0;  // met where it is defined
+  rs.points[0] = rs.points[1];
+  EXPECT_EQ(unmet_target_note(rs), "");
 }
 
 TEST(TargetCi, BadTargetsAreRefusedByName) {

@@ -15,7 +15,6 @@
 // at the realization's own window).
 #pragma once
 #include <cstdint>
-#include <string>
 #include <optional>
 #include <string>
 

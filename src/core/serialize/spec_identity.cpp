@@ -56,14 +56,22 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
                            num(a.axes[i].values[k]), num(b.axes[i].values[k]));
   }
   // A sensitivity study's realizations are its design's rows (a new user
-  // read "realizations: 256 vs 512" after giving --samples).
+  // read "realizations: 256 vs 512" after giving --samples), set by
+  // --samples or by a stop rule: each side in its own flags (a review).
   const bool study = !a.sensitivity_statistic.empty() && !b.sensitivity_statistic.empty();
+  if (study && (a.realizations != b.realizations || a.target_halfwidth != b.target_halfwidth ||
+                (a.target_halfwidth > 0.0 && a.min_realizations != b.min_realizations))) {
+    const auto rows = [](const sweep_spec& s) {
+      return s.target_halfwidth > 0.0
+                 ? fmt::format("a target half-width {} in {} to {} rows (--target-halfwidth, "
+                               "--min-samples, --max-samples)",
+                               s.target_halfwidth, s.min_realizations, s.realizations)
+                 : fmt::format("{} rows (--samples)", s.realizations);
+    };
+    return fmt::format("design: {} vs {}", rows(a), rows(b));
+  }
   if (a.realizations != b.realizations)
-    return fmt::format("{}: {} vs {}",
-                       !study ? "realizations"
-                       : a.target_halfwidth > 0.0 ? "the most design rows (--max-samples)"
-                                                  : "design rows (--samples)",
-                       a.realizations, b.realizations);
+    return fmt::format("realizations: {} vs {}", a.realizations, b.realizations);
   if (a.seed != b.seed) return fmt::format("seed: {} vs {}", a.seed, b.seed);
   if (a.block_size != b.block_size)
     return fmt::format("block size: {} vs {}", a.block_size, b.block_size);
@@ -75,9 +83,6 @@ std::string first_difference(const sweep_spec& a, const sweep_spec& b) {
   if (a.common_random_numbers != b.common_random_numbers)
     return fmt::format("common random numbers: {} vs {}", a.common_random_numbers,
                        b.common_random_numbers);
-  if (study && (a.target_halfwidth != b.target_halfwidth || a.min_realizations != b.min_realizations))
-    return fmt::format("target half-width: {} (min rows {}) vs {} (min rows {})", a.target_halfwidth,
-                       a.min_realizations, b.target_halfwidth, b.min_realizations);
   if (a.target_statistic != b.target_statistic || a.target_halfwidth != b.target_halfwidth ||
       a.min_realizations != b.min_realizations)
     return fmt::format("target CI: {}:{} (min {}) vs {}:{} (min {})", a.target_statistic,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 
 #include "stickslip/error.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
@@ -19,31 +20,43 @@ const quantity_info* target_quantity(const sweep_spec& s) {
                       "a statistic with one value per realization: " + mean_statistic_names());
 }
 
-std::string unmet_target_note(const result_set& rs) {
+std::string unmet_target_note(const result_set& rs, std::string_view cap) {
   const sweep_spec& s = rs.spec;
   const quantity_info* q = is_sensitivity(s) ? nullptr : target_quantity(s);
   if (!q) return {};
-  std::size_t unmet = 0;
+  std::size_t unmet = 0, undefined = 0;  // undefined: fewer than 2 values (e.g. no stick for D_1)
   const point_result* widest = nullptr;
   double widest_h = 0.0;
   for (const auto& p : rs.points) {
     const double h = (p.stats.*q->moments).ci95_half_width();
     if (h <= s.target_halfwidth) continue;
     ++unmet;
-    if (!widest || !(h <= widest_h)) widest = &p, widest_h = h;  // NaN counts as widest
+    if (std::isnan(h)) {
+      ++undefined;
+      continue;
+    }
+    if (!widest || h > widest_h) widest = &p, widest_h = h;
   }
   if (unmet == 0) return {};
-  std::string at;
-  for (const auto& ax : s.axes) {
-    const std::string sym = canonical_symbol(ax.name);
-    at += fmt::format("{}{} = {}", at.empty() ? "" : ", ", sym, parameter_value(widest->parameters, sym));
+  std::string widest_text;
+  if (widest) {
+    std::string at;
+    for (const auto& ax : s.axes) {
+      const std::string sym = canonical_symbol(ax.name);
+      at += fmt::format("{}{} = {}", at.empty() ? "" : ", ", sym,
+                        parameter_value(widest->parameters, sym));
+    }
+    widest_text = fmt::format(" (the widest: {:.3g}{}{})", widest_h, at.empty() ? "" : ", at ", at);
   }
+  const std::string no_width =
+      undefined == 0 ? ""
+                     : fmt::format("; {} of them had fewer than 2 values of {}, and no half-width",
+                                   undefined, q->summary_name);
   return fmt::format(
       "{} of {} grid point{} did not reach the target 95 % half-width {} of the mean of {} within "
-      "--max-realizations {} (the widest: {:.3g}{}{}); raise --max-realizations, or read each "
-      "point's interval in summary.csv",
+      "{} {}{}{}; raise {}, or read each point's interval in the results",
       unmet, rs.points.size(), rs.points.size() == 1 ? "" : "s", s.target_halfwidth,
-      q->summary_name, s.realizations, widest_h, at.empty() ? "" : ", at ", at);
+      q->summary_name, cap, s.realizations, widest_text, no_width, cap);
 }
 
 bool meets_target(const sweep_spec& s, const point_statistics& p) {

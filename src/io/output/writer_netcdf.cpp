@@ -20,9 +20,9 @@
 #include "results_nc.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
+#include "stickslip/statistics_groups.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
-#include "stickslip/statistics_groups.hpp"
 #include "writers_detail.hpp"
 
 namespace stickslip::io {
@@ -126,8 +126,14 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     symbols += fmt::format("{}{}", symbols.empty() ? "" : ", ", q.symbol);
     if (q.density && !s.means_only) binned += fmt::format("{}{}", binned.empty() ? "" : ", ", q.symbol);
   }
+  for (const auto& l : level_quantities())  // the belt level fractions P_j, over belt_level
+    if (selects(s.statistics, l)) symbols += fmt::format("{}{} (per belt level)", symbols.empty() ? "" : ", ", l.symbol);
+  std::string held = symbols.empty() ? std::string() : "mean, std and 95% CI of " + symbols;
+  if (s.statistics.survival)
+    held += (held.empty() ? "" : "; ") +
+            std::string("Kaplan-Meier survival of stick and slip durations over their time grids");
   f.putAtt("comment",
-           fmt::format("Exact event-driven simulation. Per grid point: mean, std and 95% CI of "
+           fmt::format("Exact event-driven simulation. Per grid point: "
                        "{}; {}; convergence traces over dimension trace. "
                        "Parameters that are not swept are global attributes named by their "
                        "symbol (unless they follow a swept one: mu_s and mu_k of a swept mu); "
@@ -135,7 +141,7 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
                        "parameters that define the model are written (mu only when mu_s = "
                        "mu_k = mu, V only on a (+V, -V) belt, lambda only with Poisson "
                        "switching), and only the derivatives that apply to it.",
-                       symbols,
+                       held,
                        binned.empty() ? std::string("no histograms")
                                       : fmt::format("histograms (densities) of {} over dimension "
                                                     "bin, with bin coordinates and bounds",

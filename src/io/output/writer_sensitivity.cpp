@@ -144,7 +144,7 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
   if (rs.spec.target_halfwidth > 0.0) {
     f.putAtt("target_halfwidth", nc::ncDouble, rs.spec.target_halfwidth);
-    f.putAtt("target_met", study_target_met(rs.spec, est) ? "true" : "false");
+    f.putAtt("target_met", nc::ncInt, study_target_met(rs.spec, est) ? 1 : 0);  // as keep_records
   }
   if (const auto note = study_warning(rs.spec, est); !note.empty()) f.putAtt("warning", note);
   f.putAtt("estimators",
