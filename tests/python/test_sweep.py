@@ -257,10 +257,12 @@ def test_common_random_numbers_and_target_ci_equal_the_cli(cli, tmp_path):
 
 
 def test_an_unreachable_target_ci_warns_as_the_cli_does():
-    # every point stops at its cap: a UserWarning names how many, and the widest
+    # every point stops at its cap: a UserWarning names how many, and the widest,
+    # with the cap as Python spells it (realizations=, not --max-realizations)
     with pytest.warns(UserWarning, match=r"2 of 2 grid points did not reach the target 95 % "
                                          r"half-width 0.0001 of the mean of R within "
-                                         r"--max-realizations 400 \(the widest: "):
+                                         r"realizations 400 \(the widest: [0-9.]+, at lambda = 1\); "
+                                         r"raise realizations, or read each point's interval"):
         stickslip.sweep(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=400, seed=3,
                         target_ci="R:0.0001", min_realizations=100)
 
