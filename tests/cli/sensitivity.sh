@@ -108,7 +108,11 @@ bad "--statistic|first_stick_duration|R, sticks_per_time" sensitivity --mu 'unif
 bad "--statistic|no_such" sensitivity --mu 'uniform(2,7)' --statistic no_such
 bad "--m|normal" sensitivity --m 'normal(mean=1,sd=0.1)'
 bad "--statistic|''" sensitivity --mu 'uniform(2,7)' --statistic ''
-bad "--mu|gamma(mean=5,cv=1e-200)|1e-5 <= cv" sensitivity --mu 'gamma(mean=5,cv=1e-200)'
+bad "--mu|gamma(mean=5,cv=1e-200)|1e-5 <= C < 1e150" sensitivity --mu 'gamma(mean=5,cv=1e-200)'
+# one range, not two ("C > 0" beside "1e-5 <= cv")
+"$BIN" sensitivity --mu 'gamma(mean=5,cv=1e-6)' --samples 8 -o g6 >/dev/null 2>"$WORK/stderr"
+grep -qF "C > 0" "$WORK/stderr" && fail "two ranges for gamma's cv: $(cat "$WORK/stderr")"
+checks=$((checks + 1))
 bad "--mu|beta" sensitivity --mu 'beta(mean=5,sd=1e-200,min=2,max=7)'
 bad "--mu|beta|1e10" sensitivity --mu 'beta(min=1e-300,mean=1.3e-154,max=1e-61,sd=1.9e-183)'
 bad "--max-samples|only with --target-halfwidth" sensitivity --mu 'uniform(2,7)' --max-samples 7

@@ -44,8 +44,9 @@ constexpr std::array<family_info, 7> family_table{{
     {law_family::truncnormal, "truncnormal", {"mean", "sd", "min", "max"}, 4, false,
      "truncnormal(mean=M,sd=S,min=A,max=B) with S > 0, A < B"},
     {law_family::lognormal, "lognormal", {"mean", "cv"}, 2, false,
-     "lognormal(mean=M,cv=C) with M > 0, C > 0"},
-    {law_family::gamma, "gamma", {"mean", "cv"}, 2, false, "gamma(mean=M,cv=C) with M > 0, C > 0"},
+     "lognormal(mean=M,cv=C) with M > 0, 1e-150 < C < 1e150"},
+    {law_family::gamma, "gamma", {"mean", "cv"}, 2, false,
+     "gamma(mean=M,cv=C) with M > 0, 1e-5 <= C < 1e150"},
     {law_family::beta, "beta", {"mean", "sd", "min", "max"}, 4, false,
      "beta(mean=M,sd=S,min=A,max=B) with A < M < B, 0 < S^2 < (M-A)(B-M)"},
 }};
@@ -154,8 +155,9 @@ void check_arguments(const parameter_law& law, std::string_view text, std::strin
       const bool ok = law.family == law_family::gamma
                           ? std::isnormal(1.0 / c2) && std::isnormal(x[0] * c2) && 1.0 / c2 <= 1e10
                           : std::isnormal(std::log1p(c2)) && std::isfinite(std::log(x[0]));
-      if (!ok) fail("needs a cv whose shape and scale are ordinary positive numbers (gamma: 1e-5 <= cv "
-           "< 1e150; lognormal: 1e-150 < cv < 1e150)");
+      // (the range is the family's allowed text, which the failure adds: it
+      // said "C > 0" there beside "1e-5 <= cv" here, a new user found)
+      if (!ok) fail("needs a cv whose shape and scale are ordinary positive numbers");
       break;
     }
     case law_family::beta: {
