@@ -75,9 +75,12 @@ void run_merge(const merge_options& o) {
   const auto& spec = merged.results.spec;
   const auto units = unit_count(spec), points = point_count(spec);
   const auto journals = o.inputs.size();
+  const bool study = is_sensitivity(spec);
+  const auto est = study ? sobol_indices(merged.results.points.front().stats.sensitivity)
+                         : sobol_estimates{};
   std::string what = fmt::format("{} grid point{}", points, points == 1 ? "" : "s");
-  if (is_sensitivity(spec))  // no figure for undefined indices: `plot` refuses them
-    what = sobol_indices(merged.results.points.front().stats.sensitivity).variance == 0.0
+  if (study)  // no figure for undefined indices: `plot` refuses them
+    what = est.variance == 0.0
                ? std::string("a sensitivity study with undefined indices: no figure")
                : fmt::format("a sensitivity study; its figure: `stickslip plot {}`", o.out_dir);
   fmt::print(stderr, "merged {} unit{} from {} journal{} ({}) -> {}\n", units,
@@ -85,9 +88,7 @@ void run_merge(const merge_options& o) {
   // A study's warning, as `sensitivity` gives it (the review: merged shards
   // said nothing of undefined or wide indices; summary.json had it), and a
   // sweep's unmet --target-ci, as `sweep` gives it.
-  const auto w = is_sensitivity(spec)
-                     ? study_warning(spec, sobol_indices(merged.results.points.front().stats.sensitivity))
-                     : unmet_target_note(merged.results);
+  const auto w = study ? study_warning(spec, est) : unmet_target_note(merged.results);
   if (!w.empty()) fmt::print(stderr, "stickslip: warning: {}\n", w);
 }
 

@@ -138,7 +138,11 @@ block_result simulate_block_sensitivity(const sweep_spec& s, const work_unit& u)
 
 bool study_target_met(const sweep_spec& s, const sobol_estimates& e) {
   if (!(s.target_halfwidth > 0.0)) return false;
-  return e.constant_statistic || e.max_half_width() <= s.target_halfwidth;
+  // A statistic constant over every row so far has indices 0 / 0: NaN, whose
+  // half-width no number of rows brings under the target. The stop rule
+  // stops at the minimum, where the warning of undefined indices says why
+  // (it ran to the maximum, 10^6 rows by default, for nothing).
+  return e.constant_statistic || e.max_half_width() <= s.target_halfwidth;  // false for NaN
 }
 
 std::string study_warning(const sweep_spec& s, const sobol_estimates& e) {
@@ -146,25 +150,19 @@ std::string study_warning(const sweep_spec& s, const sobol_estimates& e) {
   if (!(s.target_halfwidth > 0.0) || study_target_met(s, e)) return note;
   // Both when both apply: a small share is the usual reason a target is
   // missed, and its note alone did not say the run stopped at the cap.
+  const double widest = e.max_half_width();
   const std::string unmet = fmt::format(
       "the target 95 % half-width {} was not reached within --max-samples {} rows{}",
       s.target_halfwidth, e.rows,
-      std::isfinite(e.max_half_width())
-          ? fmt::format(": the largest is {:.3g}; raise --max-samples", e.max_half_width())
-          : std::string(" (some intervals are undefined)"));
+      std::isfinite(widest) ? fmt::format(": the largest is {:.3g}; raise --max-samples", widest)
+                            : std::string(" (some intervals are undefined)"));
   return note.empty() ? unmet : note + "; " + unmet;
 }
 
 bool meets_sensitivity_target(const sweep_spec& s, const point_statistics& p) {
   if (!is_sensitivity(s) || !(s.target_halfwidth > 0.0)) return false;
   if (p.sensitivity.rows() < s.min_realizations) return false;
-  const auto est = sobol_indices(p.sensitivity);
-  // A statistic constant over every row so far has indices 0 / 0: NaN, whose
-  // half-width no number of rows brings under the target. Stop at the
-  // minimum, where the warning of undefined indices says why (it ran to the
-  // maximum, 10^6 rows by default, for nothing).
-  if (est.constant_statistic) return true;
-  return est.max_half_width() <= s.target_halfwidth;  // false for NaN
+  return study_target_met(s, sobol_indices(p.sensitivity));
 }
 
 }  // namespace stickslip

@@ -40,10 +40,11 @@ std::vector<std::string> meaningless_parameters(const result_set& rs) {
 }
 
 std::vector<std::string> varying_parameters(const result_set& rs) {
-  const auto swept = swept_symbols(rs.spec);
   std::vector<std::string> out;
+  if (rs.points.empty()) return out;
+  const auto swept = swept_symbols(rs.spec);
   for (const char* sym : recorded_parameter_names) {
-    if (std::find(swept.begin(), swept.end(), sym) != swept.end() || rs.points.empty()) continue;
+    if (std::find(swept.begin(), swept.end(), sym) != swept.end()) continue;
     const double first = parameter_value(rs.points.front().parameters, sym);
     for (const auto& p : rs.points)
       if (parameter_value(p.parameters, sym) != first) {
