@@ -21,30 +21,18 @@
 namespace stickslip {
 namespace detail {
 
-// One refill of a switch source: the 4 * Blocks uniforms of the next Blocks
-// Philox blocks of `rs`, in order, replaced by their logs.
-template <int Blocks, class LogInplace>
-[[gnu::always_inline]] inline void log_uniforms(random_stream& rs, double* w,
-                                                LogInplace& log_inplace) noexcept {
-  for (int b = 0; b < Blocks; ++b) {
-    const auto blk = rs.next_block();
-    for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
-  }
-  log_inplace(w, std::size_t{4 * Blocks});
-}
-
 // next_refilled_by of every switch source: the next of the chunk's
-// `times`, after refill_chunk(source) when all were handed out (it must
+// `waits`, after refill_chunk(source) when all were handed out (it must
 // call the source's refill_with, which sets `i` back to 0).
 template <class Source, std::size_t Chunk, class RefillChunk>
-[[gnu::always_inline]] inline double next_of_chunk(Source& source, int& i,
-                                                   const std::array<double, Chunk>& times,
-                                                   RefillChunk& refill_chunk) noexcept {
+[[gnu::always_inline]] inline double next_wait_of_chunk(Source& source, int& i,
+                                                        const std::array<double, Chunk>& waits,
+                                                        RefillChunk& refill_chunk) noexcept {
   if (i == static_cast<int>(Chunk)) [[unlikely]] {
     refill_chunk(source);
     assert(i == 0 && "refill_chunk must call refill_with");
   }
-  return times[static_cast<std::size_t>(i++)];
+  return waits[static_cast<std::size_t>(i++)];
 }
 
 }  // namespace detail
@@ -52,9 +40,13 @@ template <class Source, std::size_t Chunk, class RefillChunk>
 // The one Poisson switch source of every engine. Inverse-transform
 // exponential: W_j = -log(U_j) / lambda, U_j = u01fixedpt of the j-th 64-bit
 // word of the realization's belt-switch substream (on (0, 1)), and
-// Y_j = Y_{j-1} + W_j, summed in order. The logs are taken `chunk` at a time
-// so that the Philox rounds and the vector logs of a chunk overlap in the
-// pipeline; the values do not depend on this (the log kernel is lane-wise).
+// Y_j = Y_{j-1} + W_j, summed in order. The waits are drawn `chunk` at a
+// time, the Philox rounds and the logs on whole vectors of blocks
+// (fm::log_uniforms); the values do not depend on this (every word is a
+// function of its counter alone, and the log kernel is lane-wise). The sum
+// is taken as the times are handed out, one addition each: the same
+// additions in the same order as a sum over the chunk, without its chain
+// of `chunk` dependent additions in every refill.
 class poisson_switches {
  public:
   static constexpr int blocks_per_chunk = 8;        // Philox blocks per refill
@@ -66,12 +58,12 @@ class poisson_switches {
   // A placeholder (rate 1, seed 0) to be assigned a real source later.
   poisson_switches() noexcept : poisson_switches(1.0, 0, 0, 0) {}
 
-  // The next switch time, refilled with the shared log kernel dispatched to
-  // the SIMD target of the CPU (detail::fm::log_inplace), out of line once
-  // per chunk.
+  // The next switch time, refilled with the shared draw kernel dispatched
+  // to the SIMD target of the CPU (detail::fm::log_uniforms), out of line
+  // once per chunk.
   [[nodiscard]] double next() noexcept {
     if (i_ == chunk) [[unlikely]] refill();
-    return times_[i_++];
+    return time_ += waits_[i_++];
   }
 
   // The same values again, refilled by refill_chunk(*this), which calls
@@ -81,6 +73,8 @@ class poisson_switches {
   // target too. (Refilled here, out of line, the refill is compiled for the
   // baseline x86-64 and calls the target's log: 21 % more time than 0.1.0's
   // static AVX-512 build on an Intel Xeon, docs/performance.md.)
+  // log_uniforms(rs, w, blocks) is fm::log_uniforms or the same kernel of
+  // the caller's target.
   // refill_chunk must call refill_with exactly once; refill_with is for
   // that call only (it drops the unread times of the chunk). The running
   // sum's bits depend on -ffp-contract=off in whatever compiles it (the
@@ -88,27 +82,23 @@ class poisson_switches {
   // src/core/CMakeLists.txt).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
-    return detail::next_of_chunk(*this, i_, times_, refill_chunk);
+    return time_ += detail::next_wait_of_chunk(*this, i_, waits_, refill_chunk);
   }
-  template <class LogInplace>
-  [[gnu::always_inline]] void refill_with(LogInplace& log_inplace) noexcept {
-    alignas(64) double w[chunk];
-    detail::log_uniforms<blocks_per_chunk>(rs_, w, log_inplace);
-    // The running sum in a register (the stores to times_ could alias time_).
-    double y = time_;
-    for (int j = 0; j < chunk; ++j) times_[j] = y += -w[j] * mean_wait_;
-    time_ = y;
+  template <class LogUniforms>
+  [[gnu::always_inline]] void refill_with(LogUniforms& log_uniforms) noexcept {
+    log_uniforms(rs_, waits_.data(), std::size_t{blocks_per_chunk});
+    for (int j = 0; j < chunk; ++j) waits_[j] = -waits_[j] * mean_wait_;
     i_ = 0;
   }
 
  private:
-  [[gnu::noinline]] void refill() noexcept { refill_with(detail::fm::log_inplace); }
+  [[gnu::noinline]] void refill() noexcept { refill_with(detail::fm::log_uniforms); }
 
   double mean_wait_;
-  double time_ = 0.0;
+  double time_ = 0.0;  // the last time handed out
   random_stream rs_;
   int i_ = chunk;
-  alignas(64) std::array<double, chunk> times_{};
+  alignas(64) std::array<double, chunk> waits_{};  // W_j of the chunk
 };
 
 // The switch times of a two-level Markov belt, the same bits as
@@ -135,28 +125,25 @@ class two_level_switch_times {
   // is this source's only user).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
-    return detail::next_of_chunk(*this, i_, times_, refill_chunk);
+    return time_ += detail::next_wait_of_chunk(*this, i_, waits_, refill_chunk);
   }
-  template <class LogInplace>
-  [[gnu::always_inline]] void refill_with(LogInplace& log_inplace) noexcept {
-    alignas(64) double w[chunk];
-    detail::log_uniforms<blocks_per_chunk>(rs_, w, log_inplace);
-    double y = time_;
+  template <class LogUniforms>
+  [[gnu::always_inline]] void refill_with(LogUniforms& log_uniforms) noexcept {
+    log_uniforms(rs_, waits_.data(), std::size_t{blocks_per_chunk});
     const double m0 = mean_wait_[0], m1 = mean_wait_[1];
     for (int j = 0; j < chunk; j += 2) {
-      times_[j] = y += -w[j] * m0;
-      times_[j + 1] = y += -w[j + 1] * m1;
+      waits_[j] = -waits_[j] * m0;
+      waits_[j + 1] = -waits_[j + 1] * m1;
     }
-    time_ = y;
     i_ = 0;
   }
 
  private:
   double mean_wait_[2];
-  double time_ = 0.0;
+  double time_ = 0.0;  // the last time handed out
   random_stream rs_;
   int i_ = chunk;
-  alignas(64) std::array<double, chunk> times_{};
+  alignas(64) std::array<double, chunk> waits_{};  // W_j of the chunk
 };
 
 class given_switches {

@@ -34,6 +34,10 @@
 
 #include "stickslip/phase_reduction.hpp"  // reduce_phase
 
+namespace stickslip {
+class random_stream;
+}
+
 namespace stickslip::detail::fm {
 
 [[nodiscard]] double log(double x) noexcept;             // x > 0
@@ -43,6 +47,11 @@ namespace stickslip::detail::fm {
 [[nodiscard]] double cos(double x) noexcept;
 // p[i] = log(p[i]) for i < n, the same values as log() (vectorized).
 void log_inplace(double* p, std::size_t n) noexcept;
+// w[0 .. 4 * blocks) = log(random_stream::open_uniform(word)) of the words of
+// the next `blocks` Philox blocks of rs, in order, and rs advanced past them:
+// the belt's exponential waits, the same values as next_block, open_uniform
+// and log() of each word (the Philox rounds vectorized across blocks).
+void log_uniforms(random_stream& rs, double* w, std::size_t blocks) noexcept;
 
 // The SIMD target the kernels and the lane engine run on now, as Highway's
 // bit (HWY_AVX3, HWY_AVX2, ...) and name ("AVX3", "AVX2", "SSE4", "SSSE3",

@@ -52,6 +52,12 @@ class random_stream {
     ++ctr_.v[2];
     return r;
   }
+  // The key and the next block's counter, and a skip past `blocks` blocks:
+  // for the vector Philox rounds of the switch draws (fm::log_uniforms),
+  // which compute next_block's words for many counters at once.
+  [[nodiscard]] const philox::key_type& key() const noexcept { return key_; }
+  [[nodiscard]] const philox::ctr_type& counter() const noexcept { return ctr_; }
+  void skip_blocks(std::uint64_t blocks) noexcept { ctr_.v[2] += blocks; }
   // Uniform on (0, 1): never 0 or 1, safe for log (see ECOSYSTEM.md).
   [[nodiscard]] static double open_uniform(std::uint64_t w) noexcept {
     return r123::u01fixedpt<double>(w);

@@ -2,11 +2,16 @@
 // (poisson_switches + realization_observer + point_statistics::add): every
 // statistic must agree bit for bit, for any seed, grid and block size.
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
+#include <Random123/philox.h>
+#include <Random123/uniform.hpp>
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "stickslip/belt_switches.hpp"
 #include "stickslip/fast_math.hpp"
@@ -81,6 +86,44 @@ TEST(FastPath, PoissonSwitchesAreTheRunningSumOfExponentialWaits) {
       }
     }
   }
+}
+
+// The vector draw kernel (fm::log_uniforms: the Philox rounds of many
+// blocks on whole vectors) against Random123's own Philox4x64-10 called one
+// block at a time, u01fixedpt and the scalar log kernel, bit for bit: on
+// every SIMD target compiled in and run by this CPU (the vector rounds on
+// AVX3 and AVX2, one block at a time below four 64-bit lanes), for whole
+// and partial vectors of blocks (1 .. 17), for counters whose block index
+// wraps at 2^64 inside a vector, and with the stream left where
+// next_block would leave it.
+TEST(FastPath, VectorPhiloxDrawsAreRandom123sWordsAndLogs) {
+  const auto targets = hwy::SupportedAndGeneratedTargets();
+  ASSERT_FALSE(targets.empty());
+  for (const std::int64_t t : targets) {
+    hwy::SetSupportedTargetsForTest(t);
+    const std::string name = hwy::TargetName(t);
+    for (const std::uint64_t first_block : {std::uint64_t{0}, std::uint64_t{5}, ~std::uint64_t{0} - 3}) {
+      for (std::size_t blocks = 1; blocks <= 17; ++blocks) {
+        random_stream rs(7, 0x9e3779b97f4a7c15ULL, 12345, substream::belt_switches);
+        rs.skip_blocks(first_block);
+        std::vector<double> w(4 * blocks);
+        detail::fm::log_uniforms(rs, w.data(), blocks);
+        const r123::Philox4x64::key_type key = {{7, 0x9e3779b97f4a7c15ULL}};
+        for (std::size_t b = 0; b < blocks; ++b) {
+          const r123::Philox4x64::ctr_type ctr = {{12345, 1, first_block + b, 0}};
+          const auto words = r123::Philox4x64{}(ctr, key);
+          for (std::size_t j = 0; j < 4; ++j) {
+            const double expected = detail::fm::log(r123::u01fixedpt<double>(words.v[j]));
+            ASSERT_TRUE(same_bits(w[4 * b + j], expected))
+                << name << ": block " << first_block + b << " word " << j << " of " << blocks;
+          }
+        }
+        const r123::Philox4x64::ctr_type after = {{12345, 1, first_block + blocks, 0}};
+        EXPECT_EQ(rs.next_block().v[0], r123::Philox4x64{}(after, key).v[0]) << name;
+      }
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
 }
 
 // The mirror return (integrator.hpp header): after a belt switch that ends a

@@ -102,7 +102,7 @@ class markov_level_switches {
 
   // log(U) of the next wait uniform: the logs of the next
   // poisson_switches::chunk uniforms at once, as poisson_switches draws them
-  // (log_inplace is lane-wise: the same bits as detail::fm::log of each),
+  // (fm::log_uniforms: the same bits as detail::fm::log of each),
   // out of line once per chunk. One block of four at a time, the dispatched
   // call and its partial vector cost the damped engine 11 % of its time.
   [[nodiscard]] double next_log_uniform() noexcept {
@@ -110,8 +110,8 @@ class markov_level_switches {
     return wait_logs_[wait_next_++];
   }
   [[gnu::noinline]] void refill_wait_logs() noexcept {
-    detail::log_uniforms<poisson_switches::blocks_per_chunk>(waits_, wait_logs_,
-                                                             detail::fm::log_inplace);
+    detail::fm::log_uniforms(waits_, wait_logs_,
+                             std::size_t{poisson_switches::blocks_per_chunk});
     wait_next_ = 0;
   }
   static constexpr int wait_chunk = poisson_switches::chunk;

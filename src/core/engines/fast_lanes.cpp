@@ -128,27 +128,26 @@ namespace vphysics {
 #include "stickslip/event_physics_steps.inl"
 }  // namespace vphysics
 
-// The log kernel of this target, inlined into the switch draws of the lanes:
-// the same bits as fm::log_inplace (which dispatches to this very target),
-// whole vectors only (a chunk of switch times is a whole number of them).
-static_assert(poisson_switches::chunk % N == 0);
-struct target_log_inplace {
-  void operator()(double* HWY_RESTRICT p, std::size_t n) const noexcept {
-    const dtag d;
-    for (std::size_t i = 0; i < n; i += N) hn::StoreU(sk::log(d, hn::LoadU(d, p + i)), d, p + i);
+// The draw kernel of this target (the Philox rounds of a chunk's blocks,
+// the conversion to doubles, the log), inlined into the switch draws of the
+// lanes: the same bits as fm::log_uniforms, which dispatches to this very
+// target.
+struct target_log_uniforms {
+  void operator()(random_stream& rs, double* HWY_RESTRICT w, std::size_t blocks) const noexcept {
+    sk::log_uniforms(rs, w, blocks);
   }
 };
 
 // A switch source's refill compiled for this target: its refill_with (the
-// Philox rounds, the conversion to doubles, this log, the running sum) is
-// inlined here, as 0.1.0's static AVX-512 build had it. The same bits: the
-// integer rounds and the exact conversions do not depend on the target,
-// the log is this target's either way, and the sum is the same additions
+// Philox rounds, the conversion to doubles, the log, the running sum) is
+// inlined here. The same bits: the integer rounds and the exact
+// conversions do not depend on the target or on the vector width, the log
+// is this target's either way, and the sum is the same additions
 // (no multiply-add fused into them: -ffp-contract=off, src/core/CMakeLists.txt).
 template <class SwitchSource>
 HWY_NOINLINE void refill_for_target(SwitchSource& source) noexcept {
-  target_log_inplace log;
-  source.refill_with(log);
+  target_log_uniforms draw;
+  source.refill_with(draw);
 }
 
 // Event codes of one round (what the vector step decided for a lane).

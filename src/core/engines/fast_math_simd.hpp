@@ -18,9 +18,12 @@
 #include <hwy/highway.h>
 #include <hwy/contrib/math/math-inl.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <numbers>
 
 #include "stickslip/phase_reduction.hpp"
+#include "stickslip/random_stream.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace stickslip::detail::simd {
@@ -72,6 +75,86 @@ HWY_INLINE void log_inplace(double* HWY_RESTRICT p, std::size_t n) {
   std::size_t i = 0;
   for (; i + N <= n; i += N) hn::StoreU(log(d, hn::LoadU(d, p + i)), d, p + i);
   for (; i < n; ++i) p[i] = hn::GetLane(log(d, hn::Set(d, p[i])));
+}
+
+// Philox4x64-10 (Random123's philox4x64, the generator of random_stream) on
+// whole vectors: lane b computes the block of counter {c0, c1, c2 + b, c3},
+// so one vector holds N consecutive blocks. Integer arithmetic only: the
+// same words as r123::Philox4x64 on any target. Each 64 x 64 -> 128-bit
+// product is four 32 x 32 -> 64-bit ones (the vector units have no 64-bit
+// high multiply): hi and lo of a * m, m = m_hi * 2^32 + m_lo.
+template <class DU>
+HWY_INLINE void mulhilo64(DU du, hn::Vec<DU> a, hn::Vec<DU> m_lo, hn::Vec<DU> m_hi,
+                          hn::Vec<DU>& hi, hn::Vec<DU>& lo) {
+  const hn::Repartition<std::uint32_t, DU> d32;
+  const auto a32 = hn::BitCast(d32, a), a_hi32 = hn::BitCast(d32, hn::ShiftRight<32>(a));
+  const auto ll = hn::MulEven(a32, hn::BitCast(d32, m_lo));
+  const auto lh = hn::MulEven(a32, hn::BitCast(d32, m_hi));
+  const auto hl = hn::MulEven(a_hi32, hn::BitCast(d32, m_lo));
+  const auto hh = hn::MulEven(a_hi32, hn::BitCast(d32, m_hi));
+  const auto low32 = hn::Set(du, 0xffffffffULL);
+  const auto t = hn::Add(hl, hn::ShiftRight<32>(ll));  // < 2^64: no carry lost
+  const auto u = hn::Add(lh, hn::And(t, low32));
+  hi = hn::Add(hn::Add(hh, hn::ShiftRight<32>(t)), hn::ShiftRight<32>(u));
+  lo = hn::OrAnd(hn::ShiftLeft<32>(u), ll, low32);
+}
+
+// w[0 .. 4 * blocks) = log(random_stream::open_uniform(word)) of the words
+// of the next `blocks` blocks of rs, in order (block by block, word by
+// word), and rs advanced past them: the same bits as rs.next_block(),
+// open_uniform and log() of each word (log is lane-wise; u01fixedpt is
+// exact: an odd integer below 2^53 times 2^-53). The belt switch draws,
+// vectorized whole (0.1.0 drew them one block at a time; its scalar
+// Philox rounds were most of the floor, docs/performance.md). Targets of
+// fewer than four 64-bit lanes, and a count of blocks that is not a whole
+// number of vectors, draw blocks one at a time, as 0.1.0.
+HWY_INLINE void log_uniforms(random_stream& rs, double* HWY_RESTRICT w, std::size_t blocks) {
+  const dtag d;
+  const hn::RebindToUnsigned<dtag> du;
+  constexpr std::size_t N = hn::MaxLanes(dtag());
+  if constexpr (N >= 4) {
+    if (blocks % N == 0) {
+      using philox = random_stream::philox;
+      const auto& key = rs.key();
+      const auto& ctr = rs.counter();
+      const auto m0_lo = hn::Set(du, PHILOX_M4x64_0 & 0xffffffffULL);
+      const auto m0_hi = hn::Set(du, PHILOX_M4x64_0 >> 32);
+      const auto m1_lo = hn::Set(du, PHILOX_M4x64_1 & 0xffffffffULL);
+      const auto m1_hi = hn::Set(du, PHILOX_M4x64_1 >> 32);
+      const auto one = hn::Set(du, 1);
+      const auto ulp53 = hn::Set(d, 0x1p-53);
+      const auto uniform = [&](hn::Vec<decltype(du)> x) {
+        return log(d, hn::Mul(hn::ConvertTo(d, hn::Or(one, hn::ShiftRight<11>(x))), ulp53));
+      };
+      static_assert(philox::rounds == 10);
+      for (std::size_t b = 0; b < blocks; b += N) {
+        auto x0 = hn::Set(du, ctr.v[0]), x1 = hn::Set(du, ctr.v[1]);
+        auto x2 = hn::Iota(du, ctr.v[2] + b), x3 = hn::Set(du, ctr.v[3]);
+        std::uint64_t k0 = key.v[0], k1 = key.v[1];
+        for (int round = 0; round < 10; ++round) {
+          if (round > 0) {
+            k0 += PHILOX_W64_0;
+            k1 += PHILOX_W64_1;
+          }
+          hn::Vec<decltype(du)> hi0, lo0, hi1, lo1;
+          mulhilo64(du, x0, m0_lo, m0_hi, hi0, lo0);
+          mulhilo64(du, x2, m1_lo, m1_hi, hi1, lo1);
+          x0 = hn::Xor3(hi1, x1, hn::Set(du, k0));
+          x1 = lo1;
+          x2 = hn::Xor3(hi0, x3, hn::Set(du, k1));
+          x3 = lo0;
+        }
+        hn::StoreInterleaved4(uniform(x0), uniform(x1), uniform(x2), uniform(x3), d, w + 4 * b);
+      }
+      rs.skip_blocks(blocks);
+      return;
+    }
+  }
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const auto block = rs.next_block();
+    for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(block.v[j]);
+  }
+  log_inplace(w, 4 * blocks);
 }
 
 // The scalar kernels of this target: the vector kernel on a broadcast
