@@ -17,7 +17,6 @@
 #include <thread>
 #include <vector>
 
-#include "stickslip/fast_math.hpp"
 #include "stickslip/random_stream.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -39,10 +38,12 @@ inline std::uint64_t draw_realization(double rate, double window, std::uint64_t 
   std::uint64_t n = 0;
   const std::size_t lanes = hn::Lanes(d);
   while (true) {
-    // The engines' own draw kernel (vector Philox rounds and logs).
-    detail::fm::log_uniforms(rs, w, blocks);
+    for (int b = 0; b < blocks; ++b) {
+      const auto blk = rs.next_block();
+      for (int j = 0; j < 4; ++j) w[4 * b + j] = random_stream::open_uniform(blk.v[j]);
+    }
     for (std::size_t j = 0; j < 4 * blocks; j += lanes)
-      hn::Store(hn::Mul(hn::Load(d, w + j), neg_mean), d, w + j);
+      hn::Store(hn::Mul(hn::Log(d, hn::Load(d, w + j)), neg_mean), d, w + j);
     for (int j = 0; j < 4 * blocks; ++j) {
       t += w[j];
       if (t >= window) return n;
