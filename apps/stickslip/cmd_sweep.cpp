@@ -96,6 +96,15 @@ void apply_precision_flags(const sweep_options& o, sweep_spec& spec) {
   if (o.min_real_opt->count() > 0)
     spec.min_realizations =
         io::parse_unsigned("--min-realizations", o.min_realizations, 2, max_realizations);
+  // A cap below the default minimum (1000) is named with the flag that set
+  // each (a new user's --max-realizations 400 was refused as
+  // "min_realizations: '1000'", a value they never gave).
+  if (o.target_opt->count() > 0 && spec.min_realizations > spec.realizations)
+    throw invalid_value(
+        "--min-realizations",
+        std::to_string(spec.min_realizations) + (o.min_real_opt->count() > 0 ? "" : " (the default)"),
+        "2 .. --max-realizations (" + std::to_string(spec.realizations) + ")" +
+            (o.min_real_opt->count() > 0 ? "" : ": give --min-realizations too"));
 }
 
 // --statistics LIST [--survival-bins N] [--burn-in T] [--observe-times GRID]

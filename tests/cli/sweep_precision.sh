@@ -90,6 +90,12 @@ expect_fail "--target-ci|stick_duration" sweep --mu 5 --lambda 1 --target-ci sti
 expect_fail "--target-ci|> 0" sweep --mu 5 --lambda 1 --target-ci R:-1
 expect_fail "--max-realizations|--target-ci" sweep --mu 5 --lambda 1 --max-realizations 100
 expect_fail "--realizations|--max-realizations" sweep --mu 5 --lambda 1 --target-ci R:0.01 --realizations 100
-expect_fail "min_realizations" sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 500
+# A cap below the default minimum names the default and the flag to give.
+expect_fail "invalid --min-realizations: '1000 (the default)'|2 .. --max-realizations (500): give --min-realizations too" \
+  sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 500
+expect_fail "invalid --min-realizations: '600'|2 .. --max-realizations (500))" \
+  sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 500 --min-realizations 600
+run_ok sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 500 --min-realizations 400 \
+  --threads 1 -o "$WORK/capped_min"
 
 finish
