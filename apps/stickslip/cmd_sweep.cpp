@@ -39,6 +39,7 @@
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/output_files.hpp"
+#include "stickslip/io/result_file.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
@@ -170,6 +171,11 @@ void report_already_complete(const run::run_plan& plan, const io::run_metadata& 
   fmt::print(stderr, "stickslip: {} already holds the complete results of this configuration "
                      "(written {}): nothing to do, they are left as they are\n",
              plan.dir, written_by.created_utc);
+  // An unmet precision target, as the run that wrote them said it (a new
+  // user's --resume of such a run said only "nothing to do").
+  const io::result_file written((std::filesystem::path(plan.dir) / io::results_file).string());
+  if (const auto note = written.attribute("warning"); !note.empty())
+    fmt::print(stderr, "stickslip: warning: {}\n", note);
   if (written_by.version != stickslip::version || written_by.git_revision != stickslip::git_revision)
     fmt::print(stderr, "stickslip: note: they were written by stickslip {} (git {}), this is {} "
                        "(git {}); add --overwrite to recompute them with this build\n",

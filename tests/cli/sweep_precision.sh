@@ -18,6 +18,23 @@ run_ok sweep --k 40 --lambda 1,10 --mu 2,5 --target-ci R:0.0001 --max-realizatio
 grep -qE "^stickslip: warning: 4 of 4 grid points did not reach the target 95 % half-width 0.0001 of the mean of R within --max-realizations 2000 \(the widest: [0-9.e-]+, at lambda = [0-9.]+, mu = [0-9.]+\); raise --max-realizations" "$WORK/stderr" ||
   fail "an unmet --target-ci: $(cat "$WORK/stderr")"
 checks=$((checks + 1))
+warned=$(grep '^stickslip: warning: ' "$WORK/stderr")
+# The outputs keep it (results.nc's warning attribute, summary.json's
+# "warning"), and a --resume that finds the run finished says it again (it
+# said only "nothing to do"); a met target's outputs have none.
+run_ok sweep --k 40 --lambda 1,10 --mu 2,5 --target-ci R:0.0001 --max-realizations 2000 \
+  --min-realizations 100 -o unmet --resume
+grep -qF "already holds the complete results" "$WORK/stderr" || fail "not a finished resume: $(cat "$WORK/stderr")"
+[[ $(grep '^stickslip: warning: ' "$WORK/stderr") == "$warned" ]] ||
+  fail "the finished --resume did not say the warning again: $(cat "$WORK/stderr")"
+"$PY" - "${warned#stickslip: warning: }" <<'PY' || fail "the unmet target's warning in the outputs"
+import json, sys, xarray as xr
+note = sys.argv[1]
+assert json.load(open("unmet/summary.json"))["warning"] == note
+assert xr.open_dataset("unmet/results.nc").attrs["warning"] == note
+assert "warning" not in json.load(open("tci1/summary.json"))
+assert "warning" not in xr.open_dataset("tci1/results.nc").attrs
+PY
 "$PY" - <<'PY' || fail "target CI checks"
 import json, sys
 docs = [json.load(open(f"tci{t}/summary.json")) for t in (1, 2)]

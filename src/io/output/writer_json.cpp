@@ -20,6 +20,7 @@
 #include "stickslip/precision/crn_slopes.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/survival_estimate.hpp"
+#include "stickslip/sweep.hpp"
 #include "stickslip/uncertainty/uncertain_draws.hpp"
 #include "observed_variables.hpp"
 #include "writers_detail.hpp"
@@ -383,6 +384,8 @@ void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata&
   j.begin_object(layout::multi_line);
   j.key("parameters");
   emit_parameters(j, rs, meta, options);
+  // As results.nc's `warning` attribute (writer_netcdf.cpp).
+  if (const auto note = unmet_target_note(rs); !note.empty()) j.member("warning", note);
   j.key("points");
   emit_points(j, rs, options);
   j.member("elapsed_seconds", rs.elapsed_seconds);
