@@ -156,7 +156,10 @@ struct result_set {
 // is still above the target (their cap came first), how many, and the
 // widest with its point, and how many had fewer than 2 values (no
 // half-width); empty when every point met it or there is no target. `cap`
-// names the cap's option ("--max-realizations"; Python's "realizations").
+// names the cap's option ("--max-realizations"; Python's "realizations");
+// empty: "the cap of N realizations per point", as the outputs record it
+// (results.nc's and summary.json's `warning`, read by CLI and Python users
+// alike).
 // A sensitivity study's: study_warning (uncertainty/sensitivity_design.hpp).
 // (A new user's unreachable target ended with exit 0 and no word.)
 [[nodiscard]] std::string unmet_target_note(const result_set& rs,

@@ -281,6 +281,11 @@ TEST(TargetCi, AnUnmetTargetIsNamedWithItsWidestPoint) {
   EXPECT_NE(note.find(fmt::format("lambda = {}", widest.parameters.switch_rate)), std::string::npos)
       << note;
   EXPECT_NE(unmet_target_note(rs, "realizations").find("within realizations 200"), std::string::npos);
+  // As the outputs record it, for CLI and Python users alike.
+  const std::string recorded = unmet_target_note(rs, "");
+  EXPECT_NE(recorded.find("within the cap of 200 realizations per point (the widest: "),
+            std::string::npos) << recorded;
+  EXPECT_NE(recorded.find("; raise the cap, or read"), std::string::npos) << recorded;
   // a point without two values: counted apart, never "the widest"
   rs.points[0].stats.*q->moments = mean_variance{};
   const std::string with_nan = unmet_target_note(rs);
