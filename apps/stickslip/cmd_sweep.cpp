@@ -97,15 +97,24 @@ void apply_precision_flags(const sweep_options& o, sweep_spec& spec) {
   if (o.min_real_opt->count() > 0)
     spec.min_realizations =
         io::parse_unsigned("--min-realizations", o.min_realizations, 2, max_realizations);
-  // A cap below the default minimum (1000) is named with the flag that set
-  // each (a new user's --max-realizations 400 was refused as
-  // "min_realizations: '1000'", a value they never gave).
-  if (o.target_opt->count() > 0 && spec.min_realizations > spec.realizations)
-    throw invalid_value(
-        "--min-realizations",
-        std::to_string(spec.min_realizations) + (o.min_real_opt->count() > 0 ? "" : " (the default)"),
-        "2 .. --max-realizations (" + std::to_string(spec.realizations) + ")" +
-            (o.min_real_opt->count() > 0 ? "" : ": give --min-realizations too"));
+  // A cap below the minimum is named with where each came from (a new
+  // user's --max-realizations 400 was refused as "min_realizations:
+  // '1000'", a value they never gave: the default). validate() says the same
+  // in the configuration's words for a target set there.
+  if (o.target_opt->count() > 0 && spec.min_realizations > spec.realizations) {
+    const bool min_flag = o.min_real_opt->count() > 0, max_flag = o.max_real_opt->count() > 0;
+    const bool min_default = !min_flag && spec.min_realizations == sweep_spec{}.min_realizations;
+    const std::string cap = max_flag ? fmt::format("--max-realizations ({})", spec.realizations)
+                                     : fmt::format("the configuration's realizations ({})",
+                                                   spec.realizations);
+    const std::string advice = spec.realizations < 2 ? ": raise --max-realizations"
+                               : min_flag            ? ""
+                                                     : ": give --min-realizations too";
+    throw invalid_value("--min-realizations",
+                        std::to_string(spec.min_realizations) +
+                            (min_flag ? "" : min_default ? " (the default)" : " (the configuration's)"),
+                        "2 .. " + cap + advice);
+  }
 }
 
 // --statistics LIST [--survival-bins N] [--burn-in T] [--observe-times GRID]
@@ -171,8 +180,9 @@ void report_already_complete(const run::run_plan& plan, const io::run_metadata& 
   fmt::print(stderr, "stickslip: {} already holds the complete results of this configuration "
                      "(written {}): nothing to do, they are left as they are\n",
              plan.dir, written_by.created_utc);
-  // An unmet precision target, as the run that wrote them said it (a new
-  // user's --resume of such a run said only "nothing to do").
+  // An unmet precision target, as the outputs record it (the cap named for
+  // CLI and Python users alike); a --resume of such a run said only
+  // "nothing to do".
   const io::result_file written((std::filesystem::path(plan.dir) / io::results_file).string());
   if (const auto note = written.attribute("warning"); !note.empty())
     fmt::print(stderr, "stickslip: warning: {}\n", note);

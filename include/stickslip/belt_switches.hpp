@@ -68,18 +68,15 @@ class poisson_switches {
 
   // The same values again, refilled by refill_chunk(*this), which calls
   // refill_with: the lane engine passes a function compiled for its SIMD
-  // target, into which the whole refill (the Philox rounds, the conversion
-  // to doubles, the log, the running sum) is inlined and compiled for that
-  // target too. (Refilled here, out of line, the refill is compiled for the
-  // baseline x86-64 and calls the target's log: 21 % more time than 0.1.0's
-  // static AVX-512 build on an Intel Xeon, docs/performance.md.)
-  // log_uniforms(rs, w, blocks) is fm::log_uniforms or the same kernel of
-  // the caller's target.
+  // target, into which the refill (the Philox rounds, the conversion to
+  // doubles, the log, the waits) is inlined and compiled for that target
+  // too. log_uniforms(rs, w, blocks) is fm::log_uniforms or the same kernel
+  // of the caller's target.
   // refill_chunk must call refill_with exactly once; refill_with is for
-  // that call only (it drops the unread times of the chunk). The running
-  // sum's bits depend on -ffp-contract=off in whatever compiles it (the
-  // core does, and passes it to every target that links it; see
-  // src/core/CMakeLists.txt).
+  // that call only (it drops the unread waits of the chunk). The wait and
+  // the sum are a product and a separate addition, never fused: the core
+  // compiles with -ffp-contract=off and passes it to every target that
+  // links it (src/core/CMakeLists.txt).
   template <class RefillChunk>
   [[nodiscard, gnu::always_inline]] double next_refilled_by(RefillChunk&& refill_chunk) noexcept {
     return time_ += detail::next_wait_of_chunk(*this, i_, waits_, refill_chunk);

@@ -45,8 +45,6 @@ namespace stickslip::detail::fm {
 [[nodiscard]] double atan2(double y, double x) noexcept;  // not both zero
 [[nodiscard]] double sin(double x) noexcept;
 [[nodiscard]] double cos(double x) noexcept;
-// p[i] = log(p[i]) for i < n, the same values as log() (vectorized).
-void log_inplace(double* p, std::size_t n) noexcept;
 // w[0 .. 4 * blocks) = log(random_stream::open_uniform(word)) of the words of
 // the next `blocks` Philox blocks of rs, in order, and rs advanced past them:
 // the belt's exponential waits, the same values as next_block, open_uniform

@@ -116,5 +116,15 @@ expect_fail "invalid --min-realizations: '600'|2 .. --max-realizations (500))" \
   sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 500 --min-realizations 600
 run_ok sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 500 --min-realizations 400 \
   --threads 1 -o "$WORK/capped_min"
+expect_fail "invalid --min-realizations: '1000 (the default)'|2 .. --max-realizations (1): raise --max-realizations" \
+  sweep --mu 5 --lambda 1 --target-ci R:0.01 --max-realizations 1
+# A cap from the configuration is named as such (the review: it was called
+# --max-realizations, which the user never gave).
+printf '[model]\nmu = 5.0\n\n[sweep]\nrealizations = 400\n' >"$WORK/cap400.toml"
+expect_fail "invalid --min-realizations: '1000 (the default)'|2 .. the configuration's realizations (400): give --min-realizations too" \
+  sweep --config "$WORK/cap400.toml" --target-ci R:0.01
+printf '[model]\nmu = 5.0\n\n[sweep]\nrealizations = 400\ntarget_ci = "R:0.01"\n' >"$WORK/target400.toml"
+expect_fail "invalid min_realizations: '1000'|lower min_realizations (1000 unless given) or raise the maximum" \
+  sweep --config "$WORK/target400.toml"
 
 finish

@@ -272,6 +272,19 @@ def test_an_unreachable_target_ci_warns_as_the_cli_does():
                     r"[0-9.]+, at lambda = 1\); raise the cap, or read", ds.attrs["warning"])
 
 
+def test_a_finished_resume_warns_of_its_unmet_target_again(tmp_path):
+    args = dict(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=400, seed=3, target_ci="R:0.0001",
+                min_realizations=100, output=str(tmp_path / "out"))
+    with pytest.warns(UserWarning, match="within realizations 400"):
+        first = stickslip.sweep(**args)
+    # the run is finished: resume=True reads it back, and says what its outputs record
+    with pytest.warns(UserWarning, match="within the cap of 400 realizations per point") as caught:
+        again = stickslip.sweep(resume=True, **args)
+    assert [str(w.message) for w in caught if "did not reach" in str(w.message)] == \
+        [first.attrs["warning"]]
+    assert again.attrs["warning"] == first.attrs["warning"]
+
+
 def test_simulate_replays_a_common_random_number_realization():
     ds = stickslip.sweep(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=50, seed=3,
                          common_random_numbers=True)

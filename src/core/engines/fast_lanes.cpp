@@ -139,11 +139,12 @@ struct target_log_uniforms {
 };
 
 // A switch source's refill compiled for this target: its refill_with (the
-// Philox rounds, the conversion to doubles, the log, the running sum) is
-// inlined here. The same bits: the integer rounds and the exact
-// conversions do not depend on the target or on the vector width, the log
-// is this target's either way, and the sum is the same additions
-// (no multiply-add fused into them: -ffp-contract=off, src/core/CMakeLists.txt).
+// Philox rounds, the conversion to doubles, the log, the waits) is inlined
+// here. The same bits: the integer rounds and the exact conversions do not
+// depend on the target or on the vector width, the log is this target's
+// either way, and the waits are the same products (no multiply-add fused:
+// -ffp-contract=off, src/core/CMakeLists.txt); the source sums them as it
+// hands the times out.
 template <class SwitchSource>
 HWY_NOINLINE void refill_for_target(SwitchSource& source) noexcept {
   target_log_uniforms draw;

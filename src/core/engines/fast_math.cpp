@@ -20,7 +20,6 @@ double Atan(double x) { return sk::atan1(x); }
 double Atan2(double y, double x) { return sk::atan21(y, x); }
 double Sin(double x) { return sk::sin1(x); }
 double Cos(double x) { return sk::cos1(x); }
-void LogInplace(double* p, std::size_t n) { sk::log_inplace(p, n); }
 void LogUniforms(random_stream& rs, double* w, std::size_t blocks) { sk::log_uniforms(rs, w, blocks); }
 std::int64_t Target() { return HWY_TARGET; }
 
@@ -36,7 +35,6 @@ HWY_EXPORT(Atan);
 HWY_EXPORT(Atan2);
 HWY_EXPORT(Sin);
 HWY_EXPORT(Cos);
-HWY_EXPORT(LogInplace);
 HWY_EXPORT(LogUniforms);
 HWY_EXPORT(Target);
 
@@ -45,7 +43,6 @@ double atan(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Atan)(x); }
 double atan2(double y, double x) noexcept { return HWY_DYNAMIC_DISPATCH(Atan2)(y, x); }
 double sin(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Sin)(x); }
 double cos(double x) noexcept { return HWY_DYNAMIC_DISPATCH(Cos)(x); }
-void log_inplace(double* p, std::size_t n) noexcept { HWY_DYNAMIC_DISPATCH(LogInplace)(p, n); }
 void log_uniforms(random_stream& rs, double* w, std::size_t blocks) noexcept {
   HWY_DYNAMIC_DISPATCH(LogUniforms)(rs, w, blocks);
 }

@@ -68,7 +68,8 @@ HWY_INLINE vec cos(dtag d, vec x) {
   return hn::IfThenElse(hn::Lt(hn::Abs(x), hn::Set(d, 1e-8)), hn::Set(d, 1.0), hn::Cos(d, x));
 }
 
-// p[i] = log(p[i]) for i < n (the batched draw of belt switch waits).
+// p[i] = log(p[i]) for i < n (log_uniforms' draws on targets of fewer than
+// four 64-bit lanes).
 HWY_INLINE void log_inplace(double* HWY_RESTRICT p, std::size_t n) {
   const dtag d;
   const std::size_t N = hn::Lanes(d);
@@ -122,7 +123,9 @@ HWY_INLINE void log_uniforms(random_stream& rs, double* HWY_RESTRICT w, std::siz
       const auto m1_lo = hn::Set(du, PHILOX_M4x64_1 & 0xffffffffULL);
       const auto m1_hi = hn::Set(du, PHILOX_M4x64_1 >> 32);
       const auto one = hn::Set(du, 1);
-      const auto ulp53 = hn::Set(d, 0x1p-53);
+      // random_stream::open_uniform (r123::u01fixedpt<double>) on whole
+    // vectors: (1 | w >> 11) * 2^-53, exact (FastPath.VectorPhilox...).
+    const auto ulp53 = hn::Set(d, 0x1p-53);
       const auto uniform = [&](hn::Vec<decltype(du)> x) {
         return log(d, hn::Mul(hn::ConvertTo(d, hn::Or(one, hn::ShiftRight<11>(x))), ulp53));
       };

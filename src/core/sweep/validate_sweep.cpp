@@ -231,7 +231,9 @@ void validate(const sweep_spec& s) {
     if (s.min_realizations < 2 || s.min_realizations > s.realizations)
       throw invalid_value("min_realizations", std::to_string(s.min_realizations),
                           "2 .. the maximum realizations per point (" +
-                              std::to_string(s.realizations) + ")");
+                              std::to_string(s.realizations) +
+                              "): lower min_realizations (1000 unless given) or raise the "
+                              "maximum");
   }
   if (s.realizations > max_realizations)
     throw invalid_value("realizations", std::to_string(s.realizations),
