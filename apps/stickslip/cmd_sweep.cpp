@@ -180,9 +180,8 @@ void report_already_complete(const run::run_plan& plan, const io::run_metadata& 
   fmt::print(stderr, "stickslip: {} already holds the complete results of this configuration "
                      "(written {}): nothing to do, they are left as they are\n",
              plan.dir, written_by.created_utc);
-  // An unmet precision target, as the outputs record it (the cap named for
-  // CLI and Python users alike); a --resume of such a run said only
-  // "nothing to do".
+  // An unmet precision target, as the run said it and the outputs record it
+  // (a --resume of such a run said only "nothing to do").
   const io::result_file written((std::filesystem::path(plan.dir) / io::results_file).string());
   if (const auto note = written.attribute("warning"); !note.empty())
     fmt::print(stderr, "stickslip: warning: {}\n", note);
@@ -215,8 +214,9 @@ void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_ou
     for (const auto& p : out.results->points) n += p.stats.realizations;
   }
   const auto points = point_count(spec);
-  fmt::print(stderr, "{} realizations in {:.3g} s ({} grid point{}, {}{}) -> {}\n", n,
-             out.elapsed_this_run, points, points == 1 ? "" : "s", where, resumed, plan.dir);
+  fmt::print(stderr, "{} realization{} in {:.3g} s ({} grid point{}, {}{}) -> {}\n", n,
+             n == 1 ? "" : "s", out.elapsed_this_run, points, points == 1 ? "" : "s", where,
+             resumed, plan.dir);
   if (out.results)
     if (const auto note = unmet_target_note(*out.results); !note.empty())
       fmt::print(stderr, "stickslip: warning: {}\n", note);
@@ -355,7 +355,8 @@ void add_sweep_command(CLI::App& app, const invocation& inv) {
                      ->group(precision);
   o.max_real_opt = cmd->add_option("--max-realizations", o.max_realizations,
                                    "with --target-ci: at most N realizations per point "
-                                   "(default 1000000)")
+                                   "(default 1000000; below the minimum, 1000 by default, give "
+                                   "--min-realizations too)")
                        ->type_name("N")
                        ->group(precision);
   o.min_real_opt = cmd->add_option("--min-realizations", o.min_realizations,

@@ -155,15 +155,14 @@ struct result_set {
 // With --target-ci: one line on the grid points whose mean's 95 % half-width
 // is still above the target (their cap came first), how many, and the
 // widest with its point, and how many had fewer than 2 values (no
-// half-width); empty when every point met it or there is no target. `cap`
-// names the cap's option ("--max-realizations"; Python's "realizations");
-// empty: "the cap of N realizations per point", as the outputs record it
-// (results.nc's and summary.json's `warning`, read by CLI and Python users
-// alike).
+// half-width); empty when every point met it or there is no target. The
+// cap is "the cap of N realizations per point", one text for the CLI's
+// warning, Python's and the outputs' record (results.nc's and
+// summary.json's `warning`; a new user found the flag's name in one and
+// not the other odd, and Python's "within realizations 400" odder).
 // A sensitivity study's: study_warning (uncertainty/sensitivity_design.hpp).
 // (A new user's unreachable target ended with exit 0 and no word.)
-[[nodiscard]] std::string unmet_target_note(const result_set& rs,
-                                            std::string_view cap = "--max-realizations");
+[[nodiscard]] std::string unmet_target_note(const result_set& rs);
 
 // Points in order of decreasing expected work (stable for ties): the cost of
 // a realization is about linear in its events (expected_events), which at

@@ -222,7 +222,7 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   if (const auto note = io::removed_outputs_note(removed); !note.empty())
     if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 2) != 0) throw py::error_already_set();
   // an unreachable --target-ci (target_halfwidth=...), as the CLI warns of it
-  if (const auto note = unmet_target_note(*outcome.results, "realizations"); !note.empty())
+  if (const auto note = unmet_target_note(*outcome.results); !note.empty())
     if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 2) != 0) throw py::error_already_set();
   py::gil_scoped_release release;
   return is_sensitivity(spec) ? io::sensitivity_json(*outcome.results) : std::string();

@@ -29,4 +29,10 @@ grep -qE '[0-9]\.[0-9]{4,}' "$WORK/stderr" && fail "memory estimate with many di
 expect_fail "--realizations|'-5'|2 to 2^40" reproduce --realizations -5 -o rp
 expect_fail "--threads|'x'" reproduce --threads x -o rp
 [[ ! -e rp ]] || fail "a refused reproduce created rp/"
+
+# One realization on one point is said in the singular (a new user read
+# "1 realizations").
+run_ok sweep --lambda 1 --mu 5 --realizations 1 -o one
+grep -qE '^1 realization in [0-9.e+-]+ s \(1 grid point, ' "$WORK/stderr" ||
+  fail "the singular: $(cat "$WORK/stderr")"
 finish

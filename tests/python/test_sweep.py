@@ -259,11 +259,12 @@ def test_common_random_numbers_and_target_ci_equal_the_cli(cli, tmp_path):
 
 def test_an_unreachable_target_ci_warns_as_the_cli_does():
     # every point stops at its cap: a UserWarning names how many, and the widest,
-    # with the cap as Python spells it (realizations=, not --max-realizations)
+    # in the CLI's words (the cap without a flag's name: Python's is realizations=)
     with pytest.warns(UserWarning, match=r"2 of 2 grid points did not reach the target 95 % "
-                                         r"half-width 0.0001 of the mean of R within "
-                                         r"realizations 400 \(the widest: [0-9.]+, at lambda = 1\); "
-                                         r"raise realizations, or read each point's interval"):
+                                         r"half-width 0.0001 of the mean of R within the cap "
+                                         r"of 400 realizations per point \(the widest: "
+                                         r"[0-9.]+, at lambda = 1\); raise the cap, or read "
+                                         r"each point's interval"):
         ds = stickslip.sweep(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=400, seed=3,
                              target_ci="R:0.0001", min_realizations=100)
     # the Dataset keeps it as results.nc does, with the cap named for everyone
@@ -275,7 +276,7 @@ def test_an_unreachable_target_ci_warns_as_the_cli_does():
 def test_a_finished_resume_warns_of_its_unmet_target_again(tmp_path):
     args = dict(lam=[1.0, 3.8], mu=5.0, k=40.0, realizations=400, seed=3, target_ci="R:0.0001",
                 min_realizations=100, output=str(tmp_path / "out"))
-    with pytest.warns(UserWarning, match="within realizations 400"):
+    with pytest.warns(UserWarning, match="within the cap of 400 realizations per point"):
         first = stickslip.sweep(**args)
     # the run is finished: resume=True reads it back, and says what its outputs record
     with pytest.warns(UserWarning, match="within the cap of 400 realizations per point") as caught:

@@ -20,7 +20,7 @@ const quantity_info* target_quantity(const sweep_spec& s) {
                       "a statistic with one value per realization: " + mean_statistic_names());
 }
 
-std::string unmet_target_note(const result_set& rs, std::string_view cap) {
+std::string unmet_target_note(const result_set& rs) {
   const sweep_spec& s = rs.spec;
   const quantity_info* q = is_sensitivity(s) ? nullptr : target_quantity(s);
   if (!q) return {};
@@ -52,14 +52,12 @@ std::string unmet_target_note(const result_set& rs, std::string_view cap) {
       undefined == 0 ? ""
                      : fmt::format("; {} of them had fewer than 2 values of {}, and no half-width",
                                    undefined, q->summary_name);
-  const std::string within =
-      cap.empty() ? fmt::format("the cap of {} realizations per point", s.realizations)
-                  : fmt::format("{} {}", cap, s.realizations);
   return fmt::format(
       "{} of {} grid point{} did not reach the target 95 % half-width {} of the mean of {} within "
-      "{}{}{}; raise {}, or read each point's interval in the results",
+      "the cap of {} realizations per point{}{}; raise the cap, or read each point's interval in "
+      "the results",
       unmet, rs.points.size(), rs.points.size() == 1 ? "" : "s", s.target_halfwidth,
-      q->summary_name, within, widest_text, no_width, cap.empty() ? "the cap" : cap);
+      q->summary_name, s.realizations, widest_text, no_width);
 }
 
 bool meets_target(const sweep_spec& s, const point_statistics& p) {

@@ -385,7 +385,7 @@ void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata&
   j.key("parameters");
   emit_parameters(j, rs, meta, options);
   // As results.nc's `warning` attribute (writer_netcdf.cpp).
-  if (const auto note = unmet_target_note(rs, ""); !note.empty()) j.member("warning", note);
+  if (const auto note = unmet_target_note(rs); !note.empty()) j.member("warning", note);
   j.key("points");
   emit_points(j, rs, options);
   j.member("elapsed_seconds", rs.elapsed_seconds);

@@ -164,10 +164,9 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
     f.putAtt("min_realizations", nc::ncUint64, static_cast<unsigned long long>(s.min_realizations));
   }
   // Grid points that did not reach the precision target within the cap
-  // (unmet_target_note, with the cap named for CLI and Python users alike):
-  // `sweep`'s warning, kept with the results, where a --resume that finds
-  // them finished reads it to say it again.
-  if (const auto note = unmet_target_note(rs, ""); !note.empty()) f.putAtt("warning", note);
+  // (unmet_target_note): `sweep`'s warning, kept with the results, where a
+  // --resume that finds them finished reads it to say it again.
+  if (const auto note = unmet_target_note(rs); !note.empty()) f.putAtt("warning", note);
   f.putAtt("statistics", to_string(s.statistics));
   // Only with a burn-in: without one the file is what it was before.
   if (s.burn_in != 0.0) f.putAtt("burn_in", nc::ncDouble, s.burn_in);
