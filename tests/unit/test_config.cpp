@@ -376,6 +376,12 @@ TEST(ToToml, IsReadableAndComplete) {
                           "order = [\"lambda\", \"mu\"]", "belt_start = \"-1\"", "seed = 42",
                           "m = 1.0", "g = 9.81"})
     EXPECT_THAT(text, HasSubstr(key));
+  // The swept parameters' [model] values are said to be replaced by the
+  // grid's (a new user read them as the sweep's values); the fixed are not.
+  EXPECT_THAT(text, HasSubstr("\nmu = 5.0  # swept: [grid] gives its values\n"));
+  EXPECT_THAT(text, HasSubstr("\nlambda = 1.0  # swept: [grid] gives its values\n"));
+  EXPECT_THAT(text, HasSubstr("\nm = 1.0\n"));
+  EXPECT_THAT(text, HasSubstr("\ng = 9.81\n"));
 }
 
 struct bad_toml {

@@ -482,6 +482,13 @@ std::string to_toml(const sweep_spec& s) {
   // The values as given: the rows that cannot be unset always, the others
   // (an unset mu_s, mu_k) only when given, so that a configuration without
   // them reads and prints as before.
+  // A swept parameter's value here is replaced at every point by its
+  // [grid] axis: said beside it (a new user read summary.json's
+  // `mu = 5.0` beside base's null for a swept mu as a contradiction).
+  const auto swept = [&](const char* symbol) {
+    return std::any_of(s.axes.begin(), s.axes.end(),
+                       [&](const auto& ax) { return canonical_symbol(ax.name) == symbol; });
+  };
   const auto& b = s.base;
   for (const auto& row : scalar_parameters) {
     const std::string line = law_line(row.symbol);
@@ -490,7 +497,8 @@ std::string to_toml(const sweep_spec& s) {
                         row.domain == parameter_domain::non_negative;
     if (!line.empty()) out += line;
     else if (always || v != model_parameters{}.*row.field)
-      out += fmt::format("{} = {}\n", row.symbol, toml_float(v));
+      out += fmt::format("{} = {}{}\n", row.symbol, toml_float(v),
+                         swept(row.symbol) ? "  # swept: [grid] gives its values" : "");
   }
   auto array = [](const std::vector<double>& v, std::size_t from, std::size_t count) {
     std::string a = "[";
