@@ -39,7 +39,6 @@
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/metadata.hpp"
 #include "stickslip/io/output_files.hpp"
-#include "stickslip/io/result_file.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/sweep.hpp"
@@ -182,8 +181,7 @@ void report_already_complete(const run::run_plan& plan, const io::run_metadata& 
              plan.dir, written_by.created_utc);
   // An unmet precision target, as the run said it and the outputs record it
   // (a --resume of such a run said only "nothing to do").
-  const io::result_file written((std::filesystem::path(plan.dir) / io::results_file).string());
-  if (const auto note = written.attribute("warning"); !note.empty())
+  if (const auto note = io::read_finished_warning(plan.dir); !note.empty())
     fmt::print(stderr, "stickslip: warning: {}\n", note);
   if (written_by.version != stickslip::version || written_by.git_revision != stickslip::git_revision)
     fmt::print(stderr, "stickslip: note: they were written by stickslip {} (git {}), this is {} "

@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <optional>
 
 #include "bindings.hpp"
@@ -15,7 +14,6 @@
 #include "stickslip/io/journal.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/output_lock.hpp"
-#include "stickslip/io/result_file.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/run/journaled_run.hpp"
 #include "stickslip/run/result_memory.hpp"
@@ -156,11 +154,9 @@ std::string run_sweep_py(const py::dict& base, const std::vector<std::pair<std::
   if (already_complete) {
     // An unmet target, as the finished outputs record it (the CLI's --resume
     // says it again too).
-    if (!is_sensitivity(spec)) {
-      const io::result_file written((std::filesystem::path(output) / io::results_file).string());
-      if (const auto note = written.attribute("warning"); !note.empty())
+    if (!is_sensitivity(spec))
+      if (const auto note = io::read_finished_warning(output); !note.empty())
         if (PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 2) != 0) throw py::error_already_set();
-    }
     return {};
   }
   io::run_metadata meta = io::make_metadata(0, nullptr, io::to_toml(spec));

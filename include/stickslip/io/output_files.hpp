@@ -21,6 +21,11 @@ namespace stickslip::io {
 // missing, unreadable or lacks the resolved configuration.
 [[nodiscard]] std::optional<run_metadata> read_finished_metadata(const std::string& dir,
                                                                  std::string* problem = nullptr);
+// The `warning` global attribute of the same file (an unmet --target-ci, or
+// a study's undefined or wide indices): what a --resume that finds the run
+// finished says again, in the CLI and in Python. "" when there is none or
+// the file cannot be read.
+[[nodiscard]] std::string read_finished_warning(const std::string& dir);
 
 // Throws stickslip::error (exit code 2, invalid input) naming the first of
 // `paths` that exists: "'P' already exists (...): <how_to_proceed>".

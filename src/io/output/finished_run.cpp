@@ -12,11 +12,23 @@
 namespace stickslip::io {
 namespace fs = std::filesystem;
 
-std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::string* problem) {
+namespace {
+
+// The file that speaks for a finished run in DIR: results.nc, or a study's
+// sensitivity.nc.
+std::string finished_result_path(const std::string& dir) {
   auto path = (fs::path(dir) / results_file).string();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec) && fs::is_regular_file(fs::path(dir) / sensitivity_file, ec))
     path = (fs::path(dir) / sensitivity_file).string();
+  return path;
+}
+
+}  // namespace
+
+std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::string* problem) {
+  const auto path = finished_result_path(dir);
+  std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
     if (problem) *problem = "'" + path + "' is missing";
     return std::nullopt;
@@ -42,6 +54,18 @@ std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::
   } catch (const std::exception& e) {
     if (problem) *problem = "'" + path + "' cannot be read (" + e.what() + ")";
     return std::nullopt;
+  }
+}
+
+std::string read_finished_warning(const std::string& dir) {
+  try {
+    netCDF::NcFile f(finished_result_path(dir), netCDF::NcFile::read);
+    const auto att = f.getAtt("warning");
+    std::string text;
+    if (!att.isNull()) att.getValues(text);
+    return text;
+  } catch (const std::exception&) {
+    return {};
   }
 }
 
