@@ -6,6 +6,7 @@
 #pragma once
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,6 +68,26 @@ class text_sink {
   std::FILE* file_ = nullptr;
   std::string report_as_;
   fmt::memory_buffer buf_;
+};
+
+// `path.tmp` open for writing over time (an output streamed as a run goes:
+// streamed_outputs.hpp): print into sink(), then finish() flushes, fsyncs and
+// closes it, without renaming. Destroyed unfinished (a failure, a stop), it
+// removes the temporary. Errors throw io_error(path, ...).
+class text_temporary {
+ public:
+  explicit text_temporary(std::string path);
+  text_temporary(const text_temporary&) = delete;
+  text_temporary& operator=(const text_temporary&) = delete;
+  ~text_temporary();
+  [[nodiscard]] text_sink& sink() { return *sink_; }
+  void finish();
+
+ private:
+  std::string path_, tmp_;
+  std::FILE* file_ = nullptr;
+  std::unique_ptr<text_sink> sink_;
+  bool finished_ = false;
 };
 
 // Writes `path.tmp` through `fill` (which prints into the sink), flushes,

@@ -20,6 +20,16 @@ std::vector<std::size_t> chunk_shape(const std::vector<std::size_t>& shape, std:
   return chunk;
 }
 
+std::vector<std::size_t> netcdf_chunks(const std::vector<std::size_t>& shape) {
+  auto chunk = chunk_shape(shape, netcdf_chunk_values);
+  const std::size_t rows = netcdf_stream_rows;
+  if (rows == 0 || chunk.empty()) return chunk;
+  std::size_t c = std::min(chunk[0], rows);
+  while (rows % c != 0) --c;  // the largest divisor of rows <= chunk[0]
+  chunk[0] = c;
+  return chunk;
+}
+
 std::vector<row_run> row_runs(const std::vector<std::size_t>& grid,
                               const std::vector<std::size_t>& chunk) {
   const std::size_t rank = grid.size();

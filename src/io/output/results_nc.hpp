@@ -28,6 +28,7 @@ struct layout_info {
   std::vector<nc::NcDim> grid;  // grid dims
   nc::NcDim bin, bin_y, bounds, trace, level;
   std::size_t bins = 0, trace_length = 0, levels = 0;
+  std::vector<std::string> meaningless;  // meaningless_parameters of the grid
 };
 
 // A variable's units, long_name and (when not empty) description attributes.
@@ -51,7 +52,7 @@ std::vector<nc::NcDim> with(std::vector<nc::NcDim> dims, const nc::NcDim& last);
 // costs more than deflate saves on them (a 1-point sweep's file grew from
 // 162 KB to 513 KB).
 // The chunks are chosen here, not by netCDF: each is a run of whole rows in
-// row-major order (chunk_shape, at most 4 MiB), and put_rows writes one
+// row-major order (netcdf_chunks, at most 4 MiB), and put_rows writes one
 // chunk per call, so every chunk is compressed once. With netCDF's default chunks (which span
 // many slabs of the first axis) the slab-wise writes of a 400 x 250 grid
 // decompressed and recompressed the same chunks over and over: hours
@@ -71,7 +72,8 @@ void compress(nc::NcVar& v, const std::vector<nc::NcDim>& dims);
 void release_chunks(const nc::NcVar& v);
 
 // A double (or a 64-bit count) variable over `dims`, described, compressed
-// as above, and with NaN as its fill value unless `fill` is false.
+// as above, and with NaN as its fill value unless `fill` is false; the one
+// of that name when a slab written before defined it (defined).
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                      const std::string& units, const std::string& long_name,
                      const std::string& description, bool fill = true, bool deflate = true);
@@ -82,22 +84,53 @@ nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc
 // ("switch rate lambda").
 std::string parameter_long_name(const parameter_info& info, const std::string& symbol);
 
+// The rows of the grid's first dimension that rs's points cover: all of them
+// for a whole result set; for a slab of a run streamed window by window
+// (streamed_outputs.hpp: whole rows of the first axis, in order, indexed on
+// the whole grid), the slab's. `grid` is the whole grid's shape.
+struct grid_rows {
+  std::size_t first = 0, count = 0;
+  bool whole = true;
+};
+[[nodiscard]] grid_rows rows_of(const result_set& rs, const std::vector<std::size_t>& grid);
+
+// Whether rs is a whole result set or the first slab of a streamed one: the
+// one that defines the variables and writes their attributes and
+// coordinates (later slabs write only their values).
+[[nodiscard]] inline bool first_slab(const result_set& rs) {
+  return holds_every_point(rs) ||
+         (!rs.points.empty() && !rs.points.front().index.empty() && rs.points.front().index[0] == 0);
+}
+
+// The shape of `v` (all of its dimensions).
+[[nodiscard]] std::vector<std::size_t> shape_of(const nc::NcVar& v);
+
 // One value per grid point, computed by `value(point)`.
 template <class T, class F>
 void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
   std::vector<T> data;
   data.reserve(rs.points.size());
   for (const auto& p : rs.points) data.push_back(static_cast<T>(value(p)));
-  v.putVar(data.data());
-  release_chunks(v);
+  const auto shape = shape_of(v);
+  const auto rows = rows_of(rs, shape);
+  if (rows.whole) {
+    v.putVar(data.data());
+  } else {
+    std::vector<std::size_t> start(shape.size(), 0), count = shape;
+    start[0] = rows.first;
+    count[0] = rows.count;
+    v.putVar(start, count, data.data());
+  }
+  if (rows.first == 0) release_chunks(v);
 }
 
 // A row of `len` values per grid point (the dimensions after the grid's).
-// Written one chunk at a time (chunk_shape of the variable's shape, also for
-// a contiguous variable): each call covers whole chunks, so each is
+// Written one chunk at a time (netcdf_chunks of the variable's shape, also
+// for a contiguous variable): each call covers whole chunks, so each is
 // compressed once, and the buffer holds at most one chunk (or one row, if a
 // row alone is longer than a chunk). Relies on rs.points being in row-major
-// grid order (check_shape verifies it).
+// grid order (check_shape verifies it; a streamed slab's chunks end at its
+// last row: netcdf_stream_rows).
 template <class T>
 void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
               const std::function<void(const point_result&, std::vector<T>&)>& row) {
@@ -105,9 +138,11 @@ void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
   std::vector<std::size_t> shape;
   for (const auto& d : dims) shape.push_back(d.getSize());
   const std::size_t grid_rank = std::max<std::size_t>(1, rs.spec.axes.size());
-  const auto chunk = chunk_shape(shape, netcdf_chunk_values);
-  const auto runs = row_runs(std::vector<std::size_t>(shape.begin(), shape.begin() + grid_rank),
-                             std::vector<std::size_t>(chunk.begin(), chunk.begin() + grid_rank));
+  const auto chunk = netcdf_chunks(shape);
+  std::vector<std::size_t> grid(shape.begin(), shape.begin() + grid_rank);
+  const auto rows = rows_of(rs, grid);
+  grid[0] = rows.count;
+  const auto runs = row_runs(grid, std::vector<std::size_t>(chunk.begin(), chunk.begin() + grid_rank));
   std::vector<T> buf, one(len);
   for (const auto& run : runs) {
     buf.resize(run.points * len);
@@ -116,12 +151,19 @@ void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
       std::copy(one.begin(), one.end(), buf.begin() + static_cast<std::ptrdiff_t>(i * len));
     }
     auto start = run.start, count = run.count;
+    start[0] += rows.first;
     start.resize(shape.size(), 0);
     for (std::size_t d = grid_rank; d < shape.size(); ++d) count.push_back(shape[d]);
     v.putVar(start, count, buf.data());
   }
-  release_chunks(v);
+  if (rows.first == 0) release_chunks(v);
 }
+
+// A dimension of results.nc, added unless a slab written before added it.
+nc::NcDim dimension(nc::NcFile& f, const std::string& name, std::size_t size);
+// Whether results.nc already holds the variable `name` (from a slab written
+// before: its definition, attributes and coordinate values are not repeated).
+[[nodiscard]] bool defined(const nc::NcFile& f, const std::string& name);
 
 // The groups of variables, in the order write_netcdf_file writes them.
 void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs);

@@ -17,15 +17,17 @@ void write_survival(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   for (const auto& law : survival_laws()) {
     const std::string name = law.name, coordinate = law.coordinate;
     const auto edges = survival_edges(g.*law.upper, g.bins);
-    const auto dim = f.addDim(coordinate, edges.size());
-    auto c = f.addVar(coordinate, nc::ncDouble, dim);
+    const auto dim = dimension(f, coordinate, edges.size());
     std::string words = coordinate;
     std::replace(words.begin(), words.end(), '_', ' ');
-    describe(c, "s", words,
-             fmt::format("{} {}: the edges of the survival grid, {} bins on [0, {}] s, at "
-                         "which the survival curve is evaluated",
-                         words, law.symbol, g.bins, g.*law.upper));
-    c.putVar(edges.data());
+    if (!defined(f, coordinate)) {
+      auto c = f.addVar(coordinate, nc::ncDouble, dim);
+      describe(c, "s", words,
+               fmt::format("{} {}: the edges of the survival grid, {} bins on [0, {}] s, at "
+                           "which the survival curve is evaluated",
+                           words, law.symbol, g.bins, g.*law.upper));
+      c.putVar(edges.data());
+    }
     const auto dims = with(l.grid, dim);
     // One Kaplan-Meier curve per point and variable: O(bins) each.
     auto curve_of = [&](const point_result& p) { return kaplan_meier(p.stats.*law.counts); };
@@ -62,18 +64,23 @@ void write_survival(nc::NcFile& f, const layout_info& l, const result_set& rs) {
 void write_observed(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto& times = rs.spec.observe_times;
   if (times.empty()) return;
-  const auto time = f.addDim("time", times.size());
-  auto t = f.addVar("time", nc::ncDouble, time);
-  describe(t, "s", "observation time",
-           "the observe times t of sweep --observe-times, at which the state of every "
-           "realization is taken from its closed-form motion (no interpolation)");
-  t.putAtt("axis", "T");
-  t.putVar(times.data());
+  const auto time = dimension(f, "time", times.size());
+  const bool first = !defined(f, "time");
+  if (first) {
+    auto t = f.addVar("time", nc::ncDouble, time);
+    describe(t, "s", "observation time",
+             "the observe times t of sweep --observe-times, at which the state of every "
+             "realization is taken from its closed-form motion (no interpolation)");
+    t.putAtt("axis", "T");
+    t.putVar(times.data());
+  }
   const std::size_t quantiles = std::size(observed_quantile_levels);
-  const auto quantile = f.addDim("quantile", quantiles);
-  auto q = f.addVar("quantile", nc::ncDouble, quantile);
-  describe(q, "1", "quantile level", "the levels q of the quantile variables");
-  q.putVar(observed_quantile_levels);
+  const auto quantile = dimension(f, "quantile", quantiles);
+  if (first) {
+    auto q = f.addVar("quantile", nc::ncDouble, quantile);
+    describe(q, "1", "quantile level", "the levels q of the quantile variables");
+    q.putVar(observed_quantile_levels);
+  }
   for (const auto& v : observed_variables()) {
     auto dims = with(l.grid, time);
     if (v.shape == observed_shape::per_level) dims.push_back(l.level);

@@ -1,6 +1,10 @@
 // The helpers of results.nc's variables (results_nc.hpp).
 #include "results_nc.hpp"
 
+#include <fmt/format.h>
+
+#include "stickslip/error.hpp"
+
 namespace stickslip::io::detail::results_nc {
 
 void describe(const nc::NcVar& v, const std::string& units, const std::string& long_name,
@@ -27,7 +31,7 @@ void compress(nc::NcVar& v, const std::vector<nc::NcDim>& dims) {
   std::size_t values = 1;
   for (auto n : shape) values *= n;
   if (dims.empty() || values < 4096) return;
-  auto chunks = chunk_shape(shape, netcdf_chunk_values);
+  auto chunks = netcdf_chunks(shape);
   v.setChunking(nc::NcVar::nc_CHUNKED, chunks);
   v.setCompression(true, true, 1);
 }
@@ -46,6 +50,7 @@ void release_chunks(const nc::NcVar& v) {
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                      const std::string& units, const std::string& long_name,
                      const std::string& description, bool fill, bool deflate) {
+  if (defined(f, name)) return f.getVar(name);
   auto v = f.addVar(name, nc::ncDouble, dims);
   if (deflate) compress(v, dims);
   if (fill) v.setFill(true, nan);
@@ -55,11 +60,40 @@ nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<n
 
 nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                     const std::string& long_name, const std::string& description) {
+  if (defined(f, name)) return f.getVar(name);
   auto v = f.addVar(name, nc::ncInt64, dims);
   compress(v, dims);
   describe(v, "1", long_name, description);
   return v;
 }
+
+grid_rows rows_of(const result_set& rs, const std::vector<std::size_t>& grid) {
+  const std::size_t n = grid.empty() ? 1 : grid[0];
+  if (holds_every_point(rs)) return {0, n, true};
+  std::size_t slab = 1;  // points per row of the first axis
+  for (std::size_t d = 1; d < grid.size(); ++d) slab *= grid[d];
+  if (rs.points.empty() || rs.points.size() % slab != 0 || rs.points.front().index.empty())
+    throw error(exit_code::internal,
+                fmt::format("a streamed slab of {} points is not whole rows of {} points",
+                            rs.points.size(), slab));
+  const grid_rows rows{rs.points.front().index[0], rs.points.size() / slab, false};
+  if (rows.first + rows.count > n)
+    throw error(exit_code::internal, "a streamed slab runs past the grid's last row");
+  return rows;
+}
+
+std::vector<std::size_t> shape_of(const nc::NcVar& v) {
+  std::vector<std::size_t> shape;
+  for (const auto& d : v.getDims()) shape.push_back(d.getSize());
+  return shape;
+}
+
+nc::NcDim dimension(nc::NcFile& f, const std::string& name, std::size_t size) {
+  if (auto d = f.getDim(name); !d.isNull()) return d;
+  return f.addDim(name, size);
+}
+
+bool defined(const nc::NcFile& f, const std::string& name) { return !f.getVar(name).isNull(); }
 
 std::string parameter_long_name(const parameter_info& info, const std::string& symbol) {
   std::string n = info.long_name;

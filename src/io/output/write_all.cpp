@@ -66,17 +66,34 @@ std::vector<std::string> write_all(const result_set& rs, const run_metadata& met
                          });
                        }});
 
-  std::size_t written = 0, renamed = 0;
+  std::size_t written = 0;
   try {
     for (; written < outputs.size(); ++written) outputs[written].write_temporary(outputs[written].path);
-    for (; renamed < outputs.size(); ++renamed)
-      detail::commit_rename(detail::temporary_path(outputs[renamed].path), outputs[renamed].path);
   } catch (...) {
     // The output that failed has already removed its own temporary.
-    for (std::size_t i = 0; i < renamed; ++i) detail::remove_file_quietly(outputs[i].path);
-    for (std::size_t i = renamed; i < written; ++i)
+    for (std::size_t i = 0; i < written; ++i)
       detail::remove_file_quietly(detail::temporary_path(outputs[i].path));
     detail::remove_created(created);
+    throw;
+  }
+  std::vector<std::string> paths;
+  for (const auto& o : outputs) paths.push_back(o.path);
+  return detail::commit_outputs(dir, paths, created, earlier_study);
+}
+
+namespace detail {
+
+std::vector<std::string> commit_outputs(const std::string& dir, const std::vector<std::string>& paths,
+                                        const std::vector<created_directory>& created,
+                                        bool earlier_study) {
+  const auto in_dir = [&](const char* name) { return (fs::path(dir) / name).string(); };
+  std::size_t renamed = 0;
+  try {
+    for (; renamed < paths.size(); ++renamed) commit_rename(temporary_path(paths[renamed]), paths[renamed]);
+  } catch (...) {
+    for (std::size_t i = 0; i < renamed; ++i) remove_file_quietly(paths[i]);
+    for (std::size_t i = renamed; i < paths.size(); ++i) remove_file_quietly(temporary_path(paths[i]));
+    remove_created(created);
     throw;
   }
   // What an earlier run left in the same directory and this one did not
@@ -91,11 +108,13 @@ std::vector<std::string> write_all(const result_set& rs, const run_metadata& met
       earlier.push_back(in_dir(sensitivity_figure_stem) + ext);
   std::vector<std::string> removed;
   for (const auto& path : earlier)
-    if (std::none_of(outputs.begin(), outputs.end(), [&](const output& o) { return o.path == path; })) {
+    if (std::find(paths.begin(), paths.end(), path) == paths.end()) {
       std::error_code ec;  // a file that cannot be removed stays, and is not named as removed
       if (fs::is_regular_file(path, ec) && fs::remove(path, ec)) removed.push_back(path);
     }
   return removed;
 }
+
+}  // namespace detail
 
 }  // namespace stickslip::io

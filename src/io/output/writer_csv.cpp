@@ -20,6 +20,14 @@
 namespace stickslip::io {
 namespace detail {
 
+// A derived estimate's columns: quantity q's estimate of `row` at index i.
+struct csv_estimate_column {
+  const estimate_info* row;
+  const quantity_info* q;
+  std::size_t index;
+  std::string name;  // "R_dmean_dlambda", "R_cv", "R_dmean_dgenerator_1_2"
+};
+
 namespace {
 
 // A statistic's four columns: mean, std and the ends of the 95% interval
@@ -30,22 +38,14 @@ void print_statistic(text_sink& out, const mean_variance& mv) {
   out.print(",{},{},{},{}", e.value, mv.std_dev(), e.value - half, e.value + half);
 }
 
-// A derived estimate's columns: quantity q's estimate of `row` at index i.
-struct estimate_column {
-  const estimate_info* row;
-  const quantity_info* q;
-  std::size_t index;
-  std::string name;  // "R_dmean_dlambda", "R_cv", "R_dmean_dgenerator_1_2"
-};
-
 // The estimate table's columns (estimates.hpp), as results.nc's variables
 // but named by the summary name (R_dmean_dlambda, R_cv_mean,
 // R_dmean_dlambda_crn_pairs) and a generator's entries one by one
 // (R_dmean_dgenerator_<i>_<j>, levels from 1): each only when some point has
 // it.
-std::vector<estimate_column> estimate_columns(const result_set& rs,
+std::vector<csv_estimate_column> csv_estimate_columns(const result_set& rs,
                                               const std::vector<estimate_source>& sources) {
-  std::vector<estimate_column> out;
+  std::vector<csv_estimate_column> out;
   const std::size_t levels = rs.spec.base.levels().size();
   for (const auto& row : estimate_kinds())
     for (const auto& q : quantities()) {
@@ -63,14 +63,14 @@ std::vector<estimate_column> estimate_columns(const result_set& rs,
   return out;
 }
 
-void print_estimate_header(text_sink& out, const estimate_column& c) {
+void print_estimate_header(text_sink& out, const csv_estimate_column& c) {
   out.print(",{0}{1},{0}_ci95_low,{0}_ci95_high", c.name, c.row->value_suffix);
   if (c.row->extra != estimate_extra::none) out.print(",{}_{}", c.name, extra_name(c.row->extra));
 }
 
 // The value and the ends of its interval ("nan" where the point has no such
 // estimate), then the extra (pairs 0 there).
-void print_estimate(text_sink& out, const estimate_column& c, const estimate_source& src) {
+void print_estimate(text_sink& out, const csv_estimate_column& c, const estimate_source& src) {
   const auto v = c.row->at(src, *c.q, c.index);
   const estimate e = v ? v->value : estimate{};
   out.print(",{},{},{}", e.value, e.value - e.ci95_half_width(), e.value + e.ci95_half_width());
@@ -88,16 +88,16 @@ void print_estimate(text_sink& out, const estimate_column& c, const estimate_sou
 // Columns: the point's parameters, realizations, then for every quantity of
 // the schema its mean, std and 95% CI, then the sample counts of the
 // quantities not sampled once per realization, then every counter, the
-// level quantities per level, and the derived estimates.
-void fill_summary_csv(text_sink& out, const result_set& rs) {
-  check_shape(rs);
-  const auto symbols = point_parameter_symbols(rs);
+// level quantities per level, and the derived estimates (those some point
+// of `sources` has).
+summary_csv_rows::summary_csv_rows(text_sink& out, const result_set& rs,
+                                   const std::vector<estimate_source>& sources)
+    : out_(out), symbols_(point_parameter_symbols(rs)) {
   const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
-  for (const auto& sym : symbols) out.print("{},", sym);
+  for (const auto& sym : symbols_) out.print("{},", sym);
   out.write("realizations");
   // The burn-in T, only with one (every statistic is over [T, t_a]).
-  const bool burn_in = rs.spec.burn_in != 0.0;
-  if (burn_in) out.write(",burn_in");
+  if (rs.spec.burn_in != 0.0) out.write(",burn_in");
   // The selected statistics only (statistics_groups.hpp).
   const auto& sel = rs.spec.statistics;
   for (const auto& q : quantities())
@@ -111,16 +111,20 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
   for (const auto& q : level_quantities())
     for (std::size_t i = 1; i <= levels && selects(sel, q); ++i)
       out.print(",{0}_{1}_mean,{0}_{1}_std,{0}_{1}_ci95_low,{0}_{1}_ci95_high", q.summary_name, i);
-  std::vector<std::vector<crn_slope>> slopes;  // read from the records only for the estimates
-  if (selects_estimates(sel)) slopes = precision::crn_slopes(rs);
-  const auto sources = estimate_sources(rs, slopes);
-  const auto estimates = estimate_columns(rs, sources);
-  for (const auto& c : estimates) print_estimate_header(out, c);
+  estimates_ = csv_estimate_columns(rs, sources);
+  for (const auto& c : estimates_) print_estimate_header(out, c);
   out.put('\n');
+}
+
+void summary_csv_rows::print(const result_set& rs, const std::vector<estimate_source>& sources) {
+  auto& out = out_;
+  const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
+  const auto& sel = rs.spec.statistics;
+  const bool burn_in = rs.spec.burn_in != 0.0;
   for (const auto& src : sources) {
     const auto& p = src.point;
     const auto& s = p.stats;
-    for (const auto& sym : symbols) out.print("{},", parameter_value(p.parameters, sym));
+    for (const auto& sym : symbols_) out.print("{},", parameter_value(p.parameters, sym));
     out.print("{}", s.realizations);
     if (burn_in) out.print(",{}", rs.spec.burn_in);
     for (const auto& q : quantities()) {
@@ -134,9 +138,24 @@ void fill_summary_csv(text_sink& out, const result_set& rs) {
       if (!selects(sel, q)) continue;
       for (const auto& mv : s.*q.moments) print_statistic(out, mv);
     }
-    for (const auto& c : estimates) print_estimate(out, c, src);
+    for (const auto& c : estimates_) print_estimate(out, c, src);
     out.put('\n');
   }
+}
+
+summary_csv_rows::~summary_csv_rows() = default;
+
+void summary_csv_rows::print(const result_set& rs) {
+  print(rs, estimate_sources(rs, {}));
+}
+
+void fill_summary_csv(text_sink& out, const result_set& rs) {
+  check_shape(rs);
+  std::vector<std::vector<crn_slope>> slopes;  // read from the records only for the estimates
+  if (selects_estimates(rs.spec.statistics)) slopes = precision::crn_slopes(rs);
+  const auto sources = estimate_sources(rs, slopes);
+  summary_csv_rows csv(out, rs, sources);
+  csv.print(rs, sources);
 }
 
 namespace {

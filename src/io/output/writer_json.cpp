@@ -268,12 +268,13 @@ void emit_point(json_emitter& j, const std::vector<std::string>& symbols,
   j.end_object();
 }
 
-void emit_points(json_emitter& j, const result_set& rs, const output_options& options) {
-  j.begin_array(layout::multi_line);
+// The points of `rs` (whole, or a slab of a streamed run) as elements of
+// the "points" array, each with the parameters `symbols`
+// (point_parameter_symbols of the whole grid).
+void emit_points(json_emitter& j, const result_set& rs, const std::vector<std::string>& symbols,
+                 const output_options& options) {
   const auto slopes = precision::crn_slopes(rs);  // empty without CRN and records
-  const auto symbols = point_parameter_symbols(rs);
   for (const auto& src : estimate_sources(rs, slopes)) emit_point(j, symbols, src, options);
-  j.end_array();
 }
 
 void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& meta,
@@ -375,23 +376,54 @@ void emit_parameters(json_emitter& j, const result_set& rs, const run_metadata& 
   j.end_object();
 }
 
-}  // namespace
-
-void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta,
-                       const output_options& options) {
-  check_shape(rs);
-  json_emitter j(out);
+// summary.json up to the opening of its "points" array: what holds for the
+// whole grid (`rs`, or a streamed run's header: its spec, threads and ranks).
+void begin_summary_json(json_emitter& j, const result_set& rs, const run_metadata& meta,
+                        const output_options& options) {
   j.begin_object(layout::multi_line);
   j.key("parameters");
   emit_parameters(j, rs, meta, options);
   // As results.nc's `warning` attribute (writer_netcdf.cpp).
   if (const auto note = unmet_target_note(rs); !note.empty()) j.member("warning", note);
   j.key("points");
-  emit_points(j, rs, options);
+  j.begin_array(layout::multi_line);
+}
+
+// The rest after the points: the run's elapsed time.
+void end_summary_json(json_emitter& j, text_sink& out, const result_set& rs) {
+  j.end_array();
   j.member("elapsed_seconds", rs.elapsed_seconds);
   j.end_object();
   out.put('\n');
 }
+
+}  // namespace
+
+void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta,
+                       const output_options& options) {
+  check_shape(rs);
+  json_emitter j(out);
+  begin_summary_json(j, rs, meta, options);
+  emit_points(j, rs, point_parameter_symbols(rs), options);
+  end_summary_json(j, out, rs);
+}
+
+summary_json_stream::summary_json_stream(text_sink& out, const result_set& header,
+                                         const run_metadata& meta, const output_options& options)
+    : out_(out),
+      options_(options),
+      symbols_(point_parameter_symbols(header)),
+      j_(std::make_unique<json_emitter>(out)) {
+  begin_summary_json(*j_, header, meta, options);
+}
+
+summary_json_stream::~summary_json_stream() = default;
+
+void summary_json_stream::slab(const result_set& slab) {
+  emit_points(*j_, slab, symbols_, options_);
+}
+
+void summary_json_stream::end(const result_set& header) { end_summary_json(*j_, out_, header); }
 
 }  // namespace detail
 
@@ -406,7 +438,9 @@ std::string summary_json_points(const result_set& rs, const output_options& opti
   detail::check_shape(rs);
   detail::text_sink out;
   detail::json_emitter j(out, 1);  // indented as inside the document
-  detail::emit_points(j, rs, options);
+  j.begin_array(detail::layout::multi_line);
+  detail::emit_points(j, rs, detail::point_parameter_symbols(rs), options);
+  j.end_array();
   return out.str();
 }
 

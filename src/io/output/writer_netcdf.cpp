@@ -64,13 +64,15 @@ layout_info define_dimensions(nc::NcFile& f, const result_set& rs) {
   level_index.putVar(level_numbers(l.levels).data());
   // The second bin dimension of the joint histograms (the same length as bin).
   if (!joint_histograms().empty()) l.bin_y = f.addDim("bin_y", l.bins);
+  l.meaningless = meaningless_parameters(rs);
   return l;
 }
 
 void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   // Every recorded scalar that defines the model (meaningless_parameters),
   // then the swept belt levels and rates (vI, rI).
-  const auto omitted = meaningless_parameters(rs);
+  // (l.meaningless: one pass over the grid's models, not one per slab.)
+  const auto& omitted = l.meaningless;
   std::vector<std::string> symbols;
   for (const char* sym : recorded_parameter_names)
     if (std::find(omitted.begin(), omitted.end(), sym) == omitted.end()) symbols.emplace_back(sym);
@@ -92,8 +94,10 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
                                   : fmt::format("model parameter {} at each grid point: {}", sym,
                                                 info.description),
                         false);
-    v.putAtt("symbol", sym);
-    if (uncertain) v.putAtt("value_is", "median of the law");
+    if (first_slab(rs)) {
+      v.putAtt("symbol", sym);
+      if (uncertain) v.putAtt("value_is", "median of the law");
+    }
     put_grid<double>(v, rs, [&](const point_result& p) { return parameter_value(p.parameters, sym); });
   }
   auto a = add_double(f, "band_half_width", l.grid, "m", "stick band half-width a",
@@ -219,10 +223,8 @@ void write_global_attributes(nc::NcFile& f, const result_set& rs, const run_meta
   f.putAtt("elapsed_seconds", nc::ncDouble, rs.elapsed_seconds);
 }
 
-void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std::string& file) {
-  nc::NcFile f(file, nc::NcFile::replace, nc::NcFile::nc4);
-  write_global_attributes(f, rs, meta);
-  const auto l = define_dimensions(f, rs);
+// Every variable over the grid, for the points of `rs` (all, or a slab's).
+void write_variables(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   write_parameters(f, l, rs);
   write_statistics(f, l, rs);
   write_counts(f, l, rs);
@@ -233,7 +235,28 @@ void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std
   write_survival(f, l, rs);
   write_observed(f, l, rs);
   write_convergence(f, l, rs);
+}
+
+void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std::string& file) {
+  nc::NcFile f(file, nc::NcFile::replace, nc::NcFile::nc4);
+  write_global_attributes(f, rs, meta);
+  const auto l = define_dimensions(f, rs);
+  write_variables(f, l, rs);
   f.close();
+}
+
+// NetCDF and other failures as io_error(path, ...), as write_netcdf_temporary_with.
+template <class F>
+void reporting_as(const std::string& path, F&& f) {
+  try {
+    f();
+  } catch (const nc::exceptions::NcException& e) {
+    throw io_error(path, fmt::format("NetCDF: {}", e.what()));
+  } catch (const stickslip::error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw io_error(path, e.what());
+  }
 }
 
 }  // namespace
@@ -244,21 +267,72 @@ void write_netcdf_temporary(const result_set& rs, const run_metadata& meta,
   write_netcdf_temporary_with(path, [&](const std::string& tmp) { write_netcdf_file(rs, meta, tmp); });
 }
 
+struct netcdf_stream::file {
+  explicit file(const std::string& tmp) : f(tmp, nc::NcFile::replace, nc::NcFile::nc4) {}
+  nc::NcFile f;
+  layout_info l;
+  std::size_t rows = 0;  // of the first axis in each slab but the last
+};
+
+netcdf_stream::netcdf_stream(std::string path) : path_(std::move(path)) {}
+
+netcdf_stream::~netcdf_stream() {
+  file_.reset();  // closes the file (NcFile's destructor reports, never throws)
+  if (!finished_) remove_file_quietly(temporary_path(path_));
+}
+
+void netcdf_stream::slab(const result_set& header, const result_set& slab) {
+  reporting_as(path_, [&] {
+    std::size_t row_points = 1;  // of one row of the first axis
+    for (std::size_t a = 1; a < header.spec.axes.size(); ++a)
+      row_points *= header.spec.axes[a].values.size();
+    const bool first = !file_;
+    if (first != first_slab(slab))
+      throw error(exit_code::internal, "results.nc's slabs were not streamed in grid order");
+    if (first) {
+      file_ = std::make_unique<file>(temporary_path(path_));
+      file_->rows = slab.points.size() / row_points;
+    }
+    auto& w = *file_;
+    // Every chunk within one slab (netcdf_chunks), for this thread's writes.
+    struct stream_rows {
+      explicit stream_rows(std::size_t rows) { netcdf_stream_rows = rows; }
+      ~stream_rows() { netcdf_stream_rows = 0; }
+    } const rows(w.rows);
+    if (first) w.l = define_dimensions(w.f, slab);
+    std::size_t trace = 0;
+    for (const auto& p : slab.points) trace = std::max(trace, p.stats.convergence.size());
+    if (trace > w.l.trace_length)
+      throw error(exit_code::internal,
+                  fmt::format("a streamed slab's convergence trace of {} entries is longer than "
+                              "the first slab's {}",
+                              trace, w.l.trace_length));
+    write_variables(w.f, w.l, slab);
+  });
+}
+
+void netcdf_stream::finish(const result_set& header, const run_metadata& meta) {
+  reporting_as(path_, [&] {
+    if (!file_) throw error(exit_code::internal, "results.nc streamed without any slab");
+    write_global_attributes(file_->f, header, meta);
+    file_->f.close();
+    file_.reset();
+    sync_file(temporary_path(path_), path_);
+  });
+  finished_ = true;
+}
+
 void write_netcdf_temporary_with(const std::string& path,
                                  const std::function<void(const std::string&)>& fill) {
   const std::string tmp = temporary_path(path);
   try {
-    fill(tmp);
-    sync_file(tmp, path);
-  } catch (const nc::exceptions::NcException& e) {
-    remove_file_quietly(tmp);
-    throw io_error(path, fmt::format("NetCDF: {}", e.what()));
-  } catch (const stickslip::error&) {
+    reporting_as(path, [&] {
+      fill(tmp);
+      sync_file(tmp, path);
+    });
+  } catch (...) {
     remove_file_quietly(tmp);
     throw;
-  } catch (const std::exception& e) {
-    remove_file_quietly(tmp);
-    throw io_error(path, e.what());
   }
 }
 

@@ -29,45 +29,54 @@ bool defines_model(const model_parameters& p, std::string_view symbol) {
 
 std::vector<std::string> meaningless_parameters(const result_set& rs) {
   const auto swept = swept_symbols(rs.spec);
+  std::vector<std::string> candidates;  // recorded and not swept
+  for (const char* sym : recorded_parameter_names)
+    if (std::find(swept.begin(), swept.end(), sym) == swept.end()) candidates.emplace_back(sym);
+  std::vector<char> everywhere(candidates.size(), 1);
+  for_each_point_model(rs, [&](const model_parameters& p) {
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      everywhere[i] = everywhere[i] && defines_model(p, candidates[i]);
+  });
   std::vector<std::string> out;
-  for (const char* sym : recorded_parameter_names) {
-    if (std::find(swept.begin(), swept.end(), sym) != swept.end()) continue;
-    bool everywhere = rs.points.empty() ? defines_model(rs.spec.base, sym) : true;
-    for (const auto& p : rs.points) everywhere = everywhere && defines_model(p.parameters, sym);
-    if (!everywhere) out.emplace_back(sym);
-  }
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (!everywhere[i]) out.push_back(candidates[i]);
   return out;
 }
 
 std::vector<std::string> varying_parameters(const result_set& rs) {
-  std::vector<std::string> out;
-  if (rs.points.empty()) return out;
   const auto swept = swept_symbols(rs.spec);
-  for (const char* sym : recorded_parameter_names) {
-    if (std::find(swept.begin(), swept.end(), sym) != swept.end()) continue;
-    const double first = parameter_value(rs.points.front().parameters, sym);
-    for (const auto& p : rs.points)
-      if (parameter_value(p.parameters, sym) != first) {
-        out.emplace_back(sym);
-        break;
-      }
-  }
+  const model_parameters first = resolved_base(rs);
+  std::vector<std::string> candidates;  // recorded and not swept
+  std::vector<double> values;
+  for (const char* sym : recorded_parameter_names)
+    if (std::find(swept.begin(), swept.end(), sym) == swept.end()) {
+      candidates.emplace_back(sym);
+      values.push_back(parameter_value(first, sym));
+    }
+  std::vector<char> varies(candidates.size(), 0);
+  for_each_point_model(rs, [&](const model_parameters& p) {
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      varies[i] = varies[i] || parameter_value(p, candidates[i]) != values[i];
+  });
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (varies[i]) out.push_back(candidates[i]);
   return out;
 }
 
-const model_parameters& resolved_base(const result_set& rs) {
-  return rs.points.empty() ? rs.spec.base : rs.points.front().parameters;
+model_parameters resolved_base(const result_set& rs) {
+  return holds_every_point(rs) ? rs.points.front().parameters : point_parameters(rs.spec, 0);
 }
 
 belt_sameness same_belt_everywhere(const result_set& rs) {
   belt_sameness same;
-  const model_parameters& first = resolved_base(rs);
+  const model_parameters first = resolved_base(rs);
   const auto levels = first.levels();
   const auto generator = first.generator();
-  for (const auto& p : rs.points) {
-    same.levels = same.levels && p.parameters.levels() == levels;
-    same.generator = same.generator && p.parameters.generator() == generator;
-  }
+  for_each_point_model(rs, [&](const model_parameters& p) {
+    same.levels = same.levels && p.levels() == levels;
+    same.generator = same.generator && p.generator() == generator;
+  });
   // A law: does its parameter move the belt? (At another value than the
   // median the first point holds: v + 1 + |v| > v for every finite v; 2 v + 1
   // missed a median of -1, the default v2.)

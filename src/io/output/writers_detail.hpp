@@ -6,6 +6,7 @@
 // results.nc, summary.json and summary.csv name things the same way.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "stickslip/io/atomic_file.hpp"
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/metadata.hpp"
+#include "stickslip/estimates.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/statistics_schema.hpp"
 #include "stickslip/sweep.hpp"
@@ -26,6 +28,25 @@ namespace stickslip::io::detail {
 // default belt (+V, -V), lambda only with Poisson switching (no rates and no
 // generator of the belt's own); every other recorded parameter always.
 [[nodiscard]] bool defines_model(const model_parameters& p, std::string_view symbol);
+// Whether `rs` holds every point of its grid. A run streamed window by window
+// (streamed_outputs.hpp) hands the writers slabs of its points, and a header
+// without any, whose spec is still the whole grid's.
+[[nodiscard]] inline bool holds_every_point(const result_set& rs) {
+  return rs.points.size() == point_count(rs.spec);
+}
+// `f(model)` for the model at each grid point of `rs`, in grid order: its
+// points' parameters when it holds every point, else point_parameters of its
+// spec (what the run computed them from). What the writers say of the whole
+// grid (meaningless_parameters, varying_parameters, same_belt_everywhere) is
+// thus the same for a whole result set and for a slab of it.
+template <class F>
+void for_each_point_model(const result_set& rs, F&& f) {
+  if (holds_every_point(rs)) {
+    for (const auto& p : rs.points) f(p.parameters);
+    return;
+  }
+  for (std::size_t i = 0, n = point_count(rs.spec); i < n; ++i) f(point_parameters(rs.spec, i));
+}
 // The recorded parameters that do not define the model at some grid point of
 // `rs` and are not swept: they are written nowhere (no variable, attribute,
 // JSON member or CSV column), since their value means nothing there (a "mu"
@@ -35,7 +56,7 @@ namespace stickslip::io::detail {
 // model in its paper form, point_parameters): where the parameters that are
 // not swept are read from, so that "mu" of --mu-s 2 --mu-k 2 is 2, not the
 // unused default 5. The spec's base when there are no points.
-[[nodiscard]] const model_parameters& resolved_base(const result_set& rs);
+[[nodiscard]] model_parameters resolved_base(const result_set& rs);
 // The recorded scalars that are not swept but whose resolved value differs
 // between points: mu_s and mu_k that resolve to a swept mu. They have no one
 // value for the grid (their variables over the grid hold them): no global
@@ -79,6 +100,18 @@ inline std::size_t netcdf_chunk_values = std::size_t{1} << 19;
 [[nodiscard]] std::vector<std::size_t> chunk_shape(const std::vector<std::size_t>& shape,
                                                    std::size_t target);
 
+// While a run's results.nc is streamed slab by slab (streamed_outputs.hpp):
+// the rows of the first grid axis each slab but the last holds; 0
+// otherwise. Set by streamed_outputs around its writes, on its thread.
+inline thread_local std::size_t netcdf_stream_rows = 0;
+
+// The chunk shape results.nc uses for a variable of `shape`: chunk_shape at
+// netcdf_chunk_values; while streamed, a chunk's extent in the first axis is
+// cut to a divisor of netcdf_stream_rows, so that no chunk spans two slabs
+// (each slab's writes cover whole chunks, each compressed once: a chunk
+// written in parts is read back, decompressed and compressed again).
+[[nodiscard]] std::vector<std::size_t> netcdf_chunks(const std::vector<std::size_t>& shape);
+
 // One write of a chunk-aligned hyperslab over the grid dimensions: points
 // [first, first + points) in row-major order, at `start` with `count`.
 struct row_run {
@@ -106,6 +139,71 @@ void write_netcdf_temporary_with(const std::string& path,
 void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata& meta,
                        const output_options& options);
 void fill_summary_csv(text_sink& out, const result_set& rs);
+// Renames the temporaries of `paths` (each written in full) into place in
+// `dir`, then removes the outputs of an earlier run there that they do not
+// replace (and, with earlier_study, a study's figure): returns those. On a
+// failed rename, removes what it renamed, the temporaries and `created`.
+std::vector<std::string> commit_outputs(const std::string& dir, const std::vector<std::string>& paths,
+                                        const std::vector<created_directory>& created,
+                                        bool earlier_study);
+// summary.csv's header (constructed) and rows (print), for a whole result
+// set (fill_summary_csv) or slab by slab (streamed_outputs.cpp: the header
+// of a run's header, no derived estimates).
+struct csv_estimate_column;
+class summary_csv_rows {
+ public:
+  summary_csv_rows(text_sink& out, const result_set& rs, const std::vector<estimate_source>& sources);
+  summary_csv_rows(const summary_csv_rows&) = delete;
+  summary_csv_rows& operator=(const summary_csv_rows&) = delete;
+  ~summary_csv_rows();
+  void print(const result_set& rs, const std::vector<estimate_source>& sources);
+  void print(const result_set& slab);
+
+ private:
+  text_sink& out_;
+  std::vector<std::string> symbols_;
+  std::vector<csv_estimate_column> estimates_;
+};
+// summary.json, begun with a run's header (a result set without points:
+// its spec, threads and ranks), given each slab of points in grid order,
+// ended with the header again (its elapsed time).
+class json_emitter;
+class summary_json_stream {
+ public:
+  summary_json_stream(text_sink& out, const result_set& header, const run_metadata& meta,
+                      const output_options& options);
+  summary_json_stream(const summary_json_stream&) = delete;
+  summary_json_stream& operator=(const summary_json_stream&) = delete;
+  ~summary_json_stream();
+  void slab(const result_set& slab);
+  void end(const result_set& header);
+
+ private:
+  text_sink& out_;
+  output_options options_;
+  std::vector<std::string> symbols_;  // point_parameter_symbols of the grid
+  std::unique_ptr<json_emitter> j_;
+};
+// results.nc written slab by slab: the first slab defines the file (its
+// dimensions from the header's spec, the trace length from the slab) and
+// every slab writes its rows; finish adds the global attributes (the header
+// with its elapsed time), closes and fsyncs the temporary without renaming.
+// Destroyed unfinished, it removes the temporary.
+class netcdf_stream {
+ public:
+  explicit netcdf_stream(std::string path);
+  netcdf_stream(const netcdf_stream&) = delete;
+  netcdf_stream& operator=(const netcdf_stream&) = delete;
+  ~netcdf_stream();
+  void slab(const result_set& header, const result_set& slab);
+  void finish(const result_set& header, const run_metadata& meta);
+
+ private:
+  struct file;
+  std::string path_;
+  std::unique_ptr<file> file_;
+  bool finished_ = false;
+};
 void fill_records_csv(text_sink& out, const result_set& rs);
 // A sensitivity study's outputs (writer_sensitivity.cpp); `meta` adds the
 // "run" object of summary.json.

@@ -17,30 +17,6 @@ std::string errno_text(const char* what) {
   return fmt::format("{} failed: {}", what, std::strerror(errno));
 }
 
-// Closes the FILE* and removes the temporary unless released.
-class temporary_guard {
- public:
-  temporary_guard(std::FILE* f, std::string tmp) : file_(f), tmp_(std::move(tmp)) {}
-  temporary_guard(const temporary_guard&) = delete;
-  temporary_guard& operator=(const temporary_guard&) = delete;
-  ~temporary_guard() {
-    if (file_) std::fclose(file_);
-    if (!released_) remove_file_quietly(tmp_);
-  }
-  // Closes the file; returns false (errno set) if close failed.
-  bool close() {
-    std::FILE* f = file_;
-    file_ = nullptr;
-    return std::fclose(f) == 0;
-  }
-  void release() { released_ = true; }
-
- private:
-  std::FILE* file_;
-  std::string tmp_;
-  bool released_ = false;
-};
-
 std::string parent_directory(const std::string& path) {
   auto parent = std::filesystem::path(path).parent_path();
   return parent.empty() ? std::string(".") : parent.string();
@@ -103,24 +79,38 @@ void text_sink::flush() {
   buf_.clear();
 }
 
+text_temporary::text_temporary(std::string path)
+    : path_(std::move(path)), tmp_(temporary_path(path_)) {
+  file_ = std::fopen(tmp_.c_str(), "wb");
+  if (!file_) throw io_error(path_, errno_text(fmt::format("creating '{}'", tmp_).c_str()));
+  sink_ = std::make_unique<text_sink>(file_, path_);
+}
+
+text_temporary::~text_temporary() {
+  if (file_) std::fclose(file_);
+  if (!finished_) remove_file_quietly(tmp_);
+}
+
+void text_temporary::finish() {
+  sink_->flush();
+  if (std::fflush(file_) != 0) throw io_error(path_, errno_text("flush"));
+  if (::fsync(::fileno(file_)) != 0) throw io_error(path_, errno_text("fsync"));
+  std::FILE* f = file_;
+  file_ = nullptr;
+  if (std::fclose(f) != 0) throw io_error(path_, errno_text("close"));
+  finished_ = true;
+}
+
 void write_text_temporary(const std::string& path, const std::function<void(text_sink&)>& fill) {
-  const std::string tmp = temporary_path(path);
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw io_error(path, errno_text(fmt::format("creating '{}'", tmp).c_str()));
-  temporary_guard guard(f, tmp);
-  text_sink sink(f, path);
+  text_temporary out(path);
   try {
-    fill(sink);
-    sink.flush();
+    fill(out.sink());
   } catch (const stickslip::error&) {
     throw;
   } catch (const std::exception& e) {  // e.g. out of memory while formatting
     throw io_error(path, e.what());
   }
-  if (std::fflush(f) != 0) throw io_error(path, errno_text("flush"));
-  if (::fsync(::fileno(f)) != 0) throw io_error(path, errno_text("fsync"));
-  if (!guard.close()) throw io_error(path, errno_text("close"));
-  guard.release();
+  out.finish();
 }
 
 void write_text_atomically(const std::string& path, const std::function<void(text_sink&)>& fill) {
