@@ -207,7 +207,7 @@ void report(const sweep_spec& spec, const run::run_plan& plan, const run::run_ou
     return;
   }
   std::uint64_t n = point_count(spec) * spec.realizations;
-  if (out.results) {  // with --target-ci, what the stop rule chose
+  if (out.results && !out.results->points.empty()) {  // with --target-ci, what the stop rule chose
     n = 0;
     for (const auto& p : out.results->points) n += p.stats.realizations;
   }
@@ -254,9 +254,9 @@ void run_sweep_command(const CLI::App& cmd, const sweep_options& o, const invoca
   plan.resume = o.resume;
   plan.overwrite = o.overwrite;
   // Before DIR is touched, with what the run will hold (a large grid runs
-  // window by window, also under MPI).
-  run::check_result_memory(spec, threads, run::memory_window(spec, plan, exec.runner()),
-                           !plan.slice);
+  // window by window, also under MPI, and streams its outputs).
+  run::check_result_memory(spec, threads, run::sweep_memory_window(spec, plan, exec.runner()),
+                           !plan.slice && !run::streams_outputs(spec, plan, exec.runner()));
   check_output_dir(o.out_dir);
   progress_bar bar;
   wire_run_plan(plan, o.checkpoint_interval, stop, bar);

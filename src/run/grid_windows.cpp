@@ -48,13 +48,20 @@ void restore_window(const grid_window& w, std::map<std::size_t, io::journaled_pr
 }
 
 void append_window(result_set& all, result_set part, std::size_t offset, bool release) {
+  // Without release the window is the whole grid (offset 0): its indices hold.
+  if (release) part = slab_of(all.spec, std::move(part), offset);
+  for (auto& p : part.points) all.points.push_back(std::move(p));
+  for (auto& rec : part.records) all.records.push_back(std::move(rec));
+}
+
+result_set slab_of(const sweep_spec& spec, result_set part, std::size_t offset) {
+  part.spec = spec;
   for (std::size_t i = 0; i < part.points.size(); ++i) {
     auto& p = part.points[i];
-    p.index = point_index(all.spec, offset + i);
-    if (release) release_unselected(p.stats, all.spec);
-    all.points.push_back(std::move(p));
+    p.index = point_index(spec, offset + i);
+    release_unselected(p.stats, spec);
   }
-  for (auto& rec : part.records) all.records.push_back(std::move(rec));
+  return part;
 }
 
 }  // namespace stickslip::run::detail

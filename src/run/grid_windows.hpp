@@ -40,8 +40,14 @@ void restore_window(const grid_window& w, std::map<std::size_t, io::journaled_pr
                     std::map<work_unit, block_result>& units, ordered_merger& merger);
 
 // Appends a window's results (make_result_set of its merger) to `all`, the
-// whole grid's, with each point's index on the whole grid; with `release`,
-// each point keeps only what the outputs read (release_unselected).
+// whole grid's; with `release` (a window of a larger grid), as slab_of: each
+// point's index on the whole grid, and only what the outputs read
+// (release_unselected). Without it the window is the whole grid.
 void append_window(result_set& all, result_set part, std::size_t offset, bool release);
+
+// A window's results (make_result_set of its merger) as a slab of the
+// whole grid (`spec`), for run_plan::stream: the whole grid's spec, each
+// point's index on the whole grid, unselected histograms released.
+[[nodiscard]] result_set slab_of(const sweep_spec& spec, result_set part, std::size_t offset);
 
 }  // namespace stickslip::run::detail

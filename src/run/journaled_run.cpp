@@ -11,6 +11,7 @@
 #include "stickslip/io/config.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/output_lock.hpp"
+#include "stickslip/io/streamed_outputs.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/run/result_memory.hpp"
@@ -88,17 +89,31 @@ bool runs_in_windows(const sweep_spec& spec, const run_plan& plan, const runner&
   return r.runs_any_spec() && detail::splits_into_windows(spec, plan.window_points);
 }
 
+}  // namespace
+
+bool streams_outputs(const sweep_spec& spec, const run_plan& plan, const runner& r) {
+  return !plan.slice && runs_in_windows(spec, plan, r) && io::streams_outputs(spec);
+}
+
+std::size_t memory_window(const sweep_spec& spec, const run_plan& plan, const runner& r) {
+  if (!runs_in_windows(spec, plan, r)) return 0;
+  return plan.stream ? streamed_window_points(spec, plan.window_points) : plan.window_points;
+}
+
+std::size_t sweep_memory_window(const sweep_spec& spec, const run_plan& plan, const runner& r) {
+  return streams_outputs(spec, plan, r) ? streamed_window_points(spec, plan.window_points)
+                                        : memory_window(spec, plan, r);
+}
+
+namespace {
+
 std::vector<detail::grid_window> grid_windows(const sweep_spec& spec, const run_plan& plan,
                                               const runner& r) {
   if (!runs_in_windows(spec, plan, r)) return {{spec, 0}};
-  return detail::windows_of(spec, plan.window_points);
+  return detail::windows_of(spec, memory_window(spec, plan, r));
 }
 
 }  // namespace
-
-std::size_t memory_window(const sweep_spec& spec, const run_plan& plan, const runner& r) {
-  return runs_in_windows(spec, plan, r) ? plan.window_points : 0;
-}
 
 run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                           const io::run_metadata& fresh, runner& r) {
@@ -109,7 +124,8 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
                         "needs every block of a point in one run");
   const bool windowed = runs_in_windows(spec, plan, r);
   // For every front end (sweep, reproduce, Python), with what the windows hold.
-  check_result_memory(spec, r.threads(), memory_window(spec, plan, r), !plan.slice);
+  const bool streamed = windowed && plan.stream;
+  check_result_memory(spec, r.threads(), memory_window(spec, plan, r), !plan.slice && !streamed);
   run_outcome out;
   io::journal_contents loaded = load_journal(spec, plan);
   out.metadata = loaded.metadata ? *loaded.metadata : fresh;
@@ -152,7 +168,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   // outputs read (release_unselected) and join `all` in grid order.
   result_set all;
   all.spec = spec;
-  if (!plan.slice) all.points.reserve(point_count(spec));
+  if (!plan.slice && !streamed) all.points.reserve(point_count(spec));
   if (!plan.slice && spec.keep_records) all.records.reserve(point_count(spec));
   std::uint64_t merged_before = 0;  // units merged in the earlier windows
   auto windows = grid_windows(spec, plan, r);
@@ -204,7 +220,11 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     if (stop || plan.slice) continue;
     if (!merger.complete())
       throw error(exit_code::internal, "the run ended with units missing from the merge");
-    detail::append_window(all, make_result_set(w.spec, std::move(merger)), offset, windowed);
+    if (streamed)
+      plan.stream(detail::slab_of(spec, make_result_set(w.spec, std::move(merger)), offset),
+                  out.metadata);
+    else
+      detail::append_window(all, make_result_set(w.spec, std::move(merger)), offset, windowed);
   }
   journal.flush();
   out.elapsed_this_run = seconds_since(t0);
@@ -223,11 +243,15 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   return out;
 }
 
-std::vector<std::string> write_outputs(const run_outcome& out, const std::string& dir,
-                                       bool keep_journal, const io::output_options& options) {
+namespace {
+
+// The outputs written by `write` (all or nothing), then the journal removed
+// unless kept; an io_failure says that the journal keeps the run.
+template <class W>
+std::vector<std::string> outputs_then_journal(const std::string& dir, bool keep_journal, W&& write) {
   std::vector<std::string> removed;
   try {
-    removed = io::write_all(*out.results, out.metadata, dir, options);
+    removed = write();
   } catch (const error& e) {
     if (e.code() != exit_code::io_failure) throw;
     throw error(e.code(), std::string(e.what()) +
@@ -237,6 +261,23 @@ std::vector<std::string> write_outputs(const run_outcome& out, const std::string
   }
   if (!keep_journal) io::remove_journal(dir);
   return removed;
+}
+
+// A streamed run's outputs, finished with its elapsed time.
+std::vector<std::string> commit_streamed(io::streamed_outputs& streamed, const run_outcome& out,
+                                         const std::string& dir, bool keep_journal) {
+  return outputs_then_journal(dir, keep_journal, [&] {
+    return streamed.commit(out.results->elapsed_seconds, out.metadata);
+  });
+}
+
+}  // namespace
+
+std::vector<std::string> write_outputs(const run_outcome& out, const std::string& dir,
+                                       bool keep_journal, const io::output_options& options) {
+  return outputs_then_journal(dir, keep_journal, [&] {
+    return io::write_all(*out.results, out.metadata, dir, options);
+  });
 }
 
 std::optional<io::run_metadata> finished_outputs_of(const sweep_spec& spec,
@@ -326,8 +367,22 @@ run_outcome sweep_into(const sweep_spec& spec, const run_plan& plan, const io::r
   try {
     run_plan then_outputs = plan;
     then_outputs.outputs_follow = true;
+    std::optional<io::streamed_outputs> streamed;
+    if (streams_outputs(spec, plan, r)) {
+      result_set header;
+      header.spec = spec;
+      header.threads = r.threads();
+      header.ranks = static_cast<unsigned>(r.ranks());
+      streamed.emplace(std::move(header), plan.dir, plan.outputs);
+      then_outputs.stream = [&](const result_set& slab, const io::run_metadata& meta) {
+        streamed->slab(slab, meta);
+      };
+    }
     auto out = run_journaled(spec, then_outputs, fresh, r);
-    if (out.results) out.removed_outputs = write_outputs(out, plan.dir, keep_journal, plan.outputs);
+    if (streamed && out.results)
+      out.removed_outputs = commit_streamed(*streamed, out, plan.dir, keep_journal);
+    else if (out.results)
+      out.removed_outputs = write_outputs(out, plan.dir, keep_journal, plan.outputs);
     return out;
   } catch (const error& e) {
     // The shards of one directory share it and its journal: a failed shard

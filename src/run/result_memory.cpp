@@ -31,31 +31,55 @@ double statistics_heap(const sweep_spec& spec, double densities, double joints, 
          observed + 40.0 * trace + 256.0;
 }
 
+// Per point: the trace entries and the binned quantities, all and selected.
+struct point_shape {
+  double trace = 0, all_densities = 0, kept_densities = 0, all_joints = 0, kept_joints = 0;
+};
+
+point_shape shape_of(const sweep_spec& spec) {
+  point_shape s;
+  const double blocks = static_cast<double>(blocks_per_point(spec));
+  s.trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
+  for (const auto& q : quantities()) {
+    if (!q.density) continue;
+    s.all_densities += 1;
+    if (selects(spec.statistics, q)) s.kept_densities += 1;
+  }
+  // Joint histograms only with the family statistics (point_statistics).
+  s.all_joints = spec.family_statistics && !spec.means_only
+                     ? static_cast<double>(joint_histograms().size())
+                     : 0.0;
+  s.kept_joints = selects_joint_histograms(spec.statistics) && !spec.means_only ? s.all_joints : 0.0;
+  return s;
+}
+
+// While merged, every accumulator (point_statistics allocates them all but
+// the joint histograms without the family statistics).
+double merging_point_bytes(const sweep_spec& spec) {
+  const auto s = shape_of(spec);
+  return static_cast<double>(sizeof(point_statistics)) +
+         statistics_heap(spec, s.all_densities, s.all_joints, s.trace);
+}
+
 }  // namespace
+
+std::size_t streamed_window_points(const sweep_spec& spec, std::size_t window_points) {
+  if (window_points == 0 || spec.axes.empty()) return window_points;
+  const std::size_t slab = point_count(spec) / spec.axes.front().values.size();
+  const double budget = 64.0 * (1u << 20);
+  const auto fit = static_cast<std::size_t>(budget / merging_point_bytes(spec));
+  const std::size_t wide = std::min(fit, slab * streamed_window_rows);
+  return std::max(window_points, wide);
+}
 
 double estimated_result_bytes(const sweep_spec& spec, unsigned threads,
                               std::size_t window_points, bool keeps_results) noexcept {
   const double points = static_cast<double>(point_count(spec));
-  const double blocks = static_cast<double>(blocks_per_point(spec));
-  const double trace = std::min(blocks, 64.0) + 32.0 * std::max(0.0, std::log2(blocks / 64.0)) + 1;
-  double all_densities = 0, kept_densities = 0;
-  for (const auto& q : quantities()) {
-    if (!q.density) continue;
-    all_densities += 1;
-    if (selects(spec.statistics, q)) kept_densities += 1;
-  }
-  // Joint histograms only with the family statistics (point_statistics).
-  const double all_joints = spec.family_statistics && !spec.means_only
-                                ? static_cast<double>(joint_histograms().size())
-                                : 0.0;
-  const double kept_joints = selects_joint_histograms(spec.statistics) && !spec.means_only ? all_joints : 0.0;
-  // While merged, every accumulator (point_statistics allocates them all but
-  // the joint histograms without the family statistics); once finished,
-  // what the outputs read (release_unselected).
-  const double merging = static_cast<double>(sizeof(point_statistics)) +
-                         statistics_heap(spec, all_densities, all_joints, trace);
+  const auto shape = shape_of(spec);
+  // Once finished, what the outputs read (release_unselected).
+  const double merging = merging_point_bytes(spec);
   const double finished = static_cast<double>(sizeof(point_result)) +
-                          statistics_heap(spec, kept_densities, kept_joints, trace);
+                          statistics_heap(spec, shape.kept_densities, shape.kept_joints, shape.trace);
   const double records =
       spec.keep_records && keeps_results ? 96.0 * static_cast<double>(spec.realizations) : 0.0;
   const double window = window_points == 0 ? points : std::min(points, static_cast<double>(window_points));

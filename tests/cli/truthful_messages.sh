@@ -20,7 +20,7 @@ checks=$((checks + 1))
 grep -qE '[0-9]\.[0-9]{6}' "$WORK/stderr" && fail "a %f-style number: $(cat "$WORK/stderr")"
 
 # The memory estimate: at most 3 significant digits.
-expect_fail "estimated memory" sweep --lambda lin:0.1:10:3000 --mu lin:0.1:10:3000 --realizations 1
+expect_fail "estimated memory" sweep --lambda lin:0.1:10:3000 --mu lin:0.1:10:3000 --realizations 1 --statistics all
 checks=$((checks + 1))
 grep -qE '[0-9]\.[0-9]{4,}' "$WORK/stderr" && fail "memory estimate with many digits: $(cat "$WORK/stderr")"
 

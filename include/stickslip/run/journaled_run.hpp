@@ -68,6 +68,13 @@ struct run_plan {
   std::function<void(std::uint64_t done, std::uint64_t total, double work_done)> progress;
   // Problems found in the journal and notes on the resume, one line each.
   io::journal_report report;
+  // A run that goes window by window hands each finished window to this,
+  // in grid order, instead of keeping its points: a slab of the grid (its
+  // spec the whole grid's, its points indexed on it, unselected
+  // histograms released), with the run's metadata (sweep_into streams it to
+  // the outputs, io/streamed_outputs.hpp). The result set then holds no
+  // points. Unset, or for a run of one window, every point is kept.
+  std::function<void(const result_set& slab, const io::run_metadata& meta)> stream;
 };
 
 struct run_outcome {
@@ -102,11 +109,23 @@ struct run_outcome {
 // `spec` and `plan` on `r`: the plan's window when the grid runs window by
 // window (more points than the window, a runner that takes any spec, no
 // sensitivity design, no survival grid still to be resolved; a run or a
-// shard), else 0 (the whole grid). The front ends pass it to
-// check_result_memory before
-// they touch the output directory, as run_journaled does.
+// shard), widened when the run streams its windows (plan.stream:
+// streamed_window_points), else 0 (the whole grid). The front ends pass it
+// to check_result_memory before they touch the output directory, as
+// run_journaled does; `sweep` passes sweep_memory_window, what the run of
+// sweep_into will hold.
 [[nodiscard]] std::size_t memory_window(const sweep_spec& spec, const run_plan& plan,
                                         const runner& r);
+[[nodiscard]] std::size_t sweep_memory_window(const sweep_spec& spec, const run_plan& plan,
+                                              const runner& r);
+
+// Whether sweep_into streams `spec`'s outputs window by window on `r`
+// (io::streamed_outputs): a whole run (not a shard) that goes window by
+// window (memory_window) of a spec the writers can stream
+// (io::streams_outputs). Its finished points are then not kept: `sweep`
+// passes keeps_results = !plan.slice && !streams_outputs(...) to
+// check_result_memory.
+[[nodiscard]] bool streams_outputs(const sweep_spec& spec, const run_plan& plan, const runner& r);
 
 // Journal, resume, shard and stop around `r`. `fresh` is the metadata a new
 // journal records. Throws: invalid_input when DIR holds an unfinished journal
@@ -135,7 +154,9 @@ struct directory_state {
 void clean_up_after_failure(const error& e, const std::string& dir, const directory_state& before);
 
 // run_journaled, then (unless a shard) write_outputs into plan.dir; the
-// result set records the runner's ranks and threads. A resume into a DIR
+// result set records the runner's ranks and threads. A large grid's outputs
+// are streamed window by window as the run goes (streams_outputs): the
+// result set then holds no points. A resume into a DIR
 // without a journal first checks its finished outputs (finished_outputs_of,
 // unless plan.overwrite): this spec's give already_complete and nothing runs. Cleans up after a
 // deterministic failure and rethrows.

@@ -12,6 +12,17 @@ namespace stickslip::run {
 // (run_plan::window_points, merge_shards).
 inline constexpr std::size_t default_window_points = 1024;
 
+// The points of one window of a sweep whose outputs are streamed
+// (run::streams_outputs): at least `window_points`; more, in whole rows of
+// the first axis up to streamed_window_rows, while the window's
+// accumulators stay within 64 MiB (estimated, as estimated_result_bytes).
+// results.nc's chunks end at a window's last row (the writers' chunk shape),
+// and chunks of a few rows deflate worse: the 100,000-point grid's file
+// (400 x 250) was 154 MB with windows of 4 rows, 98 MB with 16, 89 MB
+// written whole.
+inline constexpr std::size_t streamed_window_rows = 16;
+[[nodiscard]] std::size_t streamed_window_points(const sweep_spec& spec, std::size_t window_points);
+
 // Bytes held at once by a sweep run on `threads` threads (0 = all cores),
 // merged `window_points` points at a time (run_plan::window_points; 0 = the
 // whole grid at once): the points being merged hold every accumulator
