@@ -49,7 +49,7 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
       if (fresh || it->second.blocks > p.blocks) continue;
       if (it->second.blocks < p.blocks) {
         it->second = std::move(p);
-      } else if (it->second.bytes != p.bytes) {
+      } else if (it->second.bytes() != p.bytes()) {
         throw error(exit_code::io_failure,
                     fmt::format("merge: the merged first {} blocks of point {} differ between "
                                 "two journals (one of them is from another program version or "

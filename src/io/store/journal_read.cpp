@@ -125,6 +125,7 @@ struct segment_reader {
     ++out.segments;
     std::string why;
     const auto data = detail::slurp(path, why);
+    const auto segment = std::make_shared<const std::string>(path);
     if (!data) return note(fmt::format("{}: {}; its units will be recomputed", path, why));
     detail::byte_reader outer(*data);
     std::uint64_t count = 0;
@@ -154,7 +155,10 @@ struct segment_reader {
         if (is_merged_prefix(payload)) {
           auto prefix = deserialize_merged_prefix(payload);
           check_prefix_shape(spec, prefix);
-          add(std::move(prefix), payload);
+          add(std::move(prefix), payload,
+              journaled_prefix{prefix.blocks, segment,
+                               static_cast<std::uint64_t>(payload.data() - data->data()), len,
+                               crc});
           continue;
         }
         auto [unit, block] = deserialize_unit_result(payload);
@@ -172,19 +176,21 @@ struct segment_reader {
 
   // The longest prefix of each point wins; two of one length must be the
   // same bytes (they are the same merge), else the point is recomputed.
-  void add(merged_prefix&& p, std::string_view payload) {
+  void add(const merged_prefix& p, std::string_view payload, journaled_prefix&& where) {
     if (conflicting_points.count(p.point)) return;
     auto it = out.prefixes.find(p.point);
     if (it != out.prefixes.end() && it->second.blocks > p.blocks) return;
     if (it != out.prefixes.end() && it->second.blocks == p.blocks) {
-      if (it->second.bytes == payload) return;
+      // read back only here: two prefixes of one length are rare (a point
+      // that did not advance between two runs' checkpoints)
+      if (it->second.bytes() == payload) return;
       conflicting_points.insert(p.point);
       out.prefixes.erase(it);
       return note(fmt::format("point {}: two journaled merges of its first {} blocks differ; "
                               "they will be recomputed",
                               p.point, p.blocks));
     }
-    out.prefixes.insert_or_assign(p.point, journaled_prefix{p.blocks, std::string(payload)});
+    out.prefixes.insert_or_assign(p.point, std::move(where));
   }
 
   void add(const work_unit& u, block_result&& b, std::string_view payload) {
@@ -204,7 +210,24 @@ struct segment_reader {
 
 }  // namespace
 
-merged_prefix journaled_prefix::decode() const { return deserialize_merged_prefix(bytes); }
+std::string journaled_prefix::bytes() const {
+  const auto fail = [&](const std::string& why) {
+    return error(exit_code::io_failure,
+                 fmt::format("{}: the journal changed during the run ({}): the merged blocks of "
+                             "a point could not be read back; rerun with --resume",
+                             segment ? *segment : std::string("(no segment)"), why));
+  };
+  if (!segment) throw fail("no segment");
+  std::ifstream in(*segment, std::ios::binary);
+  if (!in) throw fail("cannot open");
+  std::string data(length, '\0');
+  in.seekg(static_cast<std::streamoff>(offset));
+  if (!in.read(data.data(), static_cast<std::streamsize>(length))) throw fail("truncated");
+  if (crc32(data) != crc) throw fail("CRC mismatch");
+  return data;
+}
+
+merged_prefix journaled_prefix::decode() const { return deserialize_merged_prefix(bytes()); }
 
 journal_contents read_journal(const std::string& dir, const sweep_spec* expected,
                               const journal_report& report) {
