@@ -13,6 +13,7 @@
 #                         and python/ for the python case)
 #   runs                  interleaved runs of each build (default 5)
 #   case                  any of: sweep sweep_R sweep_all observe damped family
+#                         grid6400 grid100k
 #                         peak reproduce_nofig reproduce python (default:
 #                         sweep damped family peak python); sweep_R and
 #                         sweep_all add --statistics R / all where the build
@@ -43,6 +44,11 @@ args_of() {
     observe) echo sweep "${paper_grid[*]}" --observe-times lin:0:50:101 -o DIR ;;
     damped) echo sweep "${paper_grid[*]}" --c 0.632 -o DIR ;;
     family) echo sweep --lambda log:0.1:30:40 --mu-k 0.5,1,2,3,4,5,6,7 --mu-s 8 --realizations 2000 --seed 1 -o DIR ;;
+    # The large grids: 6,400 points (100 realizations) and 100,000
+    # points (20 realizations), both on 2 threads: their outputs are written
+    # window by window as the run goes (docs/outputs.md).
+    grid6400) echo sweep --lambda log:0.1:30:80 --mu lin:0.5:7:80 --realizations 100 --threads 2 -o DIR ;;
+    grid100k) echo sweep --lambda log:0.1:30:400 --mu lin:0.5:7:250 --realizations 20 --threads 2 -o DIR ;;
     peak) echo peak --statistic R --over lambda --range 0.1:30 --k 40 --mu 5 --seed 1 --format json ;;
     reproduce_nofig) echo reproduce --no-figures -o DIR ;;
     reproduce) echo reproduce -o DIR ;;

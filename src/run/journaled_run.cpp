@@ -91,6 +91,25 @@ bool runs_in_windows(const sweep_spec& spec, const run_plan& plan, const runner&
 
 }  // namespace
 
+namespace {
+
+// `write()` (the outputs, whole or a streamed window), whose I/O failure
+// says that the journal keeps the run.
+template <class W>
+auto with_resume_advice(W&& write) {
+  try {
+    return write();
+  } catch (const error& e) {
+    if (e.code() != exit_code::io_failure) throw;
+    throw error(e.code(), std::string(e.what()) +
+                              "; the units of the journal's last checkpoint, if any, stay in "
+                              "it: rerun with --resume to write the outputs (units finished "
+                              "after that checkpoint are computed again)");
+  }
+}
+
+}  // namespace
+
 bool streams_outputs(const sweep_spec& spec, const run_plan& plan, const runner& r) {
   return !plan.slice && runs_in_windows(spec, plan, r) && io::streams_outputs(spec);
 }
@@ -221,8 +240,10 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
     if (!merger.complete())
       throw error(exit_code::internal, "the run ended with units missing from the merge");
     if (streamed)
-      plan.stream(detail::slab_of(spec, make_result_set(w.spec, std::move(merger)), offset),
-                  out.metadata);
+      with_resume_advice([&] {
+        plan.stream(detail::slab_of(spec, make_result_set(w.spec, std::move(merger)), offset),
+                    out.metadata);
+      });
     else
       detail::append_window(all, make_result_set(w.spec, std::move(merger)), offset, windowed);
   }
@@ -249,16 +270,7 @@ namespace {
 // unless kept; an io_failure says that the journal keeps the run.
 template <class W>
 std::vector<std::string> outputs_then_journal(const std::string& dir, bool keep_journal, W&& write) {
-  std::vector<std::string> removed;
-  try {
-    removed = write();
-  } catch (const error& e) {
-    if (e.code() != exit_code::io_failure) throw;
-    throw error(e.code(), std::string(e.what()) +
-                              "; the units of the journal's last checkpoint, if any, stay in "
-                              "it: rerun with --resume to write the outputs (units finished "
-                              "after that checkpoint are computed again)");
-  }
+  std::vector<std::string> removed = with_resume_advice(write);
   if (!keep_journal) io::remove_journal(dir);
   return removed;
 }

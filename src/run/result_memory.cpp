@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "stickslip/error.hpp"
@@ -68,8 +69,8 @@ std::size_t streamed_window_points(const sweep_spec& spec, std::size_t window_po
   const std::size_t slab = point_count(spec) / spec.axes.front().values.size();
   const double budget = 64.0 * (1u << 20);
   const auto fit = static_cast<std::size_t>(budget / merging_point_bytes(spec));
-  const std::size_t wide = std::min(fit, slab * streamed_window_rows);
-  return std::max(window_points, wide);
+  const std::size_t rows = std::max(window_points / slab, std::min(fit / slab, streamed_window_rows));
+  return std::bit_floor(std::max<std::size_t>(1, rows)) * slab;
 }
 
 double estimated_result_bytes(const sweep_spec& spec, unsigned threads,

@@ -28,6 +28,7 @@
 #include "stickslip/run/runner.hpp"
 #include "stickslip/run/stop.hpp"
 #include "stickslip/statistics_groups.hpp"
+#include "output/writers_detail.hpp"
 
 using namespace stickslip;
 namespace fs = std::filesystem;
@@ -163,6 +164,75 @@ std::vector<std::string> files_in(const fs::path& dir) {
 }
 
 }  // namespace
+
+// Grids whose whole-grid facts differ between rows: mu_s as the first axis
+// from mu_k = 4 up (mu defines the model only in its first row, mu_s = 4), a swept belt level v2 (the belt differs
+// between points), a 1-axis grid (a row is a point) and a 3-axis grid;
+// with chunks of 3 rows (a chunk's rows then divide a slab's: 2 of 16).
+TEST(StreamedOutputs, AreTheFilesOfTheWholeResultSetWhereRowsDiffer) {
+  std::vector<double> forty(40);
+  for (std::size_t i = 0; i < forty.size(); ++i) forty[i] = 4.0 + 0.1 * static_cast<double>(i);
+  auto mu_s = grid("paper");
+  mu_s.axes = {{"mu_s", forty}, {"lambda", {0.5, 3.8}}};
+  mu_s.base.kinetic_friction = 4.0;
+  auto belt = grid("paper");
+  belt.base.belt_levels = {1.0, -1.0};
+  std::vector<double> v2(40);
+  for (std::size_t i = 0; i < v2.size(); ++i) v2[i] = -0.2 - 0.02 * static_cast<double>(i);
+  belt.axes = {{"v2", v2}, {"mu", {0.5, 4.0}}};
+  auto one_axis = grid("paper");
+  one_axis.axes = {{"lambda", forty}};
+  auto three_axes = grid("paper");
+  three_axes.axes.push_back({"k", {4.0, 40.0}});
+  const auto saved = io::detail::netcdf_chunk_values;
+  int n = 0;
+  for (const auto& s : {mu_s, belt, one_axis, three_axes}) {
+    ++n;
+    const auto streamed = fresh("rows" + std::to_string(n)), whole = fresh("rows-whole" + std::to_string(n));
+    const std::size_t row = point_count(s) / s.axes.front().values.size();
+    io::detail::netcdf_chunk_values = n == 1 ? 3 * row * 60 : saved;
+    ASSERT_TRUE(sweep_into(s, streamed, row).results) << n;
+    ASSERT_TRUE(sweep_into(s, whole, 0).results) << n;
+    expect_same_outputs(streamed, whole);
+    for (const auto& [name, rows] : read_netcdf(streamed / "results.nc", "").first_chunk)
+      if (rows != 0) {
+        EXPECT_EQ(16 % rows, 0u) << n << " " << name << ": chunks of " << rows << " rows";
+      }
+    fs::remove_all(streamed);
+    fs::remove_all(whole);
+  }
+  io::detail::netcdf_chunk_values = saved;
+}
+
+// A commit that fails (summary.csv cannot be renamed into place: a
+// directory of that name) leaves no output and no temporary, keeps the
+// journal and says to resume; the resume writes the files.
+TEST(StreamedOutputs, AFailedCommitLeavesNothingButTheJournal) {
+  const auto s = grid("paper");
+  const auto dir = fresh("commit"), whole = fresh("commit-whole");
+  fs::create_directories(dir / "summary.csv" / "x");
+  run::run_plan plan;
+  plan.dir = dir.string();
+  plan.window_points = 2;
+  plan.overwrite = true;
+  run::thread_runner runner(2);
+  try {
+    (void)run::sweep_into(s, plan, meta, runner);
+    ADD_FAILURE() << "the commit did not fail";
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::io_failure);
+    EXPECT_NE(std::string(e.what()).find("rerun with --resume"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::exists(dir / ".journal"));
+  EXPECT_EQ(files_in(dir), std::vector<std::string>{"summary.csv"}) << "outputs or temporaries left";
+  fs::remove_all(dir / "summary.csv");
+  plan.resume = true;
+  (void)run::sweep_into(s, plan, meta, runner);
+  (void)sweep_into(s, whole, 0);
+  expect_same_outputs(dir, whole);
+  fs::remove_all(dir);
+  fs::remove_all(whole);
+}
 
 TEST(StreamedOutputs, AreTheFilesOfTheWholeResultSet) {
   // The paper's selection; the family's with survival curves (fixed grids)

@@ -53,9 +53,11 @@ inline constexpr const char* journal_directory = ".journal";
 // every journaled point until its window comes; holding their bytes made it
 // peak far above the uninterrupted run, whose outputs are streamed (the
 // 100,000-point grid's resume after 63,080 of 100,000 units: 253 MB, against
-// 92 MB uninterrupted); holding where they are takes ~50 bytes a point (88 MB). Reading back checks the length and the CRC
-// again: a journal changed on disk during the run throws io_failure (the
-// output lock keeps other stickslip runs out of it).
+// 92 MB uninterrupted); holding where they are takes ~50 bytes a point
+// (88 MB). Reading back checks the length and the CRC again: a journal
+// changed on disk since it was read throws io_failure (the output lock keeps
+// other stickslip runs out of a run's own directory; `merge` reads shard
+// directories it does not lock).
 struct journaled_prefix {
   std::uint64_t blocks = 0;
   std::shared_ptr<const std::string> segment;  // the segment file's path

@@ -30,9 +30,10 @@ class streamed_outputs {
   streamed_outputs(const streamed_outputs&) = delete;
   streamed_outputs& operator=(const streamed_outputs&) = delete;
   ~streamed_outputs();
-  // The next slab in grid order: its spec the whole grid's, its points whole
-  // rows of the first axis with their indices on the whole grid. `meta` is
-  // the run's (a resumed run's first run's), as write_all's.
+  // The next slab in grid order (checked: else an internal error): its spec
+  // the whole grid's, its points whole rows of the first axis with their
+  // indices on the whole grid. `meta` is the run's (a resumed run's first
+  // run's), as write_all's: summary.json's is the first slab's.
   void slab(const result_set& slab, const run_metadata& meta);
   // Once every slab is written: the run's elapsed time, then every file
   // finished and renamed into place, and an earlier run's outputs that
@@ -43,6 +44,7 @@ class streamed_outputs {
 
  private:
   struct files;
+  [[nodiscard]] std::vector<std::string> paths() const;  // the three outputs
   result_set header_;
   std::string dir_;
   output_options options_;

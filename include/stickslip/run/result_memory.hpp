@@ -13,13 +13,15 @@ namespace stickslip::run {
 inline constexpr std::size_t default_window_points = 1024;
 
 // The points of one window of a sweep whose outputs are streamed
-// (run::streams_outputs): at least `window_points`; more, in whole rows of
-// the first axis up to streamed_window_rows, while the window's
-// accumulators stay within 64 MiB (estimated, as estimated_result_bytes).
-// results.nc's chunks end at a window's last row (the writers' chunk shape),
-// and chunks of a few rows deflate worse: the 100,000-point grid's file
-// (400 x 250) was 154 MB with windows of 4 rows, 98 MB with 16, 89 MB
-// written whole.
+// (run::streams_outputs): whole rows of the first axis, as many as
+// `window_points` holds or, when more, up to streamed_window_rows while the
+// window's accumulators stay within 64 MiB (estimated, as
+// estimated_result_bytes); then rounded down to a power of two rows (at
+// least one). results.nc's chunks end at a window's last row (a chunk's
+// rows divide the window's), and chunks of a few rows deflate worse: the
+// 100,000-point grid's file (400 x 250) was 154 MB with windows of 4 rows,
+// 98 MB with 16, 89 MB written whole; with a prime number of rows (53 of
+// 19 points) a large variable's chunks fell to one row.
 inline constexpr std::size_t streamed_window_rows = 16;
 [[nodiscard]] std::size_t streamed_window_points(const sweep_spec& spec, std::size_t window_points);
 

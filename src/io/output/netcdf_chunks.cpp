@@ -22,7 +22,7 @@ std::vector<std::size_t> chunk_shape(const std::vector<std::size_t>& shape, std:
 
 std::vector<std::size_t> netcdf_chunks(const std::vector<std::size_t>& shape) {
   auto chunk = chunk_shape(shape, netcdf_chunk_values);
-  const std::size_t rows = netcdf_stream_rows;
+  const std::size_t rows = netcdf_slab.rows;
   if (rows == 0 || chunk.empty()) return chunk;
   std::size_t c = std::min(chunk[0], rows);
   while (rows % c != 0) --c;  // the largest divisor of rows <= chunk[0]

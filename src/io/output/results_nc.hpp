@@ -72,8 +72,8 @@ void compress(nc::NcVar& v, const std::vector<nc::NcDim>& dims);
 void release_chunks(const nc::NcVar& v);
 
 // A double (or a 64-bit count) variable over `dims`, described, compressed
-// as above, and with NaN as its fill value unless `fill` is false; the one
-// of that name when a slab written before defined it (defined).
+// as above, and with NaN as its fill value unless `fill` is false; when not
+// defining(), the one of that name the first slab defined.
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                      const std::string& units, const std::string& long_name,
                      const std::string& description, bool fill = true, bool deflate = true);
@@ -94,13 +94,9 @@ struct grid_rows {
 };
 [[nodiscard]] grid_rows rows_of(const result_set& rs, const std::vector<std::size_t>& grid);
 
-// Whether rs is a whole result set or the first slab of a streamed one: the
-// one that defines the variables and writes their attributes and
-// coordinates (later slabs write only their values).
-[[nodiscard]] inline bool first_slab(const result_set& rs) {
-  return holds_every_point(rs) ||
-         (!rs.points.empty() && !rs.points.front().index.empty() && rs.points.front().index[0] == 0);
-}
+// Whether the writes define results.nc (a whole result set, or the first
+// slab of a streamed one: netcdf_slab.defining) or only add a slab's rows.
+[[nodiscard]] inline bool defining() { return netcdf_slab.defining; }
 
 // The shape of `v` (all of its dimensions).
 [[nodiscard]] std::vector<std::size_t> shape_of(const nc::NcVar& v);
@@ -129,8 +125,8 @@ void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
 // for a contiguous variable): each call covers whole chunks, so each is
 // compressed once, and the buffer holds at most one chunk (or one row, if a
 // row alone is longer than a chunk). Relies on rs.points being in row-major
-// grid order (check_shape verifies it; a streamed slab's chunks end at its
-// last row: netcdf_stream_rows).
+// grid order (check_shape verifies it, check_slab for a slab, whose chunks
+// end at its last row: netcdf_slab).
 template <class T>
 void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
               const std::function<void(const point_result&, std::vector<T>&)>& row) {
@@ -159,11 +155,8 @@ void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
   if (rows.first == 0) release_chunks(v);
 }
 
-// A dimension of results.nc, added unless a slab written before added it.
+// A dimension of results.nc: added when defining(), else the first slab's.
 nc::NcDim dimension(nc::NcFile& f, const std::string& name, std::size_t size);
-// Whether results.nc already holds the variable `name` (from a slab written
-// before: its definition, attributes and coordinate values are not repeated).
-[[nodiscard]] bool defined(const nc::NcFile& f, const std::string& name);
 
 // The groups of variables, in the order write_netcdf_file writes them.
 void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs);

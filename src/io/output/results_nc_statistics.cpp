@@ -32,7 +32,7 @@ void write_statistics(nc::NcFile& f, const layout_info& l, const result_set& rs)
     const auto mv = [&](const point_result& p) -> const mean_variance& { return p.stats.*q.moments; };
     auto mean = add_double(f, n + "_mean", l.grid, q.units, std::string("mean ") + q.long_name,
                            fmt::format("{} {}: {}", q.long_name, sym, q.description));
-    if (first_slab(rs)) mean.putAtt("symbol", sym);
+    if (defining()) mean.putAtt("symbol", sym);
     put_grid<double>(mean, rs, [&](const point_result& p) { return mv(p).mean(); });
     auto sd = add_double(f, n + "_std", l.grid, q.units, std::string("std ") + q.long_name,
                          "sample standard deviation (n - 1 in the denominator) of " + sym);
@@ -221,7 +221,7 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
                              fmt::format("centre of each histogram bin of {} {}; the bin "
                                          "ranges differ between grid points",
                                          q.long_name, sym));
-    if (first_slab(rs)) centre.putAtt("bounds", n + "_bin_bounds");
+    if (defining()) centre.putAtt("bounds", n + "_bin_bounds");
     put_rows<double>(centre, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
       const auto& hh = hist(p);
       for (std::size_t i = 0; i < row.size(); ++i)
@@ -243,7 +243,7 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
                     "{2}_overflow, so the density integrates to the fraction of samples inside "
                     "the binned range. The last bin is closed on the right.",
                     q.long_name, sym, n));
-    if (first_slab(rs)) density.putAtt("coordinates", n + "_bin");
+    if (defining()) density.putAtt("coordinates", n + "_bin");
     put_rows<double>(density, rs, l.bins, [&](const point_result& p, std::vector<double>& row) {
       const auto& hh = hist(p);
       for (std::size_t i = 0; i < row.size(); ++i) row[i] = i < hh.bins() ? hh.density(i) : nan;
@@ -257,7 +257,7 @@ void write_histograms(nc::NcFile& f, const layout_info& l, const result_set& rs)
                            "points");
     put_rows<double>(high, rs, l.bins, edges(1));
     auto counts = add_count(f, n + "_counts", dims, "bin counts of " + sym, "samples in each bin");
-    if (first_slab(rs)) counts.putAtt("coordinates", n + "_bin");
+    if (defining()) counts.putAtt("coordinates", n + "_bin");
     put_rows<long long>(counts, rs, l.bins, [&](const point_result& p, std::vector<long long>& row) {
       const auto& hh = hist(p);
       for (std::size_t i = 0; i < row.size(); ++i)
@@ -311,7 +311,7 @@ void write_level_statistics(nc::NcFile& f, const layout_info& l, const result_se
     };
     for (const auto& c : columns) {
       auto v = add_double(f, n + c.suffix, dims, q.units, c.long_name, c.description);
-      if (first_slab(rs)) {
+      if (defining()) {
         if (c.suffix == "_mean") v.putAtt("symbol", sym);
         v.putAtt("coordinates", "belt_level_velocity");
       }

@@ -20,7 +20,7 @@ void write_survival(nc::NcFile& f, const layout_info& l, const result_set& rs) {
     const auto dim = dimension(f, coordinate, edges.size());
     std::string words = coordinate;
     std::replace(words.begin(), words.end(), '_', ' ');
-    if (!defined(f, coordinate)) {
+    if (defining()) {
       auto c = f.addVar(coordinate, nc::ncDouble, dim);
       describe(c, "s", words,
                fmt::format("{} {}: the edges of the survival grid, {} bins on [0, {}] s, at "
@@ -65,8 +65,7 @@ void write_observed(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   const auto& times = rs.spec.observe_times;
   if (times.empty()) return;
   const auto time = dimension(f, "time", times.size());
-  const bool first = !defined(f, "time");
-  if (first) {
+  if (defining()) {
     auto t = f.addVar("time", nc::ncDouble, time);
     describe(t, "s", "observation time",
              "the observe times t of sweep --observe-times, at which the state of every "
@@ -76,7 +75,7 @@ void write_observed(nc::NcFile& f, const layout_info& l, const result_set& rs) {
   }
   const std::size_t quantiles = std::size(observed_quantile_levels);
   const auto quantile = dimension(f, "quantile", quantiles);
-  if (first) {
+  if (defining()) {
     auto q = f.addVar("quantile", nc::ncDouble, quantile);
     describe(q, "1", "quantile level", "the levels q of the quantile variables");
     q.putVar(observed_quantile_levels);

@@ -6,6 +6,20 @@
 #include "stickslip/error.hpp"
 
 namespace stickslip::io::detail::results_nc {
+namespace {
+
+// The variable `name` the first slab defined (a later slab's variables are
+// the first's, by name).
+nc::NcVar defined_variable(const nc::NcFile& f, const std::string& name) {
+  auto v = f.getVar(name);
+  if (v.isNull())
+    throw error(exit_code::internal,
+                fmt::format("results.nc: a later slab writes {}, which the first did not define",
+                            name));
+  return v;
+}
+
+}  // namespace
 
 void describe(const nc::NcVar& v, const std::string& units, const std::string& long_name,
               const std::string& description) {
@@ -50,7 +64,7 @@ void release_chunks(const nc::NcVar& v) {
 nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                      const std::string& units, const std::string& long_name,
                      const std::string& description, bool fill, bool deflate) {
-  if (defined(f, name)) return f.getVar(name);
+  if (!defining()) return defined_variable(f, name);
   auto v = f.addVar(name, nc::ncDouble, dims);
   if (deflate) compress(v, dims);
   if (fill) v.setFill(true, nan);
@@ -60,7 +74,7 @@ nc::NcVar add_double(nc::NcFile& f, const std::string& name, const std::vector<n
 
 nc::NcVar add_count(nc::NcFile& f, const std::string& name, const std::vector<nc::NcDim>& dims,
                     const std::string& long_name, const std::string& description) {
-  if (defined(f, name)) return f.getVar(name);
+  if (!defining()) return defined_variable(f, name);
   auto v = f.addVar(name, nc::ncInt64, dims);
   compress(v, dims);
   describe(v, "1", long_name, description);
@@ -89,11 +103,13 @@ std::vector<std::size_t> shape_of(const nc::NcVar& v) {
 }
 
 nc::NcDim dimension(nc::NcFile& f, const std::string& name, std::size_t size) {
-  if (auto d = f.getDim(name); !d.isNull()) return d;
-  return f.addDim(name, size);
+  if (defining()) return f.addDim(name, size);
+  auto d = f.getDim(name);
+  if (d.isNull() || d.getSize() != size)
+    throw error(exit_code::internal,
+                fmt::format("results.nc: a later slab's dimension {} is not the first slab's", name));
+  return d;
 }
-
-bool defined(const nc::NcFile& f, const std::string& name) { return !f.getVar(name).isNull(); }
 
 std::string parameter_long_name(const parameter_info& info, const std::string& symbol) {
   std::string n = info.long_name;

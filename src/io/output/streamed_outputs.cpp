@@ -42,11 +42,19 @@ streamed_outputs::streamed_outputs(result_set header, std::string dir, output_op
 streamed_outputs::~streamed_outputs() {
   if (!files_) return;
   auto created = std::move(files_->created);
-  files_.reset();  // removes the temporaries
+  files_.reset();  // removes the temporaries not yet finished
+  // and those finished by a commit that failed after them
+  for (const auto& path : paths()) detail::remove_file_quietly(detail::temporary_path(path));
   detail::remove_created(created);
 }
 
+std::vector<std::string> streamed_outputs::paths() const {
+  return {(fs::path(dir_) / results_file).string(), (fs::path(dir_) / summary_json_file).string(),
+          (fs::path(dir_) / summary_csv_file).string()};
+}
+
 void streamed_outputs::slab(const result_set& slab, const run_metadata& meta) {
+  detail::check_slab(slab, points_);  // the next rows of the grid, in order
   if (!files_)
     files_ = std::make_unique<files>(dir_, detail::create_directories(dir_), header_, meta, options_);
   files_->netcdf.slab(header_, slab);
@@ -66,10 +74,7 @@ std::vector<std::string> streamed_outputs::commit(double elapsed_seconds, const 
   f.json_points.end(header_);
   f.json.finish();
   f.csv.finish();
-  const std::vector<std::string> paths{(fs::path(dir_) / results_file).string(),
-                                       (fs::path(dir_) / summary_json_file).string(),
-                                       (fs::path(dir_) / summary_csv_file).string()};
-  auto removed = detail::commit_outputs(dir_, paths, f.created, false);
+  auto removed = detail::commit_outputs(dir_, paths(), f.created);
   files_.reset();
   return removed;
 }

@@ -23,10 +23,6 @@ std::vector<std::string> write_all(const result_set& rs, const run_metadata& met
   detail::check_shape(rs);
   const auto created = detail::create_directories(dir);
   const auto in_dir = [&](const char* name) { return (fs::path(dir) / name).string(); };
-  // A study's figure is ours only beside its sensitivity.nc (a file of the
-  // same name in a directory without one is left alone).
-  std::error_code exists_ec;
-  const bool earlier_study = fs::exists(in_dir(sensitivity_file), exists_ec);
 
   struct output {
     std::string path;
@@ -78,15 +74,19 @@ std::vector<std::string> write_all(const result_set& rs, const run_metadata& met
   }
   std::vector<std::string> paths;
   for (const auto& o : outputs) paths.push_back(o.path);
-  return detail::commit_outputs(dir, paths, created, earlier_study);
+  return detail::commit_outputs(dir, paths, created);
 }
 
 namespace detail {
 
 std::vector<std::string> commit_outputs(const std::string& dir, const std::vector<std::string>& paths,
-                                        const std::vector<created_directory>& created,
-                                        bool earlier_study) {
+                                        const std::vector<created_directory>& created) {
   const auto in_dir = [&](const char* name) { return (fs::path(dir) / name).string(); };
+  // A study's figure is ours only beside its sensitivity.nc (a file of the
+  // same name in a directory without one is left alone): one of an earlier
+  // run, before this one's is renamed into place.
+  std::error_code exists_ec;
+  const bool earlier_study = fs::exists(in_dir(sensitivity_file), exists_ec);
   std::size_t renamed = 0;
   try {
     for (; renamed < paths.size(); ++renamed) commit_rename(temporary_path(paths[renamed]), paths[renamed]);

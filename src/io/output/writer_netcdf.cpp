@@ -94,7 +94,7 @@ void write_parameters(nc::NcFile& f, const layout_info& l, const result_set& rs)
                                   : fmt::format("model parameter {} at each grid point: {}", sym,
                                                 info.description),
                         false);
-    if (first_slab(rs)) {
+    if (defining()) {
       v.putAtt("symbol", sym);
       if (uncertain) v.putAtt("value_is", "median of the law");
     }
@@ -287,18 +287,19 @@ void netcdf_stream::slab(const result_set& header, const result_set& slab) {
     for (std::size_t a = 1; a < header.spec.axes.size(); ++a)
       row_points *= header.spec.axes[a].values.size();
     const bool first = !file_;
-    if (first != first_slab(slab))
-      throw error(exit_code::internal, "results.nc's slabs were not streamed in grid order");
     if (first) {
       file_ = std::make_unique<file>(temporary_path(path_));
-      file_->rows = slab.points.size() / row_points;
+      // One slab of the whole grid: the chunks of a file written whole.
+      const std::size_t rows = slab.points.size() / row_points;
+      file_->rows = rows == header.spec.axes.front().values.size() ? 0 : rows;
     }
     auto& w = *file_;
-    // Every chunk within one slab (netcdf_chunks), for this thread's writes.
-    struct stream_rows {
-      explicit stream_rows(std::size_t rows) { netcdf_stream_rows = rows; }
-      ~stream_rows() { netcdf_stream_rows = 0; }
-    } const rows(w.rows);
+    // For this thread's writes: every chunk within one slab (netcdf_chunks),
+    // and the variables defined by the first slab only.
+    struct slab_state {
+      explicit slab_state(netcdf_slab_state s) { netcdf_slab = s; }
+      ~slab_state() { netcdf_slab = {}; }
+    } const state({w.rows, first});
     if (first) w.l = define_dimensions(w.f, slab);
     std::size_t trace = 0;
     for (const auto& p : slab.points) trace = std::max(trace, p.stats.convergence.size());

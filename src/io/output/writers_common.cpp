@@ -127,28 +127,49 @@ std::string parameter_variable_name(const std::string& symbol) {
   return n;
 }
 
+namespace {
+
+// Points [0, rs.points.size()) of rs are the grid's points first, first + 1,
+// ... in row-major order, each with the spec's observe times.
+void check_points(const result_set& rs, std::size_t first) {
+  for (std::size_t i = 0; i < rs.points.size(); ++i) {
+    // Writers lay points out in this order (row-major over the axes).
+    if (rs.points[i].index != point_index(rs.spec, first + i))
+      throw error(exit_code::internal,
+                  fmt::format("result set point {} is not at its grid position", first + i));
+    // The ensemble at the observe times: every point holds the spec's times.
+    if (rs.points[i].stats.observed.times() != rs.spec.observe_times)
+      throw error(exit_code::internal,
+                  fmt::format("result set point {} holds {} observe times, its spec {}",
+                              first + i, rs.points[i].stats.observed.times().size(),
+                              rs.spec.observe_times.size()));
+  }
+}
+
+}  // namespace
 
 void check_shape(const result_set& rs) {
   const auto n = point_count(rs.spec);
   if (rs.points.size() != n)
     throw error(exit_code::internal,
                 fmt::format("result set holds {} points but its grid has {}", rs.points.size(), n));
-  // Writers lay points out in this order (row-major over the axes).
-  for (std::size_t i = 0; i < n; ++i)
-    if (rs.points[i].index != point_index(rs.spec, i))
-      throw error(exit_code::internal,
-                  fmt::format("result set point {} is not at its grid position", i));
-  // The ensemble at the observe times: every point holds the spec's times.
-  for (std::size_t i = 0; i < n; ++i)
-    if (rs.points[i].stats.observed.times() != rs.spec.observe_times)
-      throw error(exit_code::internal,
-                  fmt::format("result set point {} holds {} observe times, its spec {}", i,
-                              rs.points[i].stats.observed.times().size(),
-                              rs.spec.observe_times.size()));
+  check_points(rs, 0);
   if (rs.spec.keep_records && !rs.records.empty() && rs.records.size() != n)
     throw error(exit_code::internal,
                 fmt::format("result set holds records of {} points but its grid has {}",
                             rs.records.size(), n));
+}
+
+void check_slab(const result_set& slab, std::size_t first) {
+  const auto n = point_count(slab.spec);
+  const std::size_t row = slab.spec.axes.empty() ? n : n / slab.spec.axes.front().values.size();
+  if (slab.points.empty() || first % row != 0 || slab.points.size() % row != 0 ||
+      first + slab.points.size() > n)
+    throw error(exit_code::internal,
+                fmt::format("a slab of points {} .. {} is not whole rows of the grid's {} points "
+                            "(rows of {})",
+                            first, first + slab.points.size(), n, row));
+  check_points(slab, first);
 }
 
 }  // namespace stickslip::io::detail

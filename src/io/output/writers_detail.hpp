@@ -55,7 +55,7 @@ void for_each_point_model(const result_set& rs, F&& f) {
 // The model of the first grid point as the engines resolve it (the paper's
 // model in its paper form, point_parameters): where the parameters that are
 // not swept are read from, so that "mu" of --mu-s 2 --mu-k 2 is 2, not the
-// unused default 5. The spec's base when there are no points.
+// unused default 5 (for_each_point_model's first).
 [[nodiscard]] model_parameters resolved_base(const result_set& rs);
 // The recorded scalars that are not swept but whose resolved value differs
 // between points: mu_s and mu_k that resolve to a swept mu. They have no one
@@ -100,14 +100,21 @@ inline std::size_t netcdf_chunk_values = std::size_t{1} << 19;
 [[nodiscard]] std::vector<std::size_t> chunk_shape(const std::vector<std::size_t>& shape,
                                                    std::size_t target);
 
-// While a run's results.nc is streamed slab by slab (streamed_outputs.hpp):
-// the rows of the first grid axis each slab but the last holds; 0
-// otherwise. Set by streamed_outputs around its writes, on its thread.
-inline thread_local std::size_t netcdf_stream_rows = 0;
+// While results.nc is written slab by slab (netcdf_stream, around each
+// slab's writes, on its thread): `rows`, those of the first grid axis each
+// slab but the last holds (0: chunks as for a file written whole), and
+// `defining`, whether this slab defines the file (the first: dimensions,
+// variables, their attributes and coordinates) or only writes its rows into
+// what the first defined. Outside a stream: {0, true}.
+struct netcdf_slab_state {
+  std::size_t rows = 0;
+  bool defining = true;
+};
+inline thread_local netcdf_slab_state netcdf_slab;
 
 // The chunk shape results.nc uses for a variable of `shape`: chunk_shape at
 // netcdf_chunk_values; while streamed, a chunk's extent in the first axis is
-// cut to a divisor of netcdf_stream_rows, so that no chunk spans two slabs
+// cut to a divisor of netcdf_slab.rows, so that no chunk spans two slabs
 // (each slab's writes cover whole chunks, each compressed once: a chunk
 // written in parts is read back, decompressed and compressed again).
 [[nodiscard]] std::vector<std::size_t> netcdf_chunks(const std::vector<std::size_t>& shape);
@@ -127,6 +134,10 @@ struct row_run {
 
 // Throws stickslip::error (internal) unless rs has one point per grid point.
 void check_shape(const result_set& rs);
+// The same for a slab of a streamed run (streamed_outputs): its spec the
+// whole grid's, its points those of the grid from point `first` on, whole
+// rows of the first axis.
+void check_slab(const result_set& slab, std::size_t first);
 
 // Write `path.tmp` completely (flushed, fsynced, closed) without renaming.
 // On failure the temporary is removed and io_error(path, ...) thrown.
@@ -141,11 +152,11 @@ void fill_summary_json(text_sink& out, const result_set& rs, const run_metadata&
 void fill_summary_csv(text_sink& out, const result_set& rs);
 // Renames the temporaries of `paths` (each written in full) into place in
 // `dir`, then removes the outputs of an earlier run there that they do not
-// replace (and, with earlier_study, a study's figure): returns those. On a
-// failed rename, removes what it renamed, the temporaries and `created`.
+// replace (and an earlier study's figure, beside its sensitivity.nc):
+// returns those. On a failed rename, removes what it renamed, the
+// temporaries and `created`.
 std::vector<std::string> commit_outputs(const std::string& dir, const std::vector<std::string>& paths,
-                                        const std::vector<created_directory>& created,
-                                        bool earlier_study);
+                                        const std::vector<created_directory>& created);
 // summary.csv's header (constructed) and rows (print), for a whole result
 // set (fill_summary_csv) or slab by slab (streamed_outputs.cpp: the header
 // of a run's header, no derived estimates).

@@ -214,7 +214,7 @@ std::string journaled_prefix::bytes() const {
   const auto fail = [&](const std::string& why) {
     return error(exit_code::io_failure,
                  fmt::format("{}: the journal changed during the run ({}): the merged blocks of "
-                             "a point could not be read back; rerun with --resume",
+                             "a point could not be read back; run the command again",
                              segment ? *segment : std::string("(no segment)"), why));
   };
   if (!segment) throw fail("no segment");
