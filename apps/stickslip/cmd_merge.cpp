@@ -22,6 +22,7 @@
 #include "stickslip/run/merge.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/output_lock.hpp"
+#include "stickslip/io/streamed_outputs.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
@@ -50,13 +51,26 @@ void run_merge(const merge_options& o) {
   // no OUT that it created.
   const bool existed = std::filesystem::exists(o.out_dir);
   const io::output_lock lock(o.out_dir, "stickslip merge");
+  const io::output_options options{.json_joint_histograms = o.json_histograms};
+  // A large grid's outputs are written window by window as it is merged
+  // (io::streamed_outputs), as a sweep's: OUT holds them only once all are.
+  std::optional<io::streamed_outputs> streamed;
+  const auto stream = [&](const result_set& slab, const io::run_metadata& meta) {
+    if (!streamed) {
+      result_set header;  // threads and ranks as merge_shards' results
+      header.spec = slab.spec;
+      streamed.emplace(std::move(header), o.out_dir, options);
+    }
+    streamed->slab(slab, meta);
+  };
   auto merged = [&] {
     try {
       if (!o.overwrite)
         io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
                               "add --overwrite to replace them, or choose another -o OUT");
-      return run::merge_shards(o.inputs, print_problem);
+      return run::merge_shards(o.inputs, print_problem, run::default_window_points, stream);
     } catch (const error&) {
+      streamed.reset();  // its temporaries go first
       std::error_code ec;
       if (!existed) std::filesystem::remove_all(o.out_dir, ec);
       throw;
@@ -66,8 +80,9 @@ void run_merge(const merge_options& o) {
     fmt::print(stderr, "stickslip: merge: {} units were in more than one journal (identical; "
                        "used once)\n", merged.duplicates);
   try {
-    note_removed_outputs(io::write_all(merged.results, merged.metadata, o.out_dir,
-                                       io::output_options{.json_joint_histograms = o.json_histograms}));
+    note_removed_outputs(
+        streamed ? streamed->commit(merged.results.elapsed_seconds, merged.metadata)
+                 : io::write_all(merged.results, merged.metadata, o.out_dir, options));
   } catch (const error& e) {
     if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
     throw;

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "stickslip/error.hpp"
+#include "stickslip/io/streamed_outputs.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "grid_windows.hpp"
@@ -98,7 +99,7 @@ void check_coverage(const sweep_spec& spec, combined& all) {
 }  // namespace
 
 merged_shards merge_shards(const std::vector<std::string>& dirs, const io::journal_report& report,
-                           std::size_t window_points) {
+                           std::size_t window_points, const slab_stream& stream) {
   const sweep_spec spec = configuration_of(dirs, report);
   validate(spec);
   combined all = combine(spec, dirs, report);
@@ -107,16 +108,22 @@ merged_shards merge_shards(const std::vector<std::string>& dirs, const io::journ
   // accumulators at a time, and the journaled units leave the maps as
   // their window is merged.
   const bool windowed = detail::splits_into_windows(spec, window_points);
+  const bool streamed = windowed && stream && io::streams_outputs(spec);
+  if (streamed) window_points = streamed_window_points(spec, window_points);
   merged_shards out{result_set{}, *all.metadata, all.duplicates};
   out.results.spec = spec;
-  out.results.points.reserve(point_count(spec));
+  if (!streamed) out.results.points.reserve(point_count(spec));
   if (spec.keep_records) out.results.records.reserve(point_count(spec));
   for (const auto& w : detail::windows_of(spec, window_points)) {
     ordered_merger merger(w.spec);
     detail::restore_window(w, all.prefixes, all.units, merger);
     if (!merger.complete()) throw error(exit_code::internal, "merge: merger incomplete");
-    detail::append_window(out.results, make_result_set(w.spec, std::move(merger)), w.offset,
-                          windowed);
+    if (streamed)
+      stream(detail::slab_of(spec, make_result_set(w.spec, std::move(merger)), w.offset),
+             out.metadata);
+    else
+      detail::append_window(out.results, make_result_set(w.spec, std::move(merger)), w.offset,
+                            windowed);
   }
   out.results.elapsed_seconds = all.elapsed;
   return out;

@@ -24,6 +24,7 @@
 #include "stickslip/io/streamed_outputs.hpp"
 #include "stickslip/io/writers.hpp"
 #include "stickslip/run/journaled_run.hpp"
+#include "stickslip/run/merge.hpp"
 #include "stickslip/run/result_memory.hpp"
 #include "stickslip/run/runner.hpp"
 #include "stickslip/run/stop.hpp"
@@ -349,4 +350,40 @@ TEST(StreamedOutputs, RefusesSlabsOutOfOrderAndAnEarlyCommit) {
   }
   EXPECT_FALSE(fs::exists(out_dir)) << "the directory the stream created stays";
   fs::remove_all(dir);
+}
+
+// `merge` of shards streams as a sweep does: the same files as the merge
+// written whole.
+TEST(StreamedOutputs, AMergeOfShardsStreamsTheSameFiles) {
+  const auto s = grid("paper");
+  std::vector<std::string> dirs;
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    const auto dir = fresh("shard" + std::to_string(i));
+    dirs.push_back(dir.string());
+    run::run_plan plan;
+    plan.dir = dir.string();
+    plan.window_points = 2;
+    plan.slice = run::shard{i, 2};
+    run::thread_runner runner(2);
+    EXPECT_FALSE(run::run_journaled(s, plan, meta, runner).results);
+  }
+  const auto streamed = fresh("merged"), whole = fresh("merged-whole");
+  std::optional<io::streamed_outputs> out;
+  std::size_t slabs = 0;
+  const auto merged = run::merge_shards(dirs, {}, 2, [&](const result_set& slab,
+                                                         const io::run_metadata& m) {
+    if (!out) out.emplace(result_set{s, {}, {}}, streamed.string(), io::output_options{});
+    out->slab(slab, m);
+    ++slabs;
+  });
+  EXPECT_TRUE(merged.results.points.empty());
+  EXPECT_EQ(slabs, 3u);  // 16, 16 and 8 rows
+  ASSERT_TRUE(out);
+  (void)out->commit(merged.results.elapsed_seconds, merged.metadata);
+  const auto at_once = run::merge_shards(dirs, {}, 0);
+  (void)io::write_all(at_once.results, at_once.metadata, whole.string());
+  expect_same_outputs(streamed, whole);
+  for (const auto& d : dirs) fs::remove_all(d);
+  fs::remove_all(streamed);
+  fs::remove_all(whole);
 }

@@ -5,6 +5,7 @@
 // is identical in each. The input journals are only read, never changed.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,9 +28,16 @@ struct merged_shards {
 // `window_points` points is merged window by window, as a run
 // (run_plan::window_points): only one window's accumulators are held in
 // full, and the finished points keep what the outputs read; 0: the whole
-// grid at once. The results are the same bits either way.
+// grid at once. The results are the same bits either way. With `stream`, a
+// grid merged window by window whose outputs can stream
+// (io::streams_outputs) hands each window to it as a slab, with the first
+// journal's metadata, as run_plan::stream (`merge` writes them with
+// io::streamed_outputs), in windows of streamed_window_points; the
+// results then hold no points.
+using slab_stream = std::function<void(const result_set& slab, const io::run_metadata& meta)>;
 [[nodiscard]] merged_shards merge_shards(const std::vector<std::string>& dirs,
                                          const io::journal_report& report = {},
-                                         std::size_t window_points = default_window_points);
+                                         std::size_t window_points = default_window_points,
+                                         const slab_stream& stream = {});
 
 }  // namespace stickslip::run
