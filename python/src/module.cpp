@@ -43,6 +43,15 @@ PYBIND11_MODULE(_stickslip, m) {
           return io::parse_unsigned(name, text, lo, hi);
         },
         py::arg("name"), py::arg("text"), py::arg("lo"), py::arg("hi"));
+  // The command line's parser of a swept parameter's values (--lambda
+  // log:0.1:30:40): sweep(lam="log:0.1:30:40") gives the CLI's axis, bit
+  // for bit (np.logspace's values differ in their last bits, and the streams
+  // are keyed by them), with its checks and messages.
+  m.def("parse_axis",
+        [](const std::string& name, const std::string& symbol, const std::string& text) {
+          return io::parse_grid(name, text, io::grid_domain_of(symbol));
+        },
+        py::arg("name"), py::arg("symbol"), py::arg("text"));
   m.attr("max_realizations") = stickslip::max_realizations;
   m.attr("max_block_size") = stickslip::max_block_size;
   m.attr("max_histogram_bins") = stickslip::max_histogram_bins;

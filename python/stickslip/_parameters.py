@@ -208,8 +208,12 @@ def model_arguments(kwargs, axes=False, stacklevel=3):
             value = kwargs.pop(key)
             if is_law(value):
                 given[sym] = value
+            elif axes and isinstance(value, str) and (":" in value or "," in value):
+                # the CLI's grid text ("log:0.1:30:40", "0.5,3,7"): its values, bit for bit
+                given[sym] = _stickslip.parse_axis(key, sym, value)
             elif isinstance(value, str):
-                forms = "a number or a 1-D sequence of finite numbers" if axes else "a finite number"
+                forms = ("a number, a 1-D sequence of finite numbers or a grid's text such as "
+                         "'log:0.1:30:40'") if axes else "a finite number"
                 raise error(f"invalid {key}: {value!r} (allowed: {forms}, or a law's text such as "
                             "'gamma(mean=5,cv=0.2)'; got text that is neither)")
             elif not axes and (isinstance(value, (list, tuple)) or

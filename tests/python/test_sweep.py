@@ -364,3 +364,18 @@ def test_generator_derivatives_in_the_dataset_equal_summary_json(tmp_path):
             assert value == e["value"]
             low = float(ds.stick_fraction_dmean_dgenerator_ci95_low.values.reshape(3, 3)[i, j])
             assert low == pytest.approx(e["ci95"][0], rel=1e-12)
+
+
+def test_grid_text_is_the_clis_axis_bit_for_bit(cli, tmp_path):
+    """lam="log:0.1:30:8" is the CLI's --lambda log:0.1:30:8, value for value
+    (np.logspace differs in last bits, and the streams are keyed by them),
+    and bad grid text is refused with the CLI's message, under the keyword."""
+    ds = stickslip.sweep(lam="log:0.1:30:8", mu="0.5,5", k=40, realizations=100, seed=2)
+    cli("sweep", "--lambda", "log:0.1:30:8", "--mu", "0.5,5", "--k", "40", "--realizations", "100",
+        "--seed", "2", "-o", tmp_path / "cli")
+    with xr.open_dataset(tmp_path / "cli" / "results.nc") as c:
+        assert ds["lambda"].values.tobytes() == c["lambda"].values.tobytes()
+        assert ds.stick_fraction_mean.values.tobytes() == c.stick_fraction_mean.values.tobytes()
+    assert not np.array_equal(np.logspace(-1, np.log10(30), 8), ds["lambda"].values)
+    with pytest.raises(stickslip.Error, match=r"invalid lam: 'log:0:30:4' \(allowed: values > 0"):
+        stickslip.sweep(lam="log:0:30:4", mu=5, realizations=10)
