@@ -124,8 +124,9 @@ def test_peak_refuses_laws():
 
 
 def test_text_that_is_not_a_law_is_refused_naming_both_forms():
-    with pytest.raises(stickslip.Error, match=r"invalid mu: 'five' \(allowed: a number or a 1-D "
-                                              r"sequence of finite numbers, or a law's text"):
+    with pytest.raises(stickslip.Error, match=r"invalid mu: 'five' \(allowed: a number, a 1-D "
+                                              r"sequence of finite numbers or a grid's text such as "
+                                              r"'log:0.1:30:40', or a law's text"):
         stickslip.sweep(mu="five", realizations=10)
     with pytest.raises(stickslip.Error, match=r"invalid k: '40' \(allowed: a finite number, or"):
         stickslip.simulate(k="40")
