@@ -89,10 +89,6 @@ bool runs_in_windows(const sweep_spec& spec, const run_plan& plan, const runner&
   return r.runs_any_spec() && detail::splits_into_windows(spec, plan.window_points);
 }
 
-}  // namespace
-
-namespace {
-
 // `write()` (the outputs, whole or a streamed window), whose I/O failure
 // says that the journal keeps the run.
 template <class W>
