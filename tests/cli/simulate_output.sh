@@ -108,4 +108,21 @@ run_ok simulate --seed 7 --realization 3 --ta 20 --events --events-file ev.csv \
   --trajectory 0.5 --trajectory-file tr.csv
 cmp -s stdout episodes.csv || fail "table on stdout changed by --events/--trajectory"
 [[ -s ev.csv && -s tr.csv ]] || fail "--events-file / --trajectory-file not written"
+
+# A given switch at t = 0 (docs/outputs.md, "Episodes"): the first row keeps
+# the belt before it (+1, the --belt-start), the events table gives the
+# switch at t = 0 with the new belt (-1), and the first slip runs on -1:
+# the mass, at rest, slips until its velocity is -1 and sticks there, so the
+# stick's x_start is below x0 and its belt is -1.
+run_ok simulate --switch-times 0,1,60 --x0 0.1 --xdot0 0 --belt-start +1 --ta 5 --events \
+  --events-file ev0.csv && cp stdout ep0.csv
+"$PY" - ep0.csv ev0.csv <<'PYEOF' || fail "a switch at t = 0"
+import csv, sys
+ep = list(csv.DictReader(open(sys.argv[1])))
+ev = list(csv.DictReader(open(sys.argv[2])))
+assert ep[0]["mode"] == "slip" and ep[0]["start"] == "0" and ep[0]["belt_velocity"] == "1", ep[0]
+assert ev[0]["kind"] == "belt_switch" and ev[0]["time"] == "0" and ev[0]["v"] == "-1", ev[0]
+assert ep[1]["mode"] == "stick" and ep[1]["belt_velocity"] == "-1", ep[1]
+assert float(ep[1]["x_start"]) < 0.1, ep[1]
+PYEOF
 finish
