@@ -63,16 +63,24 @@ void run_merge(const merge_options& o) {
     }
     streamed->slab(slab, meta);
   };
+  // A failed merge leaves nothing of its own: the stream's temporaries, and
+  // OUT if this merge created it. An I/O failure then leaves through
+  // exit_after_failed_write (as `sweep`: a throw past a failed HDF5 write
+  // crashed at exit), which runs no destructor: clean up first.
+  const auto clean_up = [&] {
+    streamed.reset();
+    std::error_code ec;
+    if (!existed) std::filesystem::remove_all(o.out_dir, ec);
+  };
   auto merged = [&] {
     try {
       if (!o.overwrite)
         io::refuse_to_replace(io::existing_sweep_results(o.out_dir), "the results of an earlier run",
                               "add --overwrite to replace them, or choose another -o OUT");
       return run::merge_shards(o.inputs, print_problem, run::default_window_points, stream);
-    } catch (const error&) {
-      streamed.reset();  // its temporaries go first
-      std::error_code ec;
-      if (!existed) std::filesystem::remove_all(o.out_dir, ec);
+    } catch (const error& e) {
+      clean_up();
+      if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
       throw;
     }
   }();
@@ -84,6 +92,7 @@ void run_merge(const merge_options& o) {
         streamed ? streamed->commit(merged.results.elapsed_seconds, merged.metadata)
                  : io::write_all(merged.results, merged.metadata, o.out_dir, options));
   } catch (const error& e) {
+    clean_up();
     if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
     throw;
   }

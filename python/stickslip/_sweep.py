@@ -108,9 +108,10 @@ def sweep(*, realizations=2000, seed=1, threads=0, progress=False, block_size=50
 
     Model parameters: a number fixes the parameter; a list or array of a
     scalar parameter (m, k, g, mu, V, lam, ta, c, mu_s, mu_k, v1..vN, r1, r2)
-    makes it a dimension of the grid (e.g. lam=np.logspace(-1, np.log10(30),
-    40), mu=[0.5, 5]), and so does the CLI's grid text (lam="log:0.1:30:40",
-    mu="0.5,5": the CLI's values, bit for bit); the CLI's axis order: lambda first, then mu, then the
+    makes it a dimension of the grid (e.g. lam=np.geomspace(0.1, 30, 40),
+    mu=[0.5, 5]), and so does the CLI's grid text (lam="log:0.1:30:40",
+    mu="0.5,5": the CLI's values, bit for bit; np.geomspace's differ in last
+    bits, and so do the results); the CLI's axis order: lambda first, then mu, then the
     others in the order the keywords are given; a law's text makes it
     uncertain (mu="gamma(mean=5,cv=0.2)", lam="loguniform(0.5,10)": each
     realization draws its own value, docs/uncertainty.md), and laws combine

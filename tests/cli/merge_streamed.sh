@@ -1,0 +1,36 @@
+# `merge` of a grid of more than 1,024 points writes its outputs window by
+# window (docs/outputs.md), as `sweep` does: the same files as the unsharded
+# sweep; and a write that fails (`ulimit -f`) at any point, during a window
+# or at the commit, exits 3 and leaves no temporary and no OUT it created.
+source "$(dirname "$0")/lib.sh"
+
+grid=(--lambda lin:0.5:5:40 --mu lin:0.5:5:30 --realizations 2 --ta 1 --seed 4)
+run_ok sweep "${grid[@]}" -o one
+run_ok sweep "${grid[@]}" --shard 0/2 -o s0
+run_ok sweep "${grid[@]}" --shard 1/2 -o s1
+run_ok merge s0 s1 -o m
+cmp -s one/summary.csv m/summary.csv || fail "the merged summary.csv is not the sweep's"
+"$PY" - one/results.nc m/results.nc <<'PYEOF' || fail "the merged results.nc is not the sweep's"
+import sys, netCDF4, numpy as np
+a, b = (netCDF4.Dataset(p) for p in sys.argv[1:])
+assert sorted(a.variables) == sorted(b.variables)
+for n in a.variables:
+    x, y = np.asarray(a[n][:]), np.asarray(b[n][:])
+    assert x.tobytes() == y.tobytes(), n
+# streamed: the chunks end at the windows' rows (32 of 40 rows of 30 points)
+assert any(v.chunking() != "contiguous" and v.chunking()[0] == 32 for v in b.variables.values())
+PYEOF
+pass
+for limit in 100 600 1200 1288; do
+  rm -rf "m$limit"
+  (ulimit -f "$limit"; "$BIN" merge s0 s1 -o "m$limit") >out.txt 2>err.txt
+  rc=$?
+  checks=$((checks + 1))
+  if ((rc == 0)); then
+    [[ -z $(ls m$limit/*.tmp 2>/dev/null) ]] || fail "ulimit -f $limit: a temporary beside the outputs"
+    continue
+  fi
+  ((rc == 3)) || fail "ulimit -f $limit: exit $rc, expected 3 (I/O): $(cat err.txt)"
+  [[ ! -e m$limit ]] || fail "ulimit -f $limit: the failed merge left m$limit: $(ls -a m$limit)"
+done
+finish
