@@ -52,7 +52,7 @@ inline constexpr const char* journal_directory = ".journal";
 // read back and decoded when it is merged. A resume of a large grid holds
 // every journaled point until its window comes; holding their bytes made it
 // peak far above the uninterrupted run, whose outputs are streamed (the
-// 100,000-point grid's resume after 63,080 of 100,000 units: 253 MB, against
+// 100,000-point grid's resume after 60,400 of 100,000 units: 253 MB, against
 // 92 MB uninterrupted); holding where they are takes ~50 bytes a point
 // (88 MB). Reading back checks the length and the CRC again: a journal
 // changed on disk since it was read throws io_failure (the output lock keeps
