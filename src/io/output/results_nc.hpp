@@ -130,9 +130,7 @@ void put_grid(const nc::NcVar& v, const result_set& rs, F value) {
 template <class T>
 void put_rows(const nc::NcVar& v, const result_set& rs, std::size_t len,
               const std::function<void(const point_result&, std::vector<T>&)>& row) {
-  const auto dims = v.getDims();
-  std::vector<std::size_t> shape;
-  for (const auto& d : dims) shape.push_back(d.getSize());
+  const auto shape = shape_of(v);
   const std::size_t grid_rank = std::max<std::size_t>(1, rs.spec.axes.size());
   const auto chunk = netcdf_chunks(shape);
   std::vector<std::size_t> grid(shape.begin(), shape.begin() + grid_rank);

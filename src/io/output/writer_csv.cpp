@@ -30,6 +30,10 @@ struct csv_estimate_column {
 
 namespace {
 
+// A quantity sampled other than once per realization: its sample count is
+// a column of its own.
+bool pooled(const quantity_info& q) { return q.sampled != sampling::per_realization; }
+
 // A statistic's four columns: mean, std and the ends of the 95% interval
 // of the mean (mean_estimate, as in every output).
 void print_statistic(text_sink& out, const mean_variance& mv) {
@@ -93,7 +97,6 @@ void print_estimate(text_sink& out, const csv_estimate_column& c, const estimate
 summary_csv_rows::summary_csv_rows(text_sink& out, const result_set& rs,
                                    const std::vector<estimate_source>& sources)
     : out_(out), symbols_(point_parameter_symbols(rs)) {
-  const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
   for (const auto& sym : symbols_) out.print("{},", sym);
   out.write("realizations");
   // The burn-in T, only with one (every statistic is over [T, t_a]).
@@ -118,7 +121,6 @@ summary_csv_rows::summary_csv_rows(text_sink& out, const result_set& rs,
 
 void summary_csv_rows::print(const result_set& rs, const std::vector<estimate_source>& sources) {
   auto& out = out_;
-  const auto pooled = [](const quantity_info& q) { return q.sampled != sampling::per_realization; };
   const auto& sel = rs.spec.statistics;
   const bool burn_in = rs.spec.burn_in != 0.0;
   for (const auto& src : sources) {

@@ -27,11 +27,22 @@ bool defines_model(const model_parameters& p, std::string_view symbol) {
   return true;
 }
 
-std::vector<std::string> meaningless_parameters(const result_set& rs) {
-  const auto swept = swept_symbols(rs.spec);
-  std::vector<std::string> candidates;  // recorded and not swept
+namespace {
+
+// The recorded parameters that are not swept (those a grid-wide fact is
+// asked of).
+std::vector<std::string> unswept_recorded(const sweep_spec& s) {
+  const auto swept = swept_symbols(s);
+  std::vector<std::string> out;
   for (const char* sym : recorded_parameter_names)
-    if (std::find(swept.begin(), swept.end(), sym) == swept.end()) candidates.emplace_back(sym);
+    if (std::find(swept.begin(), swept.end(), sym) == swept.end()) out.emplace_back(sym);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> meaningless_parameters(const result_set& rs) {
+  const auto candidates = unswept_recorded(rs.spec);
   std::vector<char> everywhere(candidates.size(), 1);
   for_each_point_model(rs, [&](const model_parameters& p) {
     for (std::size_t i = 0; i < candidates.size(); ++i)
@@ -44,15 +55,10 @@ std::vector<std::string> meaningless_parameters(const result_set& rs) {
 }
 
 std::vector<std::string> varying_parameters(const result_set& rs) {
-  const auto swept = swept_symbols(rs.spec);
   const model_parameters first = resolved_base(rs);
-  std::vector<std::string> candidates;  // recorded and not swept
+  const auto candidates = unswept_recorded(rs.spec);
   std::vector<double> values;
-  for (const char* sym : recorded_parameter_names)
-    if (std::find(swept.begin(), swept.end(), sym) == swept.end()) {
-      candidates.emplace_back(sym);
-      values.push_back(parameter_value(first, sym));
-    }
+  for (const auto& sym : candidates) values.push_back(parameter_value(first, sym));
   std::vector<char> varies(candidates.size(), 0);
   for_each_point_model(rs, [&](const model_parameters& p) {
     for (std::size_t i = 0; i < candidates.size(); ++i)
