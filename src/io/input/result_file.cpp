@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "../netcdf_file.hpp"
 #include "stickslip/error.hpp"
 
 namespace stickslip::io {
@@ -15,7 +16,7 @@ namespace nc = netCDF;
 
 struct result_file::handle {
   explicit handle(const std::string& path) : file(path, nc::NcFile::read) {}
-  nc::NcFile file;
+  detail::nc_file file;
 };
 
 namespace {
@@ -50,7 +51,7 @@ result_file::result_file(const std::string& path) : path_(path) {
     nc_ = std::make_unique<handle>(path);
   } catch (const nc::exceptions::NcException& e) {
     throw error(exit_code::invalid_input,
-                fmt::format("cannot read '{}' as a NetCDF file: {}", path, e.what()));
+                fmt::format("cannot read '{}' as a NetCDF file: {}", path, detail::netcdf_message(e)));
   }
   for (const auto& [name, dim] : nc_->file.getDims()) dims_.push_back({name, dim.getSize()});
   std::vector<nc::NcVar> vars;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <functional>
 
+#include "../netcdf_file.hpp"
 #include "results_nc.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
@@ -238,7 +239,7 @@ void write_variables(nc::NcFile& f, const layout_info& l, const result_set& rs) 
 }
 
 void write_netcdf_file(const result_set& rs, const run_metadata& meta, const std::string& file) {
-  nc::NcFile f(file, nc::NcFile::replace, nc::NcFile::nc4);
+  nc_file f(file, nc::NcFile::replace, nc::NcFile::nc4);
   write_global_attributes(f, rs, meta);
   const auto l = define_dimensions(f, rs);
   write_variables(f, l, rs);
@@ -251,7 +252,7 @@ void reporting_as(const std::string& path, F&& f) {
   try {
     f();
   } catch (const nc::exceptions::NcException& e) {
-    throw io_error(path, fmt::format("NetCDF: {}", e.what()));
+    throw io_error(path, netcdf_message(e));
   } catch (const stickslip::error&) {
     throw;
   } catch (const std::exception& e) {
@@ -269,7 +270,7 @@ void write_netcdf_temporary(const result_set& rs, const run_metadata& meta,
 
 struct netcdf_stream::file {
   explicit file(const std::string& tmp) : f(tmp, nc::NcFile::replace, nc::NcFile::nc4) {}
-  nc::NcFile f;
+  nc_file f;
   layout_info l;
   std::size_t rows = 0;  // of the first axis in each slab but the last
 };
@@ -277,7 +278,7 @@ struct netcdf_stream::file {
 netcdf_stream::netcdf_stream(std::string path) : path_(std::move(path)) {}
 
 netcdf_stream::~netcdf_stream() {
-  file_.reset();  // closes the file (NcFile's destructor reports, never throws)
+  file_.reset();  // closes the file quietly (nc_file)
   if (!finished_) remove_file_quietly(temporary_path(path_));
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../netcdf_file.hpp"
 #include "json_emitter.hpp"
 #include "stickslip/error.hpp"
 #include "stickslip/io/writers.hpp"
@@ -123,7 +124,7 @@ void write_sensitivity_file(const result_set& rs, const run_metadata& meta,
   const auto& stats = design_of(rs);
   const sobol_estimates est = sobol_indices(stats.sensitivity);
   const auto& q = sensitivity_quantity(rs.spec);
-  nc::NcFile f(file, nc::NcFile::replace, nc::NcFile::nc4);
+  nc_file f(file, nc::NcFile::replace, nc::NcFile::nc4);
   f.putAtt("title", fmt::format("stickslip sensitivity: Sobol' indices of {}", q.summary_name));
   f.putAtt("Conventions", "CF-1.8");
   f.putAtt("source", fmt::format("stickslip {} (git {})", meta.version, meta.git_revision));
