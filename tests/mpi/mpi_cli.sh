@@ -103,7 +103,7 @@ echo "mpi_cli: errors under mpirun: exit 2 (bad input) and 4 (work bound), no ha
 long=(sweep --lambda log:0.1:30:40 --mu 0.5,5 --realizations 4000 --checkpoint-interval 0)
 "$bin" "${long[@]}" --threads 2 -o "$work/long-single" 2>/dev/null || fail "single-process long run"
 usr1_mid_run "$work/usr1" "SIGUSR1 under mpirun" "${long[@]}"
-grep -q "interrupted by signal" "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report (exit $rc)"; }
+grep -q "^stickslip: stopped: interrupted by signal 10" "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report (exit $rc)"; }
 "${launch[@]}" -np 2 "$bin" "${long[@]}" --threads 1 --resume -o "$work/usr1" 2>/dev/null \
   || fail "resume after SIGUSR1"
 $compare "$work/long-single" "$work/usr1" >/dev/null || fail "resume after SIGUSR1 differs"
