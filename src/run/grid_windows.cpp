@@ -32,17 +32,18 @@ std::vector<grid_window> windows_of(const sweep_spec& spec, std::size_t window_p
 }
 
 void restore_window(const grid_window& w, std::map<std::size_t, io::journaled_prefix>& prefixes,
-                    std::map<work_unit, block_result>& units, ordered_merger& merger) {
+                    std::map<work_unit, io::journaled_unit>& units, ordered_merger& merger) {
   const std::size_t first = w.offset, end = w.offset + point_count(w.spec);
+  io::journal_readback journal;
   for (auto it = prefixes.lower_bound(first); it != prefixes.end() && it->first < end;) {
-    merged_prefix prefix = it->second.decode();
+    merged_prefix prefix = it->second.decode(journal);
     prefix.point -= first;
     merger.restore(std::move(prefix));
     it = prefixes.erase(it);
   }
   for (auto it = units.lower_bound(work_unit{first, 0});
        it != units.end() && it->first.point < end;) {
-    merger.add({it->first.point - first, it->first.block}, std::move(it->second));
+    merger.add({it->first.point - first, it->first.block}, it->second.decode(journal));
     it = units.erase(it);
   }
 }

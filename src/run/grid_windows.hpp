@@ -34,10 +34,10 @@ struct grid_window {
 
 // Moves the journaled prefixes and units of the window's points out of
 // `prefixes` and `units` (keyed by the whole grid's points) into `merger`
-// (made for w.spec), renumbered to the window. Prefixes are decoded here,
-// one window at a time.
+// (made for w.spec), renumbered to the window. They are read back and
+// decoded here, one window at a time.
 void restore_window(const grid_window& w, std::map<std::size_t, io::journaled_prefix>& prefixes,
-                    std::map<work_unit, block_result>& units, ordered_merger& merger);
+                    std::map<work_unit, io::journaled_unit>& units, ordered_merger& merger);
 
 // Appends a window's results (make_result_set of its merger) to `all`, the
 // whole grid's; with `release` (a window of a larger grid), as slab_of: each

@@ -8,7 +8,6 @@
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/streamed_outputs.hpp"
-#include "stickslip/serialize.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "grid_windows.hpp"
 
@@ -31,7 +30,7 @@ sweep_spec configuration_of(const std::vector<std::string>& dirs, const io::jour
 }
 
 struct combined {
-  std::map<work_unit, block_result> units;
+  std::map<work_unit, io::journaled_unit> units;
   std::map<std::size_t, io::journaled_prefix> prefixes;  // the longest per point
   std::optional<io::run_metadata> metadata;
   double elapsed = 0;
@@ -61,7 +60,7 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
     for (auto& [u, r] : j.units) {
       auto [it, fresh] = all.units.emplace(u, std::move(r));
       if (fresh) continue;
-      if (serialize(u, it->second) != serialize(u, r))
+      if (it->second.bytes() != r.bytes())
         throw error(exit_code::io_failure,
                     fmt::format("merge: point {} block {} differs between two journals (one "
                                 "of them is from another program version or damaged); '{}'",

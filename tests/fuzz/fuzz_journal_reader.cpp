@@ -195,7 +195,8 @@ void check(const journal_fixture& f, const io::journal_contents& c, std::size_t 
                "an undamaged journal: %zu of %zu units, %zu damaged", c.units.size(),
                f.originals.size(), c.damaged);
   }
-  for (const auto& [u, block] : c.units) {
+  for (const auto& [u, place] : c.units) {
+    const block_result block = place.decode();  // read back from the files still on disk
     const std::string got = serialize(u, block);
     const auto it = f.originals.find(u);
     if (it != f.originals.end() && got == it->second) continue;

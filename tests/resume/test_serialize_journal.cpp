@@ -237,7 +237,7 @@ TEST(Journal, ReadsBackEveryCommittedUnit) {
   ASSERT_EQ(j.units.size(), unit_count(s));
   ASSERT_TRUE(j.metadata);
   EXPECT_EQ(j.metadata->created_utc, "t");
-  for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.stats, simulate_block(s, u).stats));
+  for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.decode().stats, simulate_block(s, u).stats));
 }
 
 TEST(Journal, ChangedConfigurationIsRefused) {
@@ -275,7 +275,7 @@ TEST(Journal, CorruptOrTruncatedSegmentsAreReportedAndSkipped) {
   EXPECT_EQ(problems.size(), 4u);
   EXPECT_EQ(j.damaged, 4u);
   EXPECT_EQ(j.units.size(), unit_count(s) - 4);
-  for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.stats, simulate_block(s, u).stats));
+  for (const auto& [u, b] : j.units) EXPECT_TRUE(same_bits(b.decode().stats, simulate_block(s, u).stats));
 }
 
 // A record journaled twice (two writers, or a rewritten checkpoint): the
@@ -322,7 +322,7 @@ TEST(Journal, ARecordReadTwiceIsKeptOnceAndAConflictIsRecomputed) {
         << problems[0];
     EXPECT_EQ(j.units.count(same), 1u);
     EXPECT_EQ(j.units.count(changed), 0u);  // recomputed
-    EXPECT_TRUE(same_bits(j.units.at(same).stats, simulate_block(s, same).stats));
+    EXPECT_TRUE(same_bits(j.units.at(same).decode().stats, simulate_block(s, same).stats));
     if (records) continue;
     ASSERT_EQ(j.prefixes.count(point), 1u);
     EXPECT_TRUE(same_bits(j.prefixes.at(point).decode().stats, merged));

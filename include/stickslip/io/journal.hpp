@@ -29,6 +29,7 @@
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
@@ -48,32 +49,62 @@ inline constexpr const char* journal_directory = ".journal";
 // True when DIR holds a journal (its header or any segment).
 [[nodiscard]] bool journal_exists(const std::string& dir);
 
-// A point's longest valid merged prefix, as where its checked bytes are:
-// read back and decoded when it is merged. A resume of a large grid holds
-// every journaled point until its window comes; holding their bytes made it
-// peak far above the uninterrupted run, whose outputs are streamed (the
-// 100,000-point grid's resume after 60,400 of 100,000 units: 253 MB, against
-// 92 MB uninterrupted); holding where they are takes ~50 bytes a point
+// Where a checked journal record's payload is: read back, and checked again,
+// when it is used. A resume of a large grid holds every journaled point until
+// its window comes, and `merge` every shard's units; holding their bytes made
+// a resume peak far above the uninterrupted run, whose outputs are streamed
+// (the 100,000-point grid's resume after 60,400 of 100,000 units: 253 MB,
+// against 92 MB uninterrupted), and `merge` of that grid's two shards hold
+// 577 MB of decoded units. Holding where they are takes ~50 bytes a record
 // (88 MB). Reading back checks the length and the CRC again: a journal
 // changed on disk since it was read throws io_failure (the output lock keeps
 // other stickslip runs out of a run's own directory; `merge` reads shard
 // directories it does not lock).
-struct journaled_prefix {
-  std::uint64_t blocks = 0;
+struct journal_place {
   std::shared_ptr<const std::string> segment;  // the segment file's path
   std::uint64_t offset = 0;                    // of the record's payload in it
   std::uint32_t length = 0, crc = 0;           // of the payload
-  // serialize(merged_prefix), every check passed at reading; throws
-  // io_failure if the file no longer holds them.
-  [[nodiscard]] std::string bytes() const;
+};
+
+// Reads journal records back, keeping the last few segments open: a
+// window's records are in a few segments, and a merge's alternate between
+// its shards' (every n-th unit is shard i's).
+class journal_readback {
+ public:
+  // The record's payload, every check passed at reading; throws io_failure
+  // if the file no longer holds it.
+  [[nodiscard]] std::string bytes(const journal_place& at);
+
+ private:
+  struct open_segment {
+    std::shared_ptr<const std::string> path;
+    std::ifstream in;
+  };
+  std::vector<open_segment> open_;  // the most recently used last
+};
+
+// A point's longest valid merged prefix.
+struct journaled_prefix {
+  std::uint64_t blocks = 0;
+  journal_place place;
+  [[nodiscard]] std::string bytes() const;  // serialize(merged_prefix)
+  [[nodiscard]] merged_prefix decode(journal_readback& from) const;
   [[nodiscard]] merged_prefix decode() const;
+};
+
+// A valid journaled unit (a shard's, or a sweep's that keeps records).
+struct journaled_unit {
+  journal_place place;
+  [[nodiscard]] std::string bytes() const;  // serialize(unit, block)
+  [[nodiscard]] block_result decode(journal_readback& from) const;
+  [[nodiscard]] block_result decode() const;
 };
 
 // What a journal holds after reading and checking it.
 struct journal_contents {
   std::optional<sweep_spec> spec;             // from the header (absent if unreadable)
   std::optional<run_metadata> metadata;       // the first run's metadata
-  std::map<work_unit, block_result> units;    // every valid journaled unit, once
+  std::map<work_unit, journaled_unit> units;  // every valid journaled unit, once
   std::map<std::size_t, journaled_prefix> prefixes;  // the longest valid one per point
   double elapsed_seconds = 0.0;  // sum over earlier runs of their last journaled time
   std::size_t segments = 0;      // segment files read

@@ -108,11 +108,9 @@ struct segment_reader {
   const journal_report& report;
   journal_contents& out;
   std::map<std::string, double> run_elapsed;  // run id -> latest elapsed
-  // A unit read twice is told apart from a conflicting one by serializing
-  // what was kept of the first (the codec is canonical: every accepted record
-  // re-serializes to its own bytes), not by a copy of every payload, which
-  // added about the journal's size to a resume's memory; a prefix is kept
-  // as its bytes (journaled_prefix) and compared as such.
+  // Records are kept as where they are (journal_place), not decoded: a
+  // record read twice is told apart from a conflicting one by reading the
+  // first back (rare: the same unit in two segments).
   std::set<work_unit> conflicting;
   std::set<std::size_t> conflicting_points;
 
@@ -152,18 +150,19 @@ struct segment_reader {
         const auto crc = outer.u32("record CRC");
         const auto payload = outer.raw(len, "record");
         if (crc32(payload) != crc) throw detail::corrupt("CRC mismatch");
+        const auto place = [&](std::string_view p) {
+          return journal_place{segment, static_cast<std::uint64_t>(p.data() - data->data()), len,
+                               crc};
+        };
         if (is_merged_prefix(payload)) {
           auto prefix = deserialize_merged_prefix(payload);
           check_prefix_shape(spec, prefix);
-          add(std::move(prefix), payload,
-              journaled_prefix{prefix.blocks, segment,
-                               static_cast<std::uint64_t>(payload.data() - data->data()), len,
-                               crc});
+          add(prefix, payload, journaled_prefix{prefix.blocks, place(payload)});
           continue;
         }
-        auto [unit, block] = deserialize_unit_result(payload);
+        const auto [unit, block] = deserialize_unit_result(payload);
         check_block_shape(spec, unit, block);
-        add(unit, std::move(block), payload);
+        add(unit, payload, journaled_unit{place(payload)});
       } catch (const error& e) {
         return note(fmt::format("{}: record {} of {}: {}; it and the {} after it will be "
                                 "recomputed",
@@ -193,12 +192,12 @@ struct segment_reader {
     out.prefixes.insert_or_assign(p.point, std::move(where));
   }
 
-  void add(const work_unit& u, block_result&& b, std::string_view payload) {
+  void add(const work_unit& u, std::string_view payload, journaled_unit&& where) {
     if (conflicting.count(u)) return;
     const auto it = out.units.find(u);
     if (it == out.units.end()) {
-      out.units.emplace(u, std::move(b));
-    } else if (serialize(u, it->second) != payload) {  // cannot happen unless something is very wrong
+      out.units.emplace(u, std::move(where));
+    } else if (it->second.bytes() != payload) {  // cannot happen unless something is very wrong
       conflicting.insert(u);
       out.units.erase(u);
       note(fmt::format("point {} block {} is journaled twice with different contents; "
@@ -210,24 +209,58 @@ struct segment_reader {
 
 }  // namespace
 
-std::string journaled_prefix::bytes() const {
+std::string journal_readback::bytes(const journal_place& at) {
   const auto fail = [&](const std::string& why) {
     return error(exit_code::io_failure,
-                 fmt::format("{}: the journal changed during the run ({}): the merged blocks of "
-                             "a point could not be read back; run the command again",
-                             segment ? *segment : std::string("(no segment)"), why));
+                 fmt::format("{}: the journal changed during the run ({}): a journaled record "
+                             "could not be read back; run the command again",
+                             at.segment ? *at.segment : std::string("(no segment)"), why));
   };
-  if (!segment) throw fail("no segment");
-  std::ifstream in(*segment, std::ios::binary);
-  if (!in) throw fail("cannot open");
-  std::string data(length, '\0');
-  in.seekg(static_cast<std::streamoff>(offset));
-  if (!in.read(data.data(), static_cast<std::streamsize>(length))) throw fail("truncated");
-  if (crc32(data) != crc) throw fail("CRC mismatch");
+  if (!at.segment) throw fail("no segment");
+  constexpr std::size_t kept = 8;  // open segments
+  auto it = std::find_if(open_.begin(), open_.end(), [&](const open_segment& o) {
+    return o.path == at.segment || *o.path == *at.segment;
+  });
+  if (it == open_.end()) {
+    if (open_.size() == kept) open_.erase(open_.begin());
+    open_.push_back({at.segment, std::ifstream(*at.segment, std::ios::binary)});
+  } else if (it + 1 != open_.end()) {
+    std::rotate(it, it + 1, open_.end());
+  }
+  std::ifstream& in = open_.back().in;
+  if (!in.is_open()) {
+    open_.pop_back();
+    throw fail("cannot open");
+  }
+  std::string data(at.length, '\0');
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(at.offset));
+  if (!in.read(data.data(), static_cast<std::streamsize>(at.length))) throw fail("truncated");
+  if (crc32(data) != at.crc) throw fail("CRC mismatch");
   return data;
 }
 
-merged_prefix journaled_prefix::decode() const { return deserialize_merged_prefix(bytes()); }
+std::string journaled_prefix::bytes() const { return journal_readback{}.bytes(place); }
+
+merged_prefix journaled_prefix::decode(journal_readback& from) const {
+  return deserialize_merged_prefix(from.bytes(place));
+}
+
+merged_prefix journaled_prefix::decode() const {
+  journal_readback from;
+  return decode(from);
+}
+
+std::string journaled_unit::bytes() const { return journal_readback{}.bytes(place); }
+
+block_result journaled_unit::decode(journal_readback& from) const {
+  return deserialize_unit_result(from.bytes(place)).second;
+}
+
+block_result journaled_unit::decode() const {
+  journal_readback from;
+  return decode(from);
+}
 
 journal_contents read_journal(const std::string& dir, const sweep_spec* expected,
                               const journal_report& report) {
