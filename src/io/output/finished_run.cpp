@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "../netcdf_file.hpp"
 #include "stickslip/io/output_files.hpp"
 #include "stickslip/io/writers.hpp"
 
@@ -34,7 +35,7 @@ std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::
     return std::nullopt;
   }
   try {
-    netCDF::NcFile f(path, netCDF::NcFile::read);
+    detail::nc_file f(path, netCDF::NcFile::read);
     run_metadata m;
     auto text = [&](const char* name, std::string& into) {
       const auto att = f.getAtt(name);
@@ -51,6 +52,9 @@ std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::
     text("git_revision", m.git_revision);
     text("created_utc", m.created_utc);
     return m;
+  } catch (const netCDF::exceptions::NcException& e) {
+    if (problem) *problem = "'" + path + "' cannot be read (" + detail::netcdf_message(e) + ")";
+    return std::nullopt;
   } catch (const std::exception& e) {
     if (problem) *problem = "'" + path + "' cannot be read (" + e.what() + ")";
     return std::nullopt;
@@ -59,7 +63,7 @@ std::optional<run_metadata> read_finished_metadata(const std::string& dir, std::
 
 std::string read_finished_warning(const std::string& dir) {
   try {
-    netCDF::NcFile f(finished_result_path(dir), netCDF::NcFile::read);
+    detail::nc_file f(finished_result_path(dir), netCDF::NcFile::read);
     const auto att = f.getAtt("warning");
     std::string text;
     if (!att.isNull()) att.getValues(text);
