@@ -54,9 +54,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return stickslip::app::report_parse_error(app, e, std::vector<std::string>(argv + 1, argv + argc));
   } catch (const stickslip::error& e) {
-    // An interruption (exit 128 + the signal) is the user's or the batch
-    // system's stop, not a failure: its message says what was kept.
-    stickslip::app::print_error(static_cast<int>(e.code()) > 128 ? "stopped" : "error", e.what());
+    // An interruption's message says what was kept and how to go on.
+    stickslip::app::print_error(stickslip::is_interruption(e.code()) ? "stopped" : "error",
+                                e.what());
     return static_cast<int>(e.code());
   } catch (const std::exception& e) {
     stickslip::app::print_error("internal error", e.what());

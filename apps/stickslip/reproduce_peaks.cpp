@@ -115,7 +115,7 @@ study::peak_locator kept_peak_locator(std::string runs_dir, run::runner& r,
     q.run = [&r, &stop](const sweep_spec& s) {
       auto rs = run::run_unless_stopped(r, s, stop);
       if (!rs)
-        throw error(static_cast<exit_code>(128 + stop.reason()),
+        throw error(interrupted_by(stop.reason()),
                     fmt::format("interrupted by signal {}: the finished sweeps and peak "
                                 "searches are kept; continue with the same command and --resume",
                                 stop.reason()));

@@ -16,6 +16,15 @@ enum class exit_code : int {
   internal = 70,
 };
 
+// A run stopped by signal n exits 128 + n (the shell's convention): the
+// user's or the batch system's stop, not a failure.
+[[nodiscard]] constexpr exit_code interrupted_by(int signal) noexcept {
+  return static_cast<exit_code>(128 + signal);
+}
+[[nodiscard]] constexpr bool is_interruption(exit_code c) noexcept {
+  return static_cast<int>(c) > 128;
+}
+
 class error : public std::runtime_error {
  public:
   error(exit_code code, const std::string& what) : std::runtime_error(what), code_(code) {}

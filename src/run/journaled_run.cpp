@@ -247,7 +247,7 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   out.elapsed_this_run = seconds_since(t0);
   if (stop_seen) {
     const int sig = plan.stop->reason();
-    throw error(static_cast<exit_code>(128 + sig),
+    throw error(interrupted_by(sig),
                 fmt::format("interrupted by signal {}: {} finished units are journaled in {}; "
                             "continue with the same command and --resume",
                             sig, merged_before, io::journal_path(plan.dir)));

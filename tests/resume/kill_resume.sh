@@ -44,7 +44,11 @@ while :; do
       kills=$((kills + 1))
       if [[ $sig == -TERM ]]; then
         ((rc == 143 || rc == 0)) || fail "SIGTERM exit code $rc"
-        ((rc == 143)) && echo "kill_resume: SIGTERM -> exit 143, finished units journaled"
+        if ((rc == 143)); then
+          grep -q "^stickslip: stopped: interrupted by signal 15: .* finished units are journaled" \
+            "$work/log" || fail "SIGTERM: no 'stickslip: stopped:' report: $(tail -n 2 "$work/log")"
+          echo "kill_resume: SIGTERM -> exit 143, finished units journaled"
+        fi
       fi
       ((kills < min_kills)) && continue
     fi
