@@ -41,11 +41,22 @@ void restore_window(const grid_window& w, std::map<std::size_t, io::journaled_pr
     merger.restore(std::move(prefix));
     it = prefixes.erase(it);
   }
-  for (auto it = units.lower_bound(work_unit{first, 0});
-       it != units.end() && it->first.point < end;) {
+  // The units are read in the order they lie in the journal (segment,
+  // offset), not in grid order: a merge's alternate between its shards' files
+  // (every n-th unit is shard i's), more of them than journal_readback keeps
+  // open.
+  const auto from = units.lower_bound(work_unit{first, 0});
+  const auto to = units.lower_bound(work_unit{end, 0});
+  std::vector<std::map<work_unit, io::journaled_unit>::iterator> order;
+  for (auto it = from; it != to; ++it) order.push_back(it);
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    const io::journal_place &x = a->second.place, &y = b->second.place;
+    return x.segment != y.segment && *x.segment != *y.segment ? *x.segment < *y.segment
+                                                               : x.offset < y.offset;
+  });
+  for (const auto& it : order)
     merger.add({it->first.point - first, it->first.block}, it->second.decode(journal));
-    it = units.erase(it);
-  }
+  units.erase(from, to);
 }
 
 void append_window(result_set& all, result_set part, std::size_t offset, bool release) {

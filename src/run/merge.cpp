@@ -40,6 +40,7 @@ struct combined {
 combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
                  const io::journal_report& report) {
   combined all;
+  io::journal_readback journal;  // for units and prefixes present twice
   for (const auto& d : dirs) {
     auto j = io::read_journal(d, &spec, report);  // throws resume_mismatch on another config
     if (!all.metadata && j.metadata) all.metadata = j.metadata;
@@ -49,7 +50,7 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
       if (fresh || it->second.blocks > p.blocks) continue;
       if (it->second.blocks < p.blocks) {
         it->second = std::move(p);
-      } else if (it->second.bytes() != p.bytes()) {
+      } else if (journal.bytes(it->second.place) != journal.bytes(p.place)) {
         throw error(exit_code::io_failure,
                     fmt::format("merge: the merged first {} blocks of point {} differ between "
                                 "two journals (one of them is from another program version or "
@@ -58,9 +59,9 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
       }
     }
     for (auto& [u, r] : j.units) {
-      auto [it, fresh] = all.units.emplace(u, std::move(r));
+      auto [it, fresh] = all.units.try_emplace(u, r);
       if (fresh) continue;
-      if (it->second.bytes() != r.bytes())
+      if (journal.bytes(it->second.place) != journal.bytes(r.place))
         throw error(exit_code::io_failure,
                     fmt::format("merge: point {} block {} differs between two journals (one "
                                 "of them is from another program version or damaged); '{}'",

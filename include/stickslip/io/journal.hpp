@@ -54,9 +54,9 @@ inline constexpr const char* journal_directory = ".journal";
 // its window comes, and `merge` every shard's units; holding their bytes made
 // a resume peak far above the uninterrupted run, whose outputs are streamed
 // (the 100,000-point grid's resume after 60,400 of 100,000 units: 253 MB,
-// against 92 MB uninterrupted), and `merge` of that grid's two shards hold
-// 577 MB of decoded units. Holding where they are takes ~50 bytes a record
-// (88 MB). Reading back checks the length and the CRC again: a journal
+// against 92 MB uninterrupted), and `merge` of that grid's two shards held
+// 577 MB of decoded units. Holding where they are takes ~100 bytes a record
+// with its map node: the resume 88 MB, the merge 133 MB. Reading back checks the length and the CRC again: a journal
 // changed on disk since it was read throws io_failure (the output lock keeps
 // other stickslip runs out of a run's own directory; `merge` reads shard
 // directories it does not lock).
@@ -66,9 +66,8 @@ struct journal_place {
   std::uint32_t length = 0, crc = 0;           // of the payload
 };
 
-// Reads journal records back, keeping the last few segments open: a
-// window's records are in a few segments, and a merge's alternate between
-// its shards' (every n-th unit is shard i's).
+// Reads journal records back, keeping the last 8 segments open
+// (restore_window reads a window's records in their segments' order).
 class journal_readback {
  public:
   // The record's payload, every check passed at reading; throws io_failure
@@ -92,7 +91,8 @@ struct journaled_prefix {
   [[nodiscard]] merged_prefix decode() const;
 };
 
-// A valid journaled unit (a shard's, or a sweep's that keeps records).
+// A valid journaled unit: a shard's, a sweep's that keeps records, or one
+// a whole run journaled while it waited for its point's earlier blocks.
 struct journaled_unit {
   journal_place place;
   [[nodiscard]] std::string bytes() const;  // serialize(unit, block)

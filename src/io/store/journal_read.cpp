@@ -113,6 +113,18 @@ struct segment_reader {
   // first back (rare: the same unit in two segments).
   std::set<work_unit> conflicting;
   std::set<std::size_t> conflicting_points;
+  journal_readback earlier;
+
+  // Whether an earlier record, read back, is `payload`: one whose segment
+  // changed since it was read is not (both are then recomputed), rather
+  // than an error blamed on the record being read now.
+  bool holds(const journal_place& at, std::string_view payload) {
+    try {
+      return earlier.bytes(at) == payload;
+    } catch (const error&) {
+      return false;
+    }
+  }
 
   void note(const std::string& msg) {
     ++out.damaged;
@@ -182,7 +194,7 @@ struct segment_reader {
     if (it != out.prefixes.end() && it->second.blocks == p.blocks) {
       // read back only here: two prefixes of one length are rare (a point
       // that did not advance between two runs' checkpoints)
-      if (it->second.bytes() == payload) return;
+      if (holds(it->second.place, payload)) return;
       conflicting_points.insert(p.point);
       out.prefixes.erase(it);
       return note(fmt::format("point {}: two journaled merges of its first {} blocks differ; "
@@ -197,7 +209,7 @@ struct segment_reader {
     const auto it = out.units.find(u);
     if (it == out.units.end()) {
       out.units.emplace(u, std::move(where));
-    } else if (it->second.bytes() != payload) {  // cannot happen unless something is very wrong
+    } else if (!holds(it->second.place, payload)) {  // cannot happen unless something is very wrong
       conflicting.insert(u);
       out.units.erase(u);
       note(fmt::format("point {} block {} is journaled twice with different contents; "
@@ -212,12 +224,12 @@ struct segment_reader {
 std::string journal_readback::bytes(const journal_place& at) {
   const auto fail = [&](const std::string& why) {
     return error(exit_code::io_failure,
-                 fmt::format("{}: the journal changed during the run ({}): a journaled record "
-                             "could not be read back; run the command again",
+                 fmt::format("{}: the journal changed since it was read ({}): a journaled "
+                             "record could not be read back; run the command again",
                              at.segment ? *at.segment : std::string("(no segment)"), why));
   };
   if (!at.segment) throw fail("no segment");
-  constexpr std::size_t kept = 8;  // open segments
+  constexpr std::size_t kept = 8;  // open segments (journal.hpp)
   auto it = std::find_if(open_.begin(), open_.end(), [&](const open_segment& o) {
     return o.path == at.segment || *o.path == *at.segment;
   });
@@ -298,7 +310,7 @@ journal_contents read_journal(const std::string& dir, const sweep_spec* expected
   if (ec) throw io_error(jdir, "cannot list the journal: " + ec.message());
   std::sort(segments.begin(), segments.end());
 
-  segment_reader reader{spec, fingerprint(spec), report, out, {}, {}, {}};
+  segment_reader reader{spec, fingerprint(spec), report, out, {}, {}, {}, {}};
   for (const auto& path : segments) reader.read(path);
   // Units that a point's prefix covers are not needed.
   std::erase_if(out.units, [&](const auto& kv) {
