@@ -292,6 +292,11 @@ class realization_observer : public observer_base {
   [[nodiscard]] const std::vector<double>& stick_durations() const noexcept { return sticks_; }
   [[nodiscard]] const std::vector<double>& slip_durations() const noexcept { return slips_; }
   void finish() noexcept;
+  // Room for a realization's stick and slip durations (and onsets): an
+  // estimate from the belt's switch rate and t_a. For the lane engine's
+  // observers that keep them (keeps_durations).
+  void reserve_episodes(const model_parameters& p);
+  static constexpr bool keeps_durations = true;
 
  private:
   double window_, kinetic_force_, damping_, mass_, stiffness_;  // window_: t_a - T
@@ -348,6 +353,7 @@ class basic_mean_statistics_observer : public realization_observer {
   using realization_observer::realization_observer;
   using observer_base::on_piece;
   static constexpr bool causal_score = CausalScore;
+  static constexpr bool keeps_durations = false;
   // Without the causal score (whose sums need each stick's switch count),
   // the lanes hand over the tallies of the closed episodes instead.
   static constexpr bool episode_tallies = !CausalScore;

@@ -184,7 +184,9 @@ class statistics_collector {
                        std::uint64_t first_block)
       : s_(s), p_(p), outs_(outs), point_(point), first_block_(first_block) {}
   [[nodiscard]] observer make() const {
-    return observer(p_, s_.family_statistics, s_.burn_in, &s_.observe_times);
+    observer o(p_, s_.family_statistics, s_.burn_in, &s_.observe_times);
+    if constexpr (observer::keeps_durations) o.reserve_episodes(p_);
+    return o;
   }
   void begin(observer& o, std::uint64_t r, const initial_conditions& ic) const {
     o.reset(r, ic.position, ic.velocity, ic.belt_direction);

@@ -337,9 +337,11 @@ realization_observer::realization_observer(const model_parameters& p, bool famil
              0) {
   if (observe_times && !observe_times->empty())
     sampler_ = state_sampler(*observe_times, p.levels(), p.window, p.mass, p.stiffness);
-  // Room for a realization's episodes, so that the lists do not grow by
-  // doubling in every observer of every work unit (the lane engine makes 64
-  // per unit). An estimate, not a bound: on the paper's belt about one stick
+}
+
+void realization_observer::reserve_episodes(const model_parameters& p) {
+  // So that the lists do not grow by doubling in every observer of every
+  // work unit (the lane engine makes 64 per unit). An estimate, not a bound: on the paper's belt about one stick
   // and one slip per switch, whose count is Poisson with mean rate * t_a;
   // four standard deviations over it, at most 4,096 each. (Periodic
   // stick-slip at a steady belt, or a generator's faster rates, can have
