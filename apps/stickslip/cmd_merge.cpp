@@ -39,7 +39,7 @@ struct merge_options {
 
 void print_problem(const std::string& p) { fmt::print(stderr, "stickslip: journal: {}\n", p); }
 
-void run_merge(const merge_options& o) {
+void run_merge(const merge_options& o, const invocation& inv) {
   std::signal(SIGXFSZ, SIG_IGN);  // past `ulimit -f`: EFBIG, reported
   {
     std::error_code ec;
@@ -55,13 +55,21 @@ void run_merge(const merge_options& o) {
   // A large grid's outputs are written window by window as it is merged
   // (io::streamed_outputs), as a sweep's: OUT holds them only once all are.
   std::optional<io::streamed_outputs> streamed;
+  // The outputs say that this merge made them (its command line, its time),
+  // of the configuration every journal holds; the shards' own command lines
+  // (`sweep ... --shard i/n`) are not the run that wrote them.
+  std::optional<io::run_metadata> this_merge;
+  const auto metadata_of = [&](const io::run_metadata& shards) -> const io::run_metadata& {
+    if (!this_merge) this_merge = io::make_metadata(inv.argc, inv.argv, shards.resolved_config);
+    return *this_merge;
+  };
   const auto stream = [&](const result_set& slab, const io::run_metadata& meta) {
     if (!streamed) {
       result_set header;  // threads and ranks as merge_shards' results
       header.spec = slab.spec;
       streamed.emplace(std::move(header), o.out_dir, options);
     }
-    streamed->slab(slab, meta);
+    streamed->slab(slab, metadata_of(meta));
   };
   // A failed merge leaves nothing of its own: the stream's temporaries, and
   // OUT if this merge created it. An I/O failure then leaves through
@@ -89,8 +97,8 @@ void run_merge(const merge_options& o) {
                        "used once)\n", merged.duplicates);
   try {
     note_removed_outputs(
-        streamed ? streamed->commit(merged.results.elapsed_seconds, merged.metadata)
-                 : io::write_all(merged.results, merged.metadata, o.out_dir, options));
+        streamed ? streamed->commit(merged.results.elapsed_seconds, metadata_of(merged.metadata))
+                 : io::write_all(merged.results, metadata_of(merged.metadata), o.out_dir, options));
   } catch (const error& e) {
     clean_up();
     if (e.code() == exit_code::io_failure) exit_after_failed_write(e);
@@ -118,7 +126,7 @@ void run_merge(const merge_options& o) {
 
 }  // namespace
 
-void add_merge_command(CLI::App& app, const invocation&) {
+void add_merge_command(CLI::App& app, const invocation& inv) {
   auto opts = std::make_shared<merge_options>();
   auto* cmd = app.add_subcommand(
       "merge",
@@ -134,7 +142,7 @@ void add_merge_command(CLI::App& app, const invocation&) {
                 "replace the results of an earlier run in OUT (default: refuse and say which)");
   cmd->add_flag("--json-histograms", opts->json_histograms,
                 "also write the joint (D, X) histograms into summary.json (default: results.nc only; they are most of its bytes)");
-  cmd->callback([opts] { run_merge(*opts); });
+  cmd->callback([opts, inv] { run_merge(*opts, inv); });
 }
 
 }  // namespace stickslip::app

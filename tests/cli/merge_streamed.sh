@@ -10,6 +10,7 @@ run_ok sweep "${grid[@]}" --shard 0/2 -o s0
 run_ok sweep "${grid[@]}" --shard 1/2 -o s1
 run_ok merge s0 s1 -o m
 cmp -s one/summary.csv m/summary.csv || fail "the merged summary.csv is not the sweep's"
+grep -q '"command_line": ".* merge s0 s1 -o m"' m/summary.json || fail "summary.json: not the merge's command line"
 "$PY" - one/results.nc m/results.nc <<'PYEOF' || fail "the merged results.nc is not the sweep's"
 import sys, netCDF4, numpy as np
 a, b = (netCDF4.Dataset(p) for p in sys.argv[1:])
@@ -19,7 +20,18 @@ for n in a.variables:
     assert x.tobytes() == y.tobytes(), n
 # streamed: the chunks end at the windows' rows (32 of 40 rows of 30 points)
 assert any(v.chunking() != "contiguous" and v.chunking()[0] == 32 for v in b.variables.values())
+# the merge made the file: its own command line, not shard 0's
+assert " merge s0 s1 -o m" in b.command_line and "--shard" not in b.command_line, b.command_line
+assert b.command_line in b.history, b.history
 PYEOF
+pass
+# A grid of one window (written at once): the merge's command line too.
+small=(--lambda 1,2 --mu 5 --realizations 4 --ta 1)
+run_ok sweep "${small[@]}" --shard 0/2 -o q0
+run_ok sweep "${small[@]}" --shard 1/2 -o q1
+run_ok merge q0 q1 -o qm
+grep -q '"command_line": ".* merge q0 q1 -o qm"' qm/summary.json ||
+  fail "summary.json of a one-window merge: not the merge's command line"
 pass
 nc_failures=0
 for limit in 100 600 1200 1288; do
