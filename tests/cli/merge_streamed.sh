@@ -49,7 +49,11 @@ for limit in 100 600 1200 1288; do
   [[ $(wc -l <err.txt) == 1 && $(cat err.txt) == "stickslip: error: "* ]] ||
     fail "ulimit -f $limit: stderr is not one error line: $(cat err.txt)"
   grep -q "NetCDF: NetCDF\|file: nc" err.txt && fail "ulimit -f $limit: netCDF-C++'s raw text: $(cat err.txt)"
-  grep -q "results.nc': NetCDF: " err.txt && nc_failures=$((nc_failures + 1))
+  if grep -q "results.nc': NetCDF: " err.txt; then
+    nc_failures=$((nc_failures + 1))
+    grep -q "netCDF does not say why; the file-size limit (ulimit -f) is $((limit * 1024)) bytes" err.txt ||
+      fail "ulimit -f $limit: the NetCDF error does not name the limit: $(cat err.txt)"
+  fi
   [[ ! -e m$limit ]] || fail "ulimit -f $limit: the failed merge left m$limit: $(ls -a m$limit)"
 done
 checks=$((checks + 1))

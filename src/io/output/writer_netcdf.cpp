@@ -252,7 +252,7 @@ void reporting_as(const std::string& path, F&& f) {
   try {
     f();
   } catch (const nc::exceptions::NcException& e) {
-    throw io_error(path, netcdf_message(e));
+    throw io_error(path, netcdf_message(e) + write_limit_hint(path));
   } catch (const stickslip::error&) {
     throw;
   } catch (const std::exception& e) {
