@@ -64,6 +64,32 @@ void run_stopped_after(const sweep_spec& s, run::run_plan plan, run::runner& r,
   };
   EXPECT_THROW((void)run::run_journaled(s, plan, io::run_metadata{"c", "f", "v", "g", "t"}, r), error);
 }
+
+// Changes a byte of a record's payload in its segment, after the reading.
+void damage_on_disk(const io::journal_place& at) {
+  std::string data;
+  {
+    std::ifstream in(*at.segment, std::ios::binary);
+    data.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  data[at.offset + at.length / 2] ^= 0x10;
+  std::ofstream(*at.segment, std::ios::binary | std::ios::trunc) << data;
+}
+
+// A damaged record (prefix or unit) is refused when read back, naming its
+// segment, as a journal changed since it was read.
+template <class Record>
+void expect_read_back_refused(const Record& r) {
+  try {
+    (void)r.decode();
+    ADD_FAILURE() << "a changed segment was read back";
+  } catch (const error& e) {
+    EXPECT_EQ(e.code(), exit_code::io_failure);
+    EXPECT_NE(std::string(e.what()).find("the journal changed since it was read (CRC mismatch)"),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(*r.place.segment), std::string::npos) << e.what();
+  }
+}
 }  // namespace
 
 TEST(JournalPrefixes, RestoredPrefixContinuesWithTheSameBits) {
@@ -187,22 +213,8 @@ TEST(JournalPrefixes, APrefixIsReadBackFromItsSegmentAndCheckedAgain) {
   EXPECT_EQ(twice.prefixes.size(), point_count(s));
   fs::remove(seg.parent_path() / (seg.filename().string() + ".bin"));
   // A byte of the first prefix's payload changed after the reading.
-  std::string data;
-  {
-    std::ifstream in(seg, std::ios::binary);
-    data.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  data[first.place.offset + first.place.length / 2] ^= 0x04;
-  std::ofstream(seg, std::ios::binary | std::ios::trunc) << data;
-  try {
-    (void)first.decode();
-    ADD_FAILURE() << "a changed segment was read back";
-  } catch (const error& e) {
-    EXPECT_EQ(e.code(), exit_code::io_failure);
-    EXPECT_NE(std::string(e.what()).find("the journal changed since it was read (CRC mismatch)"),
-              std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(seg.string()), std::string::npos) << e.what();
-  }
+  damage_on_disk(first.place);
+  expect_read_back_refused(first);
   fs::remove(seg);
   EXPECT_THROW((void)first.bytes(), error);  // gone: "cannot open"
   fs::remove_all(dir);
@@ -247,22 +259,8 @@ TEST(JournalPrefixes, AUnitIsReadBackFromItsSegmentAndCheckedAgain) {
   EXPECT_EQ(bits(j.units.at(order[0]).decode(from).stats), bits(simulate_block(s, order[0]).stats));
   const io::journaled_unit& first = j.units.begin()->second;
   ASSERT_TRUE(first.place.segment);
-  const fs::path seg = *first.place.segment;
-  std::string data;
-  {
-    std::ifstream in(seg, std::ios::binary);
-    data.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  data[first.place.offset + first.place.length / 2] ^= 0x10;
-  std::ofstream(seg, std::ios::binary | std::ios::trunc) << data;
-  try {
-    (void)first.decode();
-    ADD_FAILURE() << "a changed segment was read back";
-  } catch (const error& e) {
-    EXPECT_EQ(e.code(), exit_code::io_failure);
-    EXPECT_NE(std::string(e.what()).find("the journal changed since it was read (CRC mismatch)"),
-              std::string::npos) << e.what();
-  }
+  damage_on_disk(first.place);
+  expect_read_back_refused(first);
   fs::remove_all(dir);
 }
 
