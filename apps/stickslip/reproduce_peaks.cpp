@@ -116,9 +116,9 @@ study::peak_locator kept_peak_locator(std::string runs_dir, run::runner& r,
       auto rs = run::run_unless_stopped(r, s, stop);
       if (!rs)
         throw error(interrupted_by(stop.reason()),
-                    fmt::format("interrupted by signal {}: the finished sweeps and peak "
+                    fmt::format("interrupted by {}: the finished sweeps and peak "
                                 "searches are kept; continue with the same command and --resume",
-                                stop.reason()));
+                                run::signal_text(stop.reason())));
       return std::move(*rs);
     };
     p = precision::find_peak_by_sweeps(q);

@@ -15,6 +15,7 @@
 #include "stickslip/io/writers.hpp"
 #include "stickslip/serialize.hpp"
 #include "stickslip/run/result_memory.hpp"
+#include "stickslip/run/stop.hpp"
 #include "stickslip/run/work_meter.hpp"
 #include "grid_windows.hpp"
 
@@ -248,9 +249,9 @@ run_outcome run_journaled(const sweep_spec& spec, const run_plan& plan,
   if (stop_seen) {
     const int sig = plan.stop->reason();
     throw error(interrupted_by(sig),
-                fmt::format("interrupted by signal {}: {} finished units are journaled in {}; "
+                fmt::format("interrupted by {}: {} finished units are journaled in {}; "
                             "continue with the same command and --resume",
-                            sig, merged_before, io::journal_path(plan.dir)));
+                            signal_text(sig), merged_before, io::journal_path(plan.dir)));
   }
   if (plan.slice) return out;
   out.results = std::move(all);

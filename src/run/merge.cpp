@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cstdio>
 #include <map>
+#include <set>
 #include <optional>
 
 #include "stickslip/error.hpp"
@@ -33,6 +35,7 @@ struct combined {
   std::map<work_unit, io::journaled_unit> units;
   std::map<std::size_t, io::journaled_prefix> prefixes;  // the longest per point
   std::optional<io::run_metadata> metadata;
+  std::set<std::string> runs;  // the journals' run ids
   double elapsed = 0;
   std::uint64_t duplicates = 0;
 };
@@ -45,6 +48,7 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
     auto j = io::read_journal(d, &spec, report);  // throws resume_mismatch on another config
     if (!all.metadata && j.metadata) all.metadata = j.metadata;
     all.elapsed += j.elapsed_seconds;
+    all.runs.insert(j.runs.begin(), j.runs.end());
     for (auto& [point, p] : j.prefixes) {  // from a whole run's journal in the inputs
       auto [it, fresh] = all.prefixes.emplace(point, p);
       if (fresh || it->second.blocks > p.blocks) continue;
@@ -72,6 +76,19 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
   return all;
 }
 
+// The n of the shards that wrote the journals (their run ids start
+// "shard-i-of-n-", run::shard::tag), or 0 when they are not all of one n.
+std::uint64_t shard_count(const std::set<std::string>& runs) {
+  std::uint64_t n = 0;
+  for (const auto& run : runs) {
+    unsigned long long i = 0, count = 0;
+    if (std::sscanf(run.c_str(), "shard-%llu-of-%llu-", &i, &count) != 2 || count == 0) return 0;
+    if (n != 0 && n != count) return 0;
+    n = count;
+  }
+  return n;
+}
+
 // Units a prefix covers are dropped first; every other unit must be there.
 void check_coverage(const sweep_spec& spec, combined& all) {
   std::erase_if(all.units, [&](const auto& kv) {
@@ -83,17 +100,28 @@ void check_coverage(const sweep_spec& spec, combined& all) {
     const auto it = all.prefixes.find(u.point);
     return (it != all.prefixes.end() && u.block < it->second.blocks) || all.units.count(u) > 0;
   };
+  const std::uint64_t n = shard_count(all.runs);  // 0: not known
   std::uint64_t missing = 0;
   std::vector<std::string> first;
-  for (std::uint64_t i = 0; i < total; ++i)
-    if (!covered(unit_at(spec, i)) && ++missing <= 5) first.push_back(std::to_string(i));
+  std::set<std::uint64_t> shards;  // of the missing units, when n is known
+  for (std::uint64_t i = 0; i < total; ++i) {
+    if (covered(unit_at(spec, i))) continue;
+    if (++missing <= 5) first.push_back(std::to_string(i));
+    if (n) shards.insert(i % n);
+  }
   if (missing == 0) return;
+  std::vector<std::string> names;
+  for (const auto i : shards) names.push_back(fmt::format("{}/{}", i, n));
+  const std::string whose =
+      names.empty() ? ""
+                    : fmt::format("; they are shard{} {}'s", names.size() == 1 ? "" : "s",
+                                  fmt::join(names, ", "));
   throw error(exit_code::invalid_input,
-              fmt::format("merge: {} of {} work units are missing (unit indices {}{}); run the "
+              fmt::format("merge: {} of {} work units are missing (unit indices {}{}{}); run the "
                           "missing shards (`stickslip {} ... --shard i/n --resume -o DIR`) "
                           "and merge again",
                           missing, total, fmt::join(first, ", "), missing > first.size() ? ", ..." : "",
-                          is_sensitivity(spec) ? "sensitivity" : "sweep"));
+                          whose, is_sensitivity(spec) ? "sensitivity" : "sweep"));
 }
 
 }  // namespace

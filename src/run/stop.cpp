@@ -1,5 +1,9 @@
 #include "stickslip/run/stop.hpp"
 
+#include <string.h>  // sigabbrev_np (glibc 2.32)
+
+#include <fmt/format.h>
+
 namespace stickslip::run {
 namespace {
 std::atomic<stop_token*> g_token{nullptr};
@@ -21,6 +25,11 @@ stop_on_signals::~stop_on_signals() {
 
 void ignore_stop_signals() noexcept {
   for (const int sig : stop_signals) std::signal(sig, SIG_IGN);
+}
+
+std::string signal_text(int signal) {
+  const char* name = sigabbrev_np(signal);  // "INT"; null for an unknown number
+  return name ? fmt::format("signal {} (SIG{})", signal, name) : fmt::format("signal {}", signal);
 }
 
 }  // namespace stickslip::run

@@ -103,7 +103,7 @@ echo "mpi_cli: errors under mpirun: exit 2 (bad input) and 4 (work bound), no ha
 long=(sweep --lambda log:0.1:30:40 --mu 0.5,5 --realizations 4000 --checkpoint-interval 0)
 "$bin" "${long[@]}" --threads 2 -o "$work/long-single" 2>/dev/null || fail "single-process long run"
 usr1_mid_run "$work/usr1" "SIGUSR1 under mpirun" "${long[@]}"
-grep -q "^stickslip: stopped: interrupted by signal 10" "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report (exit $rc)"; }
+grep -q "^stickslip: stopped: interrupted by signal 10 (SIGUSR1): " "$work/usr1.err" || { cat "$work/usr1.err"; fail "SIGUSR1: no interruption report (exit $rc)"; }
 "${launch[@]}" -np 2 "$bin" "${long[@]}" --threads 1 --resume -o "$work/usr1" 2>/dev/null \
   || fail "resume after SIGUSR1"
 $compare "$work/long-single" "$work/usr1" >/dev/null || fail "resume after SIGUSR1 differs"
@@ -123,7 +123,7 @@ wide=(sweep --lambda log:0.1:30:60 --mu lin:0.5:7:30 --realizations 120 --seed 9
   || { cat "$work/wide.err"; fail "mpirun -np 2 windowed grid"; }
 $compare "$work/wide-single" "$work/wide-np2" >/dev/null || fail "windowed grid: -np 2 differs"
 usr1_mid_run "$work/wide-usr1" "SIGUSR1 in the second window" "${wide[@]}"
-grep -q "^stickslip: stopped: interrupted by signal 10" "$work/wide-usr1.err" || { cat "$work/wide-usr1.err"; fail "windowed grid: no interruption report (exit $rc)"; }
+grep -q "^stickslip: stopped: interrupted by signal 10 (SIGUSR1): " "$work/wide-usr1.err" || { cat "$work/wide-usr1.err"; fail "windowed grid: no interruption report (exit $rc)"; }
 # It stopped in the second window: the first window's 960 points x 3
 # blocks were journaled, not all 5,400 units (the signal is sent anyway
 # after 15 s, which on a loaded machine could fall in the first window).

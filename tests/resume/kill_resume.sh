@@ -45,7 +45,7 @@ while :; do
       if [[ $sig == -TERM ]]; then
         ((rc == 143 || rc == 0)) || fail "SIGTERM exit code $rc"
         if ((rc == 143)); then
-          grep -q "^stickslip: stopped: interrupted by signal 15: .* finished units are journaled" \
+          grep -q "^stickslip: stopped: interrupted by signal 15 (SIGTERM): .* finished units are journaled" \
             "$work/log" || fail "SIGTERM: no 'stickslip: stopped:' report: $(tail -n 2 "$work/log")"
           echo "kill_resume: SIGTERM -> exit 143, finished units journaled"
         fi
@@ -86,6 +86,8 @@ for i in 0 1 2; do
 done
 "$bin" merge -o "$work/partial" "$work/shard0" "$work/shard2" 2>"$work/merge.err"; rc=$?
 ((rc == 2)) || fail "merge of incomplete shards: exit $rc, expected 2"
+grep -q "units are missing (unit indices 1, 4, 7, 10, 13, ...; they are shard 1/3's)" "$work/merge.err" ||
+  fail "the incomplete merge does not name the missing shard: $(cat "$work/merge.err")"
 [[ -e $work/partial ]] && fail "failed merge left $work/partial"
 "$bin" merge -o "$work/merged" "$work/shard0" "$work/shard1" "$work/shard2" "$work/shard1" 2>/dev/null \
   || fail "merge"

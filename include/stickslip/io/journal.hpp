@@ -34,6 +34,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -56,10 +57,11 @@ inline constexpr const char* journal_directory = ".journal";
 // (the 100,000-point grid's resume after 60,400 of 100,000 units: 253 MB,
 // against 92 MB uninterrupted), and `merge` of that grid's two shards held
 // 577 MB of decoded units. Holding where they are takes ~100 bytes a record
-// with its map node: the resume 88 MB, the merge 133 MB. Reading back checks the length and the CRC again: a journal
-// changed on disk since it was read throws io_failure (the output lock keeps
-// other stickslip runs out of a run's own directory; `merge` reads shard
-// directories it does not lock).
+// with its map node: the resume 88 MB, the merge 140-202 MB. Reading back
+// checks the length and the CRC again: a journal changed on disk since it
+// was read throws io_failure (the output lock keeps other stickslip runs out
+// of a run's own directory; `merge` reads shard directories it does not
+// lock).
 struct journal_place {
   std::shared_ptr<const std::string> segment;  // the segment file's path
   std::uint64_t offset = 0;                    // of the record's payload in it
@@ -106,6 +108,7 @@ struct journal_contents {
   std::optional<run_metadata> metadata;       // the first run's metadata
   std::map<work_unit, journaled_unit> units;  // every valid journaled unit, once
   std::map<std::size_t, journaled_prefix> prefixes;  // the longest valid one per point
+  std::set<std::string> runs;    // the run ids of its segments ("shard-3-of-8-...", "run-...")
   double elapsed_seconds = 0.0;  // sum over earlier runs of their last journaled time
   std::size_t segments = 0;      // segment files read
   std::size_t damaged = 0;       // files or records skipped as truncated/corrupt/foreign

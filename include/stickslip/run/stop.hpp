@@ -5,6 +5,7 @@
 #pragma once
 #include <atomic>
 #include <csignal>
+#include <string>
 
 namespace stickslip::run {
 
@@ -25,6 +26,9 @@ class stop_token {
 // limit) and SIGUSR1 (the one to use under mpirun, which forwards it to every
 // rank; under SLURM `#SBATCH --signal=USR1@120`; docs/scaling.md).
 inline constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGUSR1};
+
+// "signal 2 (SIGINT)": what the interruption messages say.
+[[nodiscard]] std::string signal_text(int signal);
 
 // For its lifetime, the stop signals request a stop on `token` (one object
 // at a time per process); the previous handlers are restored afterwards.

@@ -151,6 +151,7 @@ struct segment_reader {
             "{}: written for another configuration or by another build of stickslip; "
             "ignored, its units will be recomputed",
             path));
+      out.runs.insert(run);
       auto& e = run_elapsed[run];
       if (std::isfinite(elapsed) && elapsed > e) e = elapsed;
     } catch (const error& e) {
