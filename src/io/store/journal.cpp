@@ -240,8 +240,16 @@ void journal_writer::flush() {
   const std::string name = fmt::format("seg-{}-{:06}.bin", run_id_, segment_seq_);
   const std::string path = (fs::path(journal_dir_) / name).string();
   const bytes header = detail::encode_segment_header(fingerprint_, elapsed, run_id_, buffered_);
-  detail::write_file_durably((fs::path(journal_dir_) / (".tmp-" + name)).string(), path,
-                             {header, buffer_});
+  try {
+    detail::write_file_durably((fs::path(journal_dir_) / (".tmp-" + name)).string(), path,
+                               {header, buffer_});
+  } catch (const error& e) {
+    if (e.code() != exit_code::io_failure) throw;
+    // What the user can do: the segments written before this one stay.
+    throw error(e.code(), std::string(e.what()) +
+                              "; the journal keeps the units of its earlier segments, if any: "
+                              "make room and rerun with --resume (the others are computed again)");
+  }
   written_ += buffered_units_;
   own_.push_back({path, segment_seq_, std::move(buffered_covers_)});
   for (const auto& [point, blocks] : buffered_prefixes_) {
