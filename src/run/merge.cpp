@@ -3,13 +3,13 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <cstdio>
 #include <map>
 #include <set>
 #include <optional>
 
 #include "stickslip/error.hpp"
 #include "stickslip/io/streamed_outputs.hpp"
+#include "stickslip/run/shard.hpp"
 #include "stickslip/uncertainty/sensitivity_design.hpp"
 #include "grid_windows.hpp"
 
@@ -76,15 +76,14 @@ combined combine(const sweep_spec& spec, const std::vector<std::string>& dirs,
   return all;
 }
 
-// The n of the shards that wrote the journals (their run ids start
-// "shard-i-of-n-", run::shard::tag), or 0 when they are not all of one n.
+// The n of the shards that wrote the journals (shard::of_run), or 0 when
+// they are not all shards of one n.
 std::uint64_t shard_count(const std::set<std::string>& runs) {
   std::uint64_t n = 0;
   for (const auto& run : runs) {
-    unsigned long long i = 0, count = 0;
-    if (std::sscanf(run.c_str(), "shard-%llu-of-%llu-", &i, &count) != 2 || count == 0) return 0;
-    if (n != 0 && n != count) return 0;
-    n = count;
+    const auto s = shard::of_run(run);
+    if (!s || (n != 0 && n != s->count)) return 0;
+    n = s->count;
   }
   return n;
 }
@@ -107,7 +106,7 @@ void check_coverage(const sweep_spec& spec, combined& all) {
   for (std::uint64_t i = 0; i < total; ++i) {
     if (covered(unit_at(spec, i))) continue;
     if (++missing <= 5) first.push_back(std::to_string(i));
-    if (n) shards.insert(i % n);
+    if (n) shards.insert(i % n);  // the shard that owns unit i (shard::owns)
   }
   if (missing == 0) return;
   std::vector<std::string> names;

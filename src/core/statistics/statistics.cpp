@@ -341,12 +341,12 @@ realization_observer::realization_observer(const model_parameters& p, bool famil
 
 void realization_observer::reserve_episodes(const model_parameters& p) {
   // So that the lists do not grow by doubling in every observer of every
-  // work unit (the lane engine makes 64 per unit). An estimate, not a bound: on the paper's belt about one stick
-  // and one slip per switch, whose count is Poisson with mean rate * t_a;
-  // four standard deviations over it, at most 4,096 each. (Periodic
-  // stick-slip at a steady belt, or a generator's faster rates, can have
-  // more: the lists then grow as before.) 6,400 points of 100 realizations:
-  // ~4 % less CPU.
+  // work unit (the lane engine makes 64 per unit). An estimate, not a
+  // bound: on the paper's belt about one stick and one slip per switch,
+  // whose count is Poisson with mean rate * t_a; four standard deviations
+  // over it, at most 4,096 each. (Periodic stick-slip at a steady belt, or a
+  // generator's faster rates, can have more: the lists then grow as before.)
+  // 6,400 points of 100 realizations: ~4 % less CPU.
   double rate = p.switch_rate;
   for (const double r : p.belt_rates) rate = std::max(rate, r);
   const double expected = rate * p.window;
