@@ -17,6 +17,9 @@ struct shard {
   }
   // Part of the journal's segment names: "shard-3-of-16".
   [[nodiscard]] std::string tag() const;
+  // The shard whose tag a journal's run id starts with ("shard-3-of-16-..."),
+  // or none (a whole run's).
+  [[nodiscard]] static std::optional<shard> of_run(const std::string& run_id);
 };
 
 // "i/n" with 0 <= i < n <= 2^20; empty text: no shard. Throws invalid_input.
